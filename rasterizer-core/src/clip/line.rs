@@ -1,0 +1,101 @@
+//! Cohen-Sutherland clipping of a pixel line against a rectangle, exact to the pixel.
+//!
+//! The classic algorithm moves an endpoint to where the ideal line meets a clip edge, which lights
+//! different pixels from the unclipped line once the new endpoint is rounded. Here the outcodes pick
+//! the trivial accept and reject cases and the edges to clip against, as in Cohen-Sutherland, but each
+//! edge narrows the range of Bresenham *steps* instead: on the major axis by subtraction, on the minor
+//! axis by solving `floor((2kB + A - t) / 2A) = q` for `k` exactly in `i128`. The clipped walk then
+//! lights exactly the unclipped line's pixels that lie inside the rectangle, for any `i32` endpoints.
+
+use crate::geom::PixelRect;
+use crate::raster::ceil_div_i128;
+use crate::raster::line::Line;
+use embedded_graphics_core::geometry::Point;
+use embedded_graphics_core::primitives::Rectangle;
+
+const LEFT: u8 = 1;
+const RIGHT: u8 = 2;
+const TOP: u8 = 4;
+const BOTTOM: u8 = 8;
+
+/// Cohen-Sutherland outcode of `p` against `r`.
+fn outcode(p: Point, r: &PixelRect) -> u8 {
+    let (x, y) = (i64::from(p.x), i64::from(p.y));
+    let mut code = 0;
+    if x < r.x0 {
+        code |= LEFT;
+    } else if x >= r.x1 {
+        code |= RIGHT;
+    }
+    if y < r.y0 {
+        code |= TOP;
+    } else if y >= r.y1 {
+        code |= BOTTOM;
+    }
+    code
+}
+
+/// The first and last step of `line` whose pixel lies inside `area`, or `None` when none does.
+pub(crate) fn clip_steps(line: &Line, area: &Rectangle) -> Option<(i64, i64)> {
+    let r = PixelRect::from_rectangle(area);
+    if r.is_empty() {
+        return None;
+    }
+    let (c0, c1) = (outcode(line.start, &r), outcode(line.end, &r));
+    if c0 | c1 == 0 {
+        return Some((0, line.a));
+    }
+    if c0 & c1 != 0 {
+        return None;
+    }
+    let (mut k0, mut k1) = (0i64, line.a);
+    // Major axis: the walk moves by +1 each step, so each bound is a subtraction.
+    let (m_lo, m_hi, m_start) = if line.major_x {
+        (r.x0, r.x1 - 1, i64::from(line.start.x))
+    } else {
+        (r.y0, r.y1 - 1, i64::from(line.start.y))
+    };
+    k0 = k0.max(m_lo - m_start);
+    k1 = k1.min(m_hi - m_start);
+    // Minor axis: the unsigned offset o(k) must stay within [o_lo, o_hi].
+    let (n_lo, n_hi, n_start) = if line.major_x {
+        (r.y0, r.y1 - 1, i64::from(line.start.y))
+    } else {
+        (r.x0, r.x1 - 1, i64::from(line.start.x))
+    };
+    let (o_lo, o_hi) = if line.minor_step > 0 {
+        (n_lo - n_start, n_hi - n_start)
+    } else {
+        (n_start - n_hi, n_start - n_lo)
+    };
+    if o_hi < 0 {
+        return None;
+    }
+    if o_lo > 0 {
+        k0 = k0.max(first_step_reaching(line, o_lo)?);
+    }
+    if let Some(k) = last_step_within(line, o_hi) {
+        k1 = k1.min(k);
+    }
+    (k0 <= k1).then_some((k0, k1))
+}
+
+/// The smallest step `k` with `o(k) >= q` (`q >= 1`), or `None` if the line never gets there.
+fn first_step_reaching(line: &Line, q: i64) -> Option<i64> {
+    if line.b == 0 {
+        return None;
+    }
+    let (a, b, t) = (i128::from(line.a), i128::from(line.b), i128::from(line.tie()));
+    let k = ceil_div_i128(2 * a * i128::from(q) - a + t, 2 * b);
+    (k <= a).then_some(k as i64)
+}
+
+/// The largest step `k` with `o(k) <= q` (`q >= 0`), or `None` when every step qualifies.
+fn last_step_within(line: &Line, q: i64) -> Option<i64> {
+    if line.b == 0 {
+        return None;
+    }
+    let (a, b, t) = (i128::from(line.a), i128::from(line.b), i128::from(line.tie()));
+    let k = ceil_div_i128(2 * a * i128::from(q) + a + t, 2 * b) - 1;
+    (k < a).then_some(k as i64)
+}

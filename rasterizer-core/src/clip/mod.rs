@@ -1,0 +1,3 @@
+//! Clipping: lines against a rectangle, pixel-exact.
+
+pub mod line;

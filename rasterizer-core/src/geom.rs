@@ -1,0 +1,96 @@
+//! Screen-space coordinate types shared by every rasterizer.
+//!
+//! Pixel (x, y) covers `[x, x + 1) x [y, y + 1)` with y pointing down; it is sampled at its centre
+//! `(x + 0.5, y + 0.5)`. Filled primitives take vertices in sub-pixel fixed point so that meshes stay
+//! watertight after projection; lines and points take whole pixels.
+
+use embedded_graphics_core::geometry::Point;
+
+/// The default number of sub-pixel bits: 28.4 fixed point, 1/16 of a pixel.
+pub const DEFAULT_SUBPIXEL_BITS: u32 = 4;
+
+/// The largest number of sub-pixel bits the rasterizers accept.
+///
+/// Eight bits keep every product in the triangle and polygon set-up inside `i64` for the whole guard
+/// band (see [`GUARD_BAND_PIXELS`]).
+pub const MAX_SUBPIXEL_BITS: u32 = 8;
+
+/// Half the width of the guard band, in whole pixels.
+///
+/// Filled triangles and polygons whose vertices all lie within `±GUARD_BAND_PIXELS` pixels of the
+/// origin are rasterized exactly, with no clipping that could move an edge. A filled primitive with a
+/// vertex outside the band is dropped (nothing is drawn): the 3D pipeline clips against the band in
+/// homogeneous space before it reaches the rasterizer, so only hand-made 2D input can be that large.
+///
+/// Bound: with `b <= 8` sub-pixel bits the largest coordinate is `M = 2^(21 + b) <= 2^29`; the
+/// largest set-up products, the doubled area `|dx1 dy2| + |dx2 dy1| <= 8 M^2 = 2^61` and the edge
+/// numerator `|(y - ya) dx| + |xa dy| <= 6 M^2`, fit `i64`.
+pub const GUARD_BAND_PIXELS: i32 = 1 << 21;
+
+/// A point in sub-pixel fixed point with `BITS` fractional bits (28.4 by default).
+///
+/// The raw value `x` stands for `x / 2^BITS` pixels. Valid range: any `i32`; filled primitives draw
+/// only when every vertex lies inside the guard band ([`GUARD_BAND_PIXELS`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SubPoint<const BITS: u32 = DEFAULT_SUBPIXEL_BITS> {
+    /// Raw x, in `1 / 2^BITS` pixels.
+    pub x: i32,
+    /// Raw y, in `1 / 2^BITS` pixels.
+    pub y: i32,
+}
+
+impl<const BITS: u32> SubPoint<BITS> {
+    /// One pixel in raw units.
+    pub const ONE: i32 = 1 << BITS;
+
+    /// Compile-time guard: more than [`MAX_SUBPIXEL_BITS`] would overflow the set-up arithmetic.
+    pub(crate) const VALID: () = assert!(BITS <= MAX_SUBPIXEL_BITS, "at most 8 sub-pixel bits");
+
+    /// A point from raw sub-pixel values.
+    pub const fn new(x: i32, y: i32) -> Self {
+        Self { x, y }
+    }
+
+    /// The top-left corner of pixel `p`, saturating at the `i32` range.
+    pub const fn from_pixel(p: Point) -> Self {
+        Self {
+            x: p.x.saturating_mul(Self::ONE),
+            y: p.y.saturating_mul(Self::ONE),
+        }
+    }
+
+    /// True when both coordinates lie inside the guard band (see [`GUARD_BAND_PIXELS`]).
+    pub const fn in_guard_band(self) -> bool {
+        let limit = (GUARD_BAND_PIXELS as i64) << BITS;
+        let (x, y) = (self.x as i64, self.y as i64);
+        -limit <= x && x <= limit && -limit <= y && y <= limit
+    }
+}
+
+/// A rectangle of whole pixels, `x0 <= x < x1`, `y0 <= y < y1`, in `i64` so that its arithmetic
+/// cannot overflow for any `i32` input. Empty when `x0 >= x1` or `y0 >= y1`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct PixelRect {
+    pub x0: i64,
+    pub y0: i64,
+    pub x1: i64,
+    pub y1: i64,
+}
+
+impl PixelRect {
+    /// The pixels of an embedded-graphics rectangle.
+    pub fn from_rectangle(r: &embedded_graphics_core::primitives::Rectangle) -> Self {
+        let x0 = i64::from(r.top_left.x);
+        let y0 = i64::from(r.top_left.y);
+        Self {
+            x0,
+            y0,
+            x1: x0 + i64::from(r.size.width),
+            y1: y0 + i64::from(r.size.height),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+}

@@ -1,0 +1,386 @@
+//! A framebuffer over a caller-provided slice, in the layouts display drivers and DMA engines expect.
+//!
+//! Rows are stored top to bottom with no padding between them (except the bit padding of
+//! [`BinaryColor`] rows). Spans become `slice::fill` or a tight loop; line walks step a buffer index
+//! instead of recomputing `y * width + x` per pixel.
+
+use super::Surface;
+use crate::raster::line::LinePoints;
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{OriginDimensions, Size};
+use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
+use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
+use embedded_graphics_core::prelude::PixelColor;
+use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::Pixel;
+
+/// The largest width or height of a [`Framebuffer`], in pixels.
+///
+/// It keeps every row index and span end well inside `i32`, and the triangle set-up bound of
+/// [`crate::geom::GUARD_BAND_PIXELS`] assumes screens no larger than this.
+pub const MAX_DIMENSION: u32 = 32_767;
+
+/// Why a [`Framebuffer`] could not be made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FramebufferError {
+    /// The slice does not have the length this size and pixel format need.
+    WrongLength {
+        /// Words the size needs.
+        expected: usize,
+        /// Words the slice has.
+        actual: usize,
+    },
+    /// Width or height is zero or larger than [`MAX_DIMENSION`].
+    BadSize {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+}
+
+impl core::fmt::Display for FramebufferError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::WrongLength { expected, actual } => {
+                write!(f, "framebuffer slice has {actual} words, the size needs {expected}")
+            }
+            Self::BadSize { width, height } => write!(
+                f,
+                "framebuffer size {width}x{height} is outside 1..={MAX_DIMENSION} in each axis"
+            ),
+        }
+    }
+}
+
+/// How a colour type is stored in a [`Framebuffer`].
+///
+/// Implemented for [`Rgb565`] (one `u16` per pixel, the raw embedded-graphics value), [`Rgb888`]
+/// (three bytes per pixel, red first), [`Gray8`] (one byte per pixel) and [`BinaryColor`] (one bit
+/// per pixel, each row padded to whole bytes, the leftmost pixel in the most significant bit, as
+/// monochrome OLED and e-paper firmware stores it).
+pub trait Storage: PixelColor {
+    /// The element type of the slice.
+    type Word: Copy;
+    /// Words one row of `width` pixels takes.
+    fn row_words(width: usize) -> usize;
+    /// Sets pixel `x` of a row.
+    fn set(row: &mut [Self::Word], x: usize, color: Self);
+    /// Reads pixel `x` of a row.
+    fn get(row: &[Self::Word], x: usize) -> Self;
+    /// Fills pixels `x .. x + len` of a row.
+    fn fill(row: &mut [Self::Word], x: usize, len: usize, color: Self) {
+        for i in x..x + len {
+            Self::set(row, i, color);
+        }
+    }
+    /// Walks a line through the whole buffer (`stride` words per row); every point is in bounds.
+    fn walk(buf: &mut [Self::Word], stride: usize, points: LinePoints, color: Self) {
+        for p in points {
+            let row = p.y as usize * stride;
+            Self::set(&mut buf[row..row + stride], p.x as usize, color);
+        }
+    }
+}
+
+/// Steps a buffer index along a line walk: one add per pixel on the major axis, one more when the
+/// minor axis moves. For formats with one word per pixel.
+#[inline]
+fn walk_words<W: Copy>(buf: &mut [W], stride: usize, p: LinePoints, value: W) {
+    let mut idx = p.y as usize * stride + p.x as usize;
+    let (dx, dy) = (p.step_x as isize, p.step_y as isize * stride as isize);
+    let (major, minor) = if p.major_x { (dx, dy) } else { (dy, dx) };
+    let mut err = p.err;
+    for _ in 0..p.remaining {
+        buf[idx] = value;
+        idx = idx.wrapping_add_signed(major);
+        err += p.two_minor;
+        if err >= p.two_major {
+            err -= p.two_major;
+            idx = idx.wrapping_add_signed(minor);
+        }
+    }
+}
+
+impl Storage for Rgb565 {
+    type Word = u16;
+    fn row_words(width: usize) -> usize {
+        width
+    }
+    #[inline]
+    fn set(row: &mut [u16], x: usize, color: Self) {
+        row[x] = RawU16::from(color).into_inner();
+    }
+    #[inline]
+    fn get(row: &[u16], x: usize) -> Self {
+        RawU16::new(row[x]).into()
+    }
+    #[inline]
+    fn fill(row: &mut [u16], x: usize, len: usize, color: Self) {
+        row[x..x + len].fill(RawU16::from(color).into_inner());
+    }
+    #[inline]
+    fn walk(buf: &mut [u16], stride: usize, points: LinePoints, color: Self) {
+        walk_words(buf, stride, points, RawU16::from(color).into_inner());
+    }
+}
+
+impl Storage for Gray8 {
+    type Word = u8;
+    fn row_words(width: usize) -> usize {
+        width
+    }
+    #[inline]
+    fn set(row: &mut [u8], x: usize, color: Self) {
+        row[x] = color.luma();
+    }
+    #[inline]
+    fn get(row: &[u8], x: usize) -> Self {
+        Gray8::new(row[x])
+    }
+    #[inline]
+    fn fill(row: &mut [u8], x: usize, len: usize, color: Self) {
+        row[x..x + len].fill(color.luma());
+    }
+    #[inline]
+    fn walk(buf: &mut [u8], stride: usize, points: LinePoints, color: Self) {
+        walk_words(buf, stride, points, color.luma());
+    }
+}
+
+impl Storage for Rgb888 {
+    type Word = u8;
+    fn row_words(width: usize) -> usize {
+        width * 3
+    }
+    #[inline]
+    fn set(row: &mut [u8], x: usize, color: Self) {
+        row[3 * x..3 * x + 3].copy_from_slice(&[color.r(), color.g(), color.b()]);
+    }
+    #[inline]
+    fn get(row: &[u8], x: usize) -> Self {
+        Rgb888::new(row[3 * x], row[3 * x + 1], row[3 * x + 2])
+    }
+    #[inline]
+    fn fill(row: &mut [u8], x: usize, len: usize, color: Self) {
+        let rgb = [color.r(), color.g(), color.b()];
+        for px in row[3 * x..3 * (x + len)].chunks_exact_mut(3) {
+            px.copy_from_slice(&rgb);
+        }
+    }
+}
+
+impl Storage for BinaryColor {
+    type Word = u8;
+    fn row_words(width: usize) -> usize {
+        width.div_ceil(8)
+    }
+    #[inline]
+    fn set(row: &mut [u8], x: usize, color: Self) {
+        let mask = 0x80u8 >> (x % 8);
+        if color.is_on() {
+            row[x / 8] |= mask;
+        } else {
+            row[x / 8] &= !mask;
+        }
+    }
+    #[inline]
+    fn get(row: &[u8], x: usize) -> Self {
+        BinaryColor::from(row[x / 8] & (0x80u8 >> (x % 8)) != 0)
+    }
+    fn fill(row: &mut [u8], x: usize, len: usize, color: Self) {
+        let end = x + len;
+        let value = if color.is_on() { 0xFF } else { 0x00 };
+        // Partial bytes at either end keep their other bits; whole bytes in between are stored.
+        let (first, last) = (x / 8, (end - 1) / 8);
+        let head = 0xFFu8 >> (x % 8);
+        let tail = 0xFFu8 << (7 - (end - 1) % 8);
+        if first == last {
+            let mask = head & tail;
+            row[first] = (row[first] & !mask) | (value & mask);
+            return;
+        }
+        row[first] = (row[first] & !head) | (value & head);
+        row[first + 1..last].fill(value);
+        row[last] = (row[last] & !tail) | (value & tail);
+    }
+}
+
+/// A framebuffer over a caller-provided slice: no allocation, rows top to bottom.
+///
+/// ```
+/// use rasterizer_core::target::Framebuffer;
+/// use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*};
+///
+/// let mut buf = [0u16; 320 * 240];
+/// let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 320, 240).unwrap();
+/// fb.clear(Rgb565::BLUE).unwrap();
+/// assert_eq!(fb.pixel(Point::new(10, 10)), Some(Rgb565::BLUE));
+/// ```
+#[derive(Debug)]
+pub struct Framebuffer<'a, C: Storage> {
+    buf: &'a mut [C::Word],
+    width: u32,
+    height: u32,
+    stride: usize,
+}
+
+impl<'a, C: Storage> Framebuffer<'a, C> {
+    /// Words a `width` x `height` framebuffer of this format needs, or `None` if the size is out of
+    /// range (zero, or above [`MAX_DIMENSION`]).
+    pub fn required_len(width: u32, height: u32) -> Option<usize> {
+        let valid = (1..=MAX_DIMENSION).contains(&width) && (1..=MAX_DIMENSION).contains(&height);
+        valid.then(|| C::row_words(width as usize) * height as usize)
+    }
+
+    /// A framebuffer over `buf`, which must hold exactly [`Self::required_len`] words.
+    ///
+    /// # Errors
+    /// [`FramebufferError::BadSize`] for a zero or too large size, [`FramebufferError::WrongLength`]
+    /// when the slice is shorter or longer than the size needs.
+    pub fn new(buf: &'a mut [C::Word], width: u32, height: u32) -> Result<Self, FramebufferError> {
+        let expected =
+            Self::required_len(width, height).ok_or(FramebufferError::BadSize { width, height })?;
+        if buf.len() != expected {
+            return Err(FramebufferError::WrongLength {
+                expected,
+                actual: buf.len(),
+            });
+        }
+        Ok(Self {
+            buf,
+            width,
+            height,
+            stride: C::row_words(width as usize),
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The underlying words, rows top to bottom.
+    pub fn as_slice(&self) -> &[C::Word] {
+        self.buf
+    }
+
+    /// The underlying words, for a DMA transfer or a direct edit.
+    pub fn as_mut_slice(&mut self) -> &mut [C::Word] {
+        self.buf
+    }
+
+    /// The colour of a pixel, or `None` outside the buffer.
+    pub fn pixel(&self, p: embedded_graphics_core::geometry::Point) -> Option<C> {
+        let (x, y) = self.index(p.x, p.y)?;
+        Some(C::get(&self.buf[y * self.stride..(y + 1) * self.stride], x))
+    }
+
+    #[inline]
+    fn index(&self, x: i32, y: i32) -> Option<(usize, usize)> {
+        let inside = (x as u32) < self.width && (y as u32) < self.height;
+        inside.then_some((x as usize, y as usize))
+    }
+
+    #[inline]
+    fn row_mut(&mut self, y: usize) -> &mut [C::Word] {
+        &mut self.buf[y * self.stride..(y + 1) * self.stride]
+    }
+}
+
+impl<C: Storage> OriginDimensions for Framebuffer<'_, C> {
+    fn size(&self) -> Size {
+        Size::new(self.width, self.height)
+    }
+}
+
+impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        for Pixel(p, color) in pixels {
+            if let Some((x, y)) = self.index(p.x, p.y) {
+                C::set(self.row_mut(y), x, color);
+            }
+        }
+        Ok(())
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        let area_px = crate::geom::PixelRect::from_rectangle(area);
+        let mut colors = colors.into_iter();
+        for y in area_px.y0..area_px.y1 {
+            for x in area_px.x0..area_px.x1 {
+                let Some(color) = colors.next() else {
+                    return Ok(());
+                };
+                if (0..i64::from(self.width)).contains(&x) && (0..i64::from(self.height)).contains(&y) {
+                    C::set(self.row_mut(y as usize), x as usize, color);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
+        let r = crate::geom::PixelRect::from_rectangle(area);
+        let (x0, x1) = (r.x0.max(0), r.x1.min(i64::from(self.width)));
+        let (y0, y1) = (r.y0.max(0), r.y1.min(i64::from(self.height)));
+        if x0 >= x1 || y0 >= y1 {
+            return Ok(());
+        }
+        for y in y0..y1 {
+            C::fill(self.row_mut(y as usize), x0 as usize, (x1 - x0) as usize, color);
+        }
+        Ok(())
+    }
+
+    fn clear(&mut self, color: C) -> Result<(), Self::Error> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        for y in 0..h {
+            C::fill(self.row_mut(y), 0, w, color);
+        }
+        Ok(())
+    }
+}
+
+impl<C: Storage> Surface for Framebuffer<'_, C> {
+    #[inline]
+    fn fill_span(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
+        C::fill(self.row_mut(y as usize), x as usize, len as usize, color);
+        Ok(())
+    }
+
+    #[inline]
+    fn shade_span<F: FnMut() -> C>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        mut shade: F,
+    ) -> Result<(), Self::Error> {
+        let row = self.row_mut(y as usize);
+        for i in x as usize..x as usize + len as usize {
+            C::set(row, i, shade());
+        }
+        Ok(())
+    }
+
+    #[inline]
+    fn draw_line_points(&mut self, points: LinePoints, color: C) -> Result<(), Self::Error> {
+        C::walk(self.buf, self.stride, points, color);
+        Ok(())
+    }
+}

@@ -1,0 +1,117 @@
+//! Where pixels go: the [`Surface`] trait the rasterizers write through, the [`Framebuffer`] over a
+//! caller's slice, and [`AnyTarget`], which lets any embedded-graphics `DrawTarget` be drawn on.
+//!
+//! The rasterizers clip every primitive to [`Surface::clip_area`] first and then hand the surface whole
+//! horizontal spans (and, for lines, one walk along the line). The provided methods turn those into
+//! `fill_solid`, `fill_contiguous` and `draw_iter` calls, so any `DrawTarget` works; [`Framebuffer`]
+//! overrides them with direct slice writes, which is where the speed comes from.
+
+mod framebuffer;
+
+pub use framebuffer::{Framebuffer, FramebufferError, Storage, MAX_DIMENSION};
+
+use crate::raster::line::LinePoints;
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Dimensions, Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::Pixel;
+
+/// A `DrawTarget` the rasterizers can write whole spans into.
+///
+/// Every method has a default built on the `DrawTarget` methods, so `impl Surface for MyDisplay {}` is
+/// enough for a display type of your own; wrap a type from another crate in [`AnyTarget`].
+///
+/// The rasterizers call the span methods only with pixels inside [`Surface::clip_area`], `len >= 1`.
+pub trait Surface: DrawTarget {
+    /// The rectangle the rasterizers clip to. Defaults to the target's bounding box.
+    fn clip_area(&self) -> Rectangle {
+        self.bounding_box()
+    }
+
+    /// Fills `len` pixels of row `y` starting at column `x` with one colour.
+    fn fill_span(&mut self, x: i32, y: i32, len: u32, color: Self::Color) -> Result<(), Self::Error> {
+        self.fill_solid(&Rectangle::new(Point::new(x, y), Size::new(len, 1)), color)
+    }
+
+    /// Fills `len` pixels of row `y` starting at column `x`, left to right, with the colours `shade`
+    /// yields, one call per pixel.
+    fn shade_span<F: FnMut() -> Self::Color>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        mut shade: F,
+    ) -> Result<(), Self::Error> {
+        let area = Rectangle::new(Point::new(x, y), Size::new(len, 1));
+        self.fill_contiguous(&area, core::iter::repeat_with(&mut shade).take(len as usize))
+    }
+
+    /// Draws every pixel of a line walk in one colour.
+    fn draw_line_points(&mut self, points: LinePoints, color: Self::Color) -> Result<(), Self::Error> {
+        self.draw_iter(points.map(|p| Pixel(p, color)))
+    }
+}
+
+/// Lets any embedded-graphics `DrawTarget` (a display driver, `SimulatorDisplay`, `MockDisplay`) be
+/// used as a [`Surface`]: spans become `fill_solid` and `fill_contiguous` calls.
+///
+/// ```
+/// # use rasterizer_core::target::{AnyTarget, Framebuffer};
+/// # use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*};
+/// # let mut buf = [0u16; 8 * 8];
+/// # let mut display = Framebuffer::<Rgb565>::new(&mut buf, 8, 8).unwrap();
+/// use rasterizer_core::raster::line::draw_line;
+/// draw_line(&mut AnyTarget::new(&mut display), Point::new(0, 0), Point::new(7, 3), Rgb565::RED)?;
+/// # Ok::<(), core::convert::Infallible>(())
+/// ```
+#[derive(Debug)]
+pub struct AnyTarget<'a, T> {
+    inner: &'a mut T,
+}
+
+impl<'a, T: DrawTarget> AnyTarget<'a, T> {
+    /// Wraps a target.
+    pub fn new(inner: &'a mut T) -> Self {
+        Self { inner }
+    }
+
+    /// The wrapped target.
+    pub fn inner(&mut self) -> &mut T {
+        self.inner
+    }
+}
+
+impl<T: DrawTarget> Dimensions for AnyTarget<'_, T> {
+    fn bounding_box(&self) -> Rectangle {
+        self.inner.bounding_box()
+    }
+}
+
+impl<T: DrawTarget> DrawTarget for AnyTarget<'_, T> {
+    type Color = T::Color;
+    type Error = T::Error;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<Self::Color>>,
+    {
+        self.inner.draw_iter(pixels)
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Self::Color>,
+    {
+        self.inner.fill_contiguous(area, colors)
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: Self::Color) -> Result<(), Self::Error> {
+        self.inner.fill_solid(area, color)
+    }
+
+    fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {
+        self.inner.clear(color)
+    }
+}
+
+impl<T: DrawTarget> Surface for AnyTarget<'_, T> {}

@@ -1,0 +1,1 @@
+//! Shared test helpers: a strict mock target and independent reference rasterizers.
