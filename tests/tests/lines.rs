@@ -1,0 +1,307 @@
+//! Lines, points and line clipping: ASCII patterns in every octant, properties against the
+//! independent reference in `tests::reference_line`, and the i32 limits.
+
+use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888, RgbColor};
+use embedded_graphics_core::prelude::*;
+use embedded_graphics_core::primitives::Rectangle;
+use proptest::prelude::*;
+use rasterizer_core::raster::line::{draw_line, draw_line_gradient, Line};
+use rasterizer_core::raster::point::draw_point;
+use rasterizer_core::target::{AnyTarget, Framebuffer};
+use tests::{reference_line, StrictMock};
+
+fn line_mock(w: u32, h: u32, a: (i32, i32), b: (i32, i32)) -> StrictMock<BinaryColor> {
+    let mut mock = StrictMock::new(w, h);
+    draw_line(
+        &mut AnyTarget::new(&mut mock),
+        Point::new(a.0, a.1),
+        Point::new(b.0, b.1),
+        BinaryColor::On,
+    )
+    .unwrap();
+    mock
+}
+
+#[test]
+fn point_inside_and_outside() {
+    let mut mock = StrictMock::<BinaryColor>::new(3, 2);
+    let mut t = AnyTarget::new(&mut mock);
+    draw_point(&mut t, Point::new(1, 1), BinaryColor::On).unwrap();
+    draw_point(&mut t, Point::new(-1, 0), BinaryColor::On).unwrap();
+    draw_point(&mut t, Point::new(3, 0), BinaryColor::On).unwrap();
+    draw_point(&mut t, Point::new(i32::MIN, i32::MAX), BinaryColor::On).unwrap();
+    mock.assert_pattern(&["   ", " # "]);
+}
+
+#[test]
+fn line_octant_shallow_down_right() {
+    line_mock(8, 4, (0, 0), (7, 3)).assert_pattern(&["##      ", "  ##    ", "    ##  ", "      ##"]);
+}
+
+#[test]
+fn line_octant_shallow_up_right() {
+    line_mock(8, 4, (0, 3), (7, 0)).assert_pattern(&["      ##", "    ##  ", "  ##    ", "##      "]);
+}
+
+#[test]
+fn line_octant_steep_down_right() {
+    line_mock(4, 8, (0, 0), (3, 7)).assert_pattern(&[
+        "#   ", "#   ", " #  ", " #  ", "  # ", "  # ", "   #", "   #",
+    ]);
+}
+
+#[test]
+fn line_octant_steep_down_left() {
+    line_mock(4, 8, (3, 0), (0, 7)).assert_pattern(&[
+        "   #", "   #", "  # ", "  # ", " #  ", " #  ", "#   ", "#   ",
+    ]);
+}
+
+#[test]
+fn line_all_eight_octants_match_reverse_and_reference() {
+    let c = (10, 10);
+    for &(dx, dy) in &[(9, 4), (4, 9), (-4, 9), (-9, 4), (-9, -4), (-4, -9), (4, -9), (9, -4)] {
+        let end = (c.0 + dx, c.1 + dy);
+        let fwd = line_mock(21, 21, c, end).written();
+        let back = line_mock(21, 21, end, c).written();
+        assert_eq!(fwd, back, "direction changed pixels for ({dx}, {dy})");
+        let want: std::collections::BTreeSet<_> =
+            reference_line(Point::new(c.0, c.1), Point::new(end.0, end.1))
+                .into_iter()
+                .map(|p| (p.x, p.y))
+                .collect();
+        assert_eq!(fwd, want, "octant ({dx}, {dy})");
+    }
+}
+
+#[test]
+fn line_tie_goes_to_smaller_minor_coordinate() {
+    // From (0,0) to (2,1): at x = 1 the ideal y is exactly 0.5, so y = 0 is chosen, both ways.
+    line_mock(3, 2, (0, 0), (2, 1)).assert_pattern(&["## ", "  #"]);
+    line_mock(3, 2, (2, 1), (0, 0)).assert_pattern(&["## ", "  #"]);
+    // Rising line: from (0,1) to (2,0), at x = 1 ideal y = 0.5, tie to y = 0.
+    line_mock(3, 2, (0, 1), (2, 0)).assert_pattern(&[" ##", "#  "]);
+    // y-major: (0,0) to (1,2), at y = 1 ideal x = 0.5, tie to x = 0.
+    line_mock(2, 3, (0, 0), (1, 2)).assert_pattern(&["# ", "# ", " #"]);
+}
+
+#[test]
+fn line_horizontal_vertical_diagonal_and_single_pixel() {
+    line_mock(4, 1, (3, 0), (0, 0)).assert_pattern(&["####"]);
+    line_mock(1, 3, (0, 0), (0, 2)).assert_pattern(&["#", "#", "#"]);
+    line_mock(3, 3, (2, 2), (0, 0)).assert_pattern(&["#  ", " # ", "  #"]);
+    line_mock(2, 2, (1, 1), (1, 1)).assert_pattern(&["  ", " #"]);
+}
+
+#[test]
+fn line_endpoint_on_clip_edge() {
+    line_mock(4, 2, (-3, 0), (3, 0)).assert_pattern(&["####", "    "]);
+    line_mock(4, 2, (0, 1), (4, 1)).assert_pattern(&["    ", "####"]);
+}
+
+#[test]
+fn line_clipped_against_user_viewport() {
+    let line = Line::new(Point::new(-5, -2), Point::new(12, 5));
+    let area = Rectangle::new(Point::new(2, 0), Size::new(5, 4));
+    let clipped: Vec<Point> = line.clipped(&area).unwrap().collect();
+    let want: Vec<Point> = reference_line(Point::new(-5, -2), Point::new(12, 5))
+        .into_iter()
+        .filter(|p| area.contains(*p))
+        .collect();
+    assert_eq!(clipped, want);
+    assert!(Line::new(Point::new(0, 10), Point::new(10, 20)).clipped(&area).is_none());
+}
+
+#[test]
+fn line_i32_limits_do_not_overflow() {
+    let extremes = [i32::MIN, i32::MIN + 1, -1, 0, 1, 5, i32::MAX - 1, i32::MAX];
+    for &x0 in &extremes {
+        for &y0 in &extremes {
+            for &(x1, y1) in &[(i32::MAX, i32::MIN), (3, 4), (i32::MIN, i32::MAX), (0, 0)] {
+                let mut mock = StrictMock::<BinaryColor>::new(8, 8);
+                let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+                draw_line(&mut AnyTarget::new(&mut mock), a, b, BinaryColor::On).unwrap();
+                let line = Line::new(a, b);
+                for (x, y) in mock.written() {
+                    assert!(line.contains(Point::new(x, y)));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn line_through_screen_from_i32_extremes_matches_reference_inside() {
+    // A line from far outside crossing the screen: compare the visible part with the reference
+    // evaluated only at the visible major coordinates.
+    let (a, b) = (Point::new(-1_000_000_000, -999_999_990), Point::new(1_000_000_000, 1_000_000_017));
+    let mut mock = StrictMock::<BinaryColor>::new(32, 32);
+    draw_line(&mut AnyTarget::new(&mut mock), a, b, BinaryColor::On).unwrap();
+    let want = tests::reference_line_on_screen(a, b, 32, 32);
+    assert!(!want.is_empty());
+    assert_eq!(mock.written(), want);
+}
+
+#[test]
+fn line_hands_framebuffer_and_any_target_the_same_pixels() {
+    let mut buf = [0u16; 40 * 30];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 40, 30).unwrap();
+    let mut mock = StrictMock::<Rgb565>::new(40, 30);
+    mock.allow_overdraw = true;
+    let segs = [((-10, 3), (50, 20)), ((39, 0), (0, 29)), ((5, -4), (7, 40)), ((20, 15), (20, 15))];
+    for &((x0, y0), (x1, y1)) in &segs {
+        let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+        draw_line(&mut fb, a, b, Rgb565::RED).unwrap();
+        draw_line(&mut AnyTarget::new(&mut mock), a, b, Rgb565::RED).unwrap();
+    }
+    for y in 0..30 {
+        for x in 0..40 {
+            let p = Point::new(x, y);
+            let drawn = fb.pixel(p) == Some(Rgb565::RED);
+            assert_eq!(drawn, mock.get(x, y).is_some(), "at {p:?}");
+        }
+    }
+}
+
+#[test]
+fn gradient_line_endpoints_exact_and_symmetric() {
+    let (a, b) = (Point::new(1, 1), Point::new(14, 6));
+    let (ca, cb) = (Rgb888::new(255, 0, 10), Rgb888::new(0, 128, 250));
+    let mut fwd = StrictMock::<Rgb888>::new(16, 8);
+    let mut back = StrictMock::<Rgb888>::new(16, 8);
+    draw_line_gradient(&mut AnyTarget::new(&mut fwd), a, b, ca, cb).unwrap();
+    draw_line_gradient(&mut AnyTarget::new(&mut back), b, a, cb, ca).unwrap();
+    assert_eq!(fwd.get(1, 1), Some(ca));
+    assert_eq!(fwd.get(14, 6), Some(cb));
+    for (x, y) in fwd.written() {
+        assert_eq!(fwd.get(x, y), back.get(x, y));
+    }
+    // Monotonic red channel from a to b, and each value within half a step of the exact blend.
+    let pts = reference_line(a, b);
+    let n = (pts.len() - 1) as f64;
+    for (k, p) in pts.iter().enumerate() {
+        let c = fwd.get(p.x, p.y).unwrap();
+        let exact = 255.0 * (1.0 - k as f64 / n);
+        assert!((c.r() as f64 - exact).abs() <= 0.5, "k={k}: {} vs {exact}", c.r());
+    }
+}
+
+#[test]
+fn gradient_line_clipped_keeps_colours_of_unclipped() {
+    let (a, b) = (Point::new(-20, 2), Point::new(40, 9));
+    let (ca, cb) = (Rgb565::new(31, 0, 0), Rgb565::new(0, 63, 31));
+    let mut big = StrictMock::<Rgb565>::new(64, 16);
+    let mut small = StrictMock::<Rgb565>::new(16, 16);
+    draw_line_gradient(&mut AnyTarget::new(&mut small), a, b, ca, cb).unwrap();
+    // The same line shifted right by 24 into a bigger target: nothing clipped on the left.
+    let shift = Point::new(24, 0);
+    draw_line_gradient(&mut AnyTarget::new(&mut big), a + shift, b + shift, ca, cb).unwrap();
+    for (x, y) in small.written() {
+        assert_eq!(small.get(x, y), big.get(x + 24, y), "at ({x}, {y})");
+    }
+}
+
+#[test]
+fn gradient_on_gray_and_binary() {
+    let mut g = StrictMock::<Gray8>::new(5, 1);
+    draw_line_gradient(
+        &mut AnyTarget::new(&mut g),
+        Point::new(0, 0),
+        Point::new(4, 0),
+        Gray8::new(0),
+        Gray8::new(200),
+    )
+    .unwrap();
+    use embedded_graphics_core::pixelcolor::GrayColor;
+    let lumas: Vec<u8> = (0..5).map(|x| g.get(x, 0).unwrap().luma()).collect();
+    assert_eq!(lumas, vec![0, 50, 100, 150, 200]);
+    let mut b = StrictMock::<BinaryColor>::new(4, 1);
+    draw_line_gradient(
+        &mut AnyTarget::new(&mut b),
+        Point::new(0, 0),
+        Point::new(3, 0),
+        BinaryColor::Off,
+        BinaryColor::On,
+    )
+    .unwrap();
+    let on: Vec<bool> = (0..4).map(|x| b.get(x, 0).unwrap().is_on()).collect();
+    assert_eq!(on, vec![false, false, true, true]);
+}
+
+fn small_coord() -> impl Strategy<Value = i32> {
+    -40i32..80
+}
+
+fn any_coord() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        -40i32..80,
+        any::<i32>(),
+        Just(i32::MIN),
+        Just(i32::MAX),
+        -100_000i32..100_000
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn line_pixels_equal_reference(x0 in small_coord(), y0 in small_coord(), x1 in small_coord(), y1 in small_coord()) {
+        let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+        let walked: Vec<Point> = Line::new(a, b).points().collect();
+        let mut want = reference_line(a, b);
+        let mut got = walked.clone();
+        want.sort_by_key(|p| (p.x, p.y));
+        got.sort_by_key(|p| (p.x, p.y));
+        prop_assert_eq!(got, want);
+        // Consecutive pixels are 8-connected and every pixel is distinct.
+        for w in walked.windows(2) {
+            prop_assert!((w[0].x - w[1].x).abs() <= 1 && (w[0].y - w[1].y).abs() <= 1);
+            prop_assert!(w[0] != w[1]);
+        }
+    }
+
+    #[test]
+    fn line_direction_invariant(x0 in any_coord(), y0 in any_coord(), x1 in any_coord(), y1 in any_coord()) {
+        let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+        let area = Rectangle::new(Point::new(-3, -3), Size::new(40, 30));
+        let f: Option<Vec<Point>> = Line::new(a, b).clipped(&area).map(|p| p.collect());
+        let r: Option<Vec<Point>> = Line::new(b, a).clipped(&area).map(|p| p.collect());
+        prop_assert_eq!(f, r);
+    }
+
+    #[test]
+    fn clipped_equals_unclipped_within_rectangle(
+        x0 in small_coord(), y0 in small_coord(), x1 in small_coord(), y1 in small_coord(),
+        rx in -10i32..40, ry in -10i32..40, rw in 0u32..40, rh in 0u32..40,
+    ) {
+        let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+        let area = Rectangle::new(Point::new(rx, ry), Size::new(rw, rh));
+        let got: Vec<Point> = Line::new(a, b).clipped(&area).map(|p| p.collect()).unwrap_or_default();
+        let want: Vec<Point> = Line::new(a, b).points().filter(|p| area.contains(*p)).collect();
+        prop_assert_eq!(got, want);
+    }
+
+    #[test]
+    fn clipped_far_lines_match_reference_on_screen(
+        x0 in any_coord(), y0 in any_coord(), x1 in any_coord(), y1 in any_coord(),
+    ) {
+        let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+        let mut mock = StrictMock::<BinaryColor>::new(24, 16);
+        draw_line(&mut AnyTarget::new(&mut mock), a, b, BinaryColor::On).unwrap();
+        let want = tests::reference_line_on_screen(a, b, 24, 16);
+        prop_assert_eq!(mock.written(), want);
+    }
+
+    #[test]
+    fn line_translation_translates_pixels(
+        x0 in small_coord(), y0 in small_coord(), x1 in small_coord(), y1 in small_coord(),
+        tx in -1000i32..1000, ty in -1000i32..1000,
+    ) {
+        let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+        let t = Point::new(tx, ty);
+        let moved: Vec<Point> = Line::new(a + t, b + t).points().collect();
+        let orig: Vec<Point> = Line::new(a, b).points().map(|p| p + t).collect();
+        prop_assert_eq!(moved, orig);
+    }
+}
