@@ -1,0 +1,427 @@
+//! Triangles: outline and fill patterns, coverage against the independent edge-function reference,
+//! watertightness of fans, grids and strips, Gouraud colour, and the hard cases by name.
+
+use embedded_graphics_core::pixelcolor::{BinaryColor, Rgb565, Rgb888, RgbColor};
+use embedded_graphics_core::prelude::*;
+use proptest::prelude::*;
+use rasterizer_core::geom::{SubPoint, GUARD_BAND_PIXELS};
+use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
+use rasterizer_core::target::{AnyTarget, Framebuffer};
+use std::collections::BTreeSet;
+use tests::{reference_triangle, StrictMock};
+
+/// Whole-pixel corner coordinates in 28.4.
+fn px(x: i32, y: i32) -> SubPoint<4> {
+    SubPoint::new(x * 16, y * 16)
+}
+
+fn fill_mock<const B: u32>(w: u32, h: u32, v: [SubPoint<B>; 3]) -> StrictMock<BinaryColor> {
+    let mut mock = StrictMock::new(w, h);
+    fill_triangle(&mut AnyTarget::new(&mut mock), v, BinaryColor::On).unwrap();
+    mock
+}
+
+fn reference_set<const B: u32>(v: [SubPoint<B>; 3], w: i32, h: i32) -> BTreeSet<(i32, i32)> {
+    reference_triangle(v.map(|p| (i64::from(p.x), i64::from(p.y))), B, w, h)
+        .into_iter()
+        .collect()
+}
+
+#[test]
+fn fill_right_triangle_top_left() {
+    fill_mock(6, 6, [px(0, 0), px(6, 0), px(0, 6)]).assert_pattern(&[
+        "##### ", "####  ", "###   ", "##    ", "#     ", "      ",
+    ]);
+}
+
+#[test]
+fn fill_same_triangle_in_both_windings() {
+    let cw = fill_mock(8, 8, [px(1, 1), px(7, 3), px(2, 7)]).written();
+    let ccw = fill_mock(8, 8, [px(1, 1), px(2, 7), px(7, 3)]).written();
+    assert_eq!(cw, ccw);
+    assert!(!cw.is_empty());
+}
+
+#[test]
+fn fill_flat_bottom_and_flat_top() {
+    fill_mock(7, 4, [px(3, 0), px(7, 4), px(0, 4)]).assert_pattern(&[
+        "       ", "  ##   ", " ####  ", "###### ",
+    ]);
+    fill_mock(7, 4, [px(0, 0), px(7, 0), px(3, 4)]).assert_pattern(&[
+        "###### ", " ####  ", "  ##   ", "       ",
+    ]);
+}
+
+#[test]
+fn fill_all_orientations_match_reference() {
+    // A triangle rotated through 8 orientations and its mirror images, each checked against the
+    // reference: covers left/right middle vertices and every edge direction.
+    let base = [(2, 1), (13, 5), (5, 12)];
+    for k in 0..8 {
+        let v = base.map(|(x, y): (i32, i32)| {
+            let (x, y) = (x - 7, y - 7);
+            let (x, y) = match k % 4 {
+                0 => (x, y),
+                1 => (-y, x),
+                2 => (-x, -y),
+                _ => (y, -x),
+            };
+            let x = if k >= 4 { -x } else { x };
+            SubPoint::<4>::new((x + 8) * 16 + 5, (y + 8) * 16 + 3)
+        });
+        assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16), "orientation {k}");
+    }
+}
+
+#[test]
+fn horizontal_and_vertical_edges_exactly_on_pixel_centres() {
+    // Edges at x = 1.5 and y = 1.5 (pixel centres): left/top edges keep their centres, the right and
+    // bottom ones (x = 4.5, y = 3.5) do not.
+    let c = |x: i32, y: i32| SubPoint::<4>::new(x * 16 + 8, y * 16 + 8);
+    let mut mock = StrictMock::<BinaryColor>::new(6, 5);
+    let mut t = AnyTarget::new(&mut mock);
+    fill_triangle(&mut t, [c(1, 1), c(4, 1), c(4, 3)], BinaryColor::On).unwrap();
+    fill_triangle(&mut t, [c(1, 1), c(4, 3), c(1, 3)], BinaryColor::On).unwrap();
+    mock.assert_pattern(&["      ", " ###  ", " ###  ", "      ", "      "]);
+}
+
+#[test]
+fn zero_area_triangles_draw_nothing() {
+    for v in [
+        [px(1, 1), px(1, 1), px(1, 1)],
+        [px(0, 0), px(3, 3), px(6, 6)],
+        [px(0, 2), px(5, 2), px(3, 2)],
+        [px(2, 0), px(2, 5), px(2, 3)],
+        [SubPoint::new(17, 17), SubPoint::new(33, 33), SubPoint::new(49, 49)],
+    ] {
+        assert!(fill_mock(8, 8, v).written().is_empty(), "{v:?}");
+    }
+}
+
+#[test]
+fn collinear_and_repeated_vertices_draw_nothing() {
+    assert!(fill_mock(8, 8, [px(3, 3), px(3, 3), px(6, 1)]).written().is_empty());
+    assert!(fill_mock(8, 8, [px(0, 7), px(7, 0), px(7, 0)]).written().is_empty());
+}
+
+#[test]
+fn sliver_one_subpixel_wide_no_gap_no_overdraw() {
+    // Two triangles forming a quad of one sub-pixel height along a long diagonal, plus a sliver one
+    // sub-pixel wide: covered pixels equal the reference and the shared edge draws nothing twice.
+    let a = SubPoint::<4>::new(0, 8 * 16);
+    let b = SubPoint::<4>::new(40 * 16, 20 * 16 + 1);
+    let c = SubPoint::<4>::new(40 * 16, 20 * 16);
+    let d = SubPoint::<4>::new(0, 8 * 16 + 1);
+    let mut mock = StrictMock::<BinaryColor>::new(40, 30);
+    let mut t = AnyTarget::new(&mut mock);
+    fill_triangle(&mut t, [a, b, c], BinaryColor::On).unwrap();
+    fill_triangle(&mut t, [a, d, b], BinaryColor::On).unwrap();
+    let mut want = reference_set([a, b, c], 40, 30);
+    want.extend(reference_set([a, d, b], 40, 30));
+    assert_eq!(mock.written(), want);
+}
+
+#[test]
+fn sliver_triangle_no_gap() {
+    // A fan of slivers around a centre must still tile its hull without gaps or overdraw.
+    let centre = SubPoint::<4>::new(20 * 16 + 3, 15 * 16 + 7);
+    let ring: Vec<SubPoint<4>> = (0..=64)
+        .map(|i| {
+            let (x, y) = match i / 16 {
+                0 => (i % 16 * 40 / 16, 0),
+                1 => (40, (i % 16) * 30 / 16),
+                2 => (40 - (i % 16) * 40 / 16, 30),
+                3 => (0, 30 - (i % 16) * 30 / 16),
+                _ => (0, 0),
+            };
+            SubPoint::new(x * 16, y * 16)
+        })
+        .collect();
+    let mut mock = StrictMock::<BinaryColor>::new(40, 30);
+    for w in ring.windows(2) {
+        fill_triangle(&mut AnyTarget::new(&mut mock), [centre, w[0], w[1]], BinaryColor::On).unwrap();
+    }
+    assert_eq!(mock.written().len(), 40 * 30);
+}
+
+#[test]
+fn triangle_far_larger_than_screen() {
+    let v = [
+        SubPoint::<4>::new(-1_000_000 * 16, -1_000_000 * 16),
+        SubPoint::new(1_500_000 * 16, -3),
+        SubPoint::new(-7, 1_800_000 * 16),
+    ];
+    assert_eq!(fill_mock(32, 24, v).written(), reference_set(v, 32, 24));
+    assert_eq!(fill_mock(32, 24, v).written().len(), 32 * 24);
+}
+
+#[test]
+fn triangle_outside_guard_band_draws_nothing() {
+    let far = (GUARD_BAND_PIXELS + 1) * 16;
+    let v = [SubPoint::<4>::new(-far, -far), SubPoint::new(far, 0), SubPoint::new(0, far)];
+    assert!(fill_mock(8, 8, v).written().is_empty());
+    let v = [SubPoint::<4>::new(i32::MIN, i32::MIN), SubPoint::new(i32::MAX, 0), SubPoint::new(0, i32::MAX)];
+    assert!(fill_mock(8, 8, v).written().is_empty());
+}
+
+#[test]
+fn triangle_at_guard_band_edge_matches_reference() {
+    let g = GUARD_BAND_PIXELS * 16;
+    let v = [SubPoint::<4>::new(-g, -g), SubPoint::new(g, -g + 5), SubPoint::new(3, g)];
+    assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16));
+    let g8 = GUARD_BAND_PIXELS << 8;
+    let v = [SubPoint::<8>::new(-g8, 17), SubPoint::new(g8, -g8), SubPoint::new(g8, g8)];
+    assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16));
+}
+
+#[test]
+fn subpixel_bits_zero_and_eight() {
+    let v0 = [SubPoint::<0>::new(0, 0), SubPoint::new(9, 2), SubPoint::new(3, 8)];
+    assert_eq!(fill_mock(10, 10, v0).written(), reference_set(v0, 10, 10));
+    let v8 = [SubPoint::<8>::new(37, 300), SubPoint::new(2000, 1000), SubPoint::new(900, 2400)];
+    assert_eq!(fill_mock(10, 10, v8).written(), reference_set(v8, 10, 10));
+}
+
+#[test]
+fn outline_draws_each_pixel_once() {
+    let mut mock = StrictMock::<BinaryColor>::new(8, 6);
+    draw_triangle(
+        &mut AnyTarget::new(&mut mock),
+        [Point::new(0, 0), Point::new(7, 2), Point::new(2, 5)],
+        BinaryColor::On,
+    )
+    .unwrap();
+    mock.assert_pattern(&["##      ", "# ####  ", " #    ##", " #   ## ", "  ###   ", "  #     "]);
+    // A thin triangle whose edges share pixels along their length.
+    let mut thin = StrictMock::<BinaryColor>::new(12, 3);
+    draw_triangle(
+        &mut AnyTarget::new(&mut thin),
+        [Point::new(0, 0), Point::new(11, 1), Point::new(11, 2)],
+        BinaryColor::On,
+    )
+    .unwrap();
+    assert!(thin.written().len() >= 12);
+}
+
+#[test]
+fn outline_clipped_far_outside() {
+    let mut mock = StrictMock::<BinaryColor>::new(8, 8);
+    draw_triangle(
+        &mut AnyTarget::new(&mut mock),
+        [Point::new(i32::MIN, 3), Point::new(i32::MAX, 4), Point::new(3, i32::MAX)],
+        BinaryColor::On,
+    )
+    .unwrap();
+    assert!(!mock.written().is_empty());
+}
+
+#[test]
+fn gouraud_vertex_pixels_get_vertex_colours() {
+    // Vertices on pixel centres: the pixels there that are covered get exactly the vertex colour.
+    let c = |x: i32, y: i32| SubPoint::<4>::new(x * 16 + 8, y * 16 + 8);
+    let v = [c(1, 1), c(30, 4), c(6, 20)];
+    let colors = [Rgb888::new(255, 0, 0), Rgb888::new(0, 255, 0), Rgb888::new(0, 0, 255)];
+    let mut mock = StrictMock::<Rgb888>::new(32, 24);
+    fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
+    // (1,1) is the top vertex: on two edges, a left one and the right one, so not covered; the others
+    // are covered (left vertex) or not (right) by the top-left rule. Check the ones that are.
+    let mut checked = 0;
+    for (p, col) in [((1, 1), colors[0]), ((30, 4), colors[1]), ((6, 20), colors[2])] {
+        if let Some(got) = mock.get(p.0, p.1) {
+            assert_eq!(got, col, "vertex pixel {p:?}");
+            checked += 1;
+        }
+    }
+    // Also, with a bigger triangle whose vertex pixels are interior-adjacent, test a vertex that is
+    // covered: a left vertex is kept.
+    let v = [c(10, 0), c(1, 10), c(20, 12)];
+    let mut mock2 = StrictMock::<Rgb888>::new(24, 16);
+    fill_triangle_gouraud(&mut AnyTarget::new(&mut mock2), v, colors).unwrap();
+    assert_eq!(mock2.get(1, 10), Some(colors[1]));
+    checked += 1;
+    assert!(checked >= 1);
+}
+
+#[test]
+fn gouraud_same_pixels_as_flat_and_within_half_step_of_exact() {
+    let v = [SubPoint::<4>::new(13, 21), SubPoint::new(600, 90), SubPoint::new(170, 470)];
+    let colors = [Rgb888::new(250, 10, 0), Rgb888::new(0, 200, 30), Rgb888::new(40, 40, 255)];
+    let mut mock = StrictMock::<Rgb888>::new(40, 32);
+    fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
+    assert_eq!(mock.written(), reference_set(v, 40, 32));
+    // Exact barycentric blend at each centre, in f64.
+    let f = v.map(|p| (p.x as f64 / 16.0, p.y as f64 / 16.0));
+    let area = (f[1].0 - f[0].0) * (f[2].1 - f[0].1) - (f[2].0 - f[0].0) * (f[1].1 - f[0].1);
+    for (x, y) in mock.written() {
+        let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+        let l1 = ((cx - f[0].0) * (f[2].1 - f[0].1) - (f[2].0 - f[0].0) * (cy - f[0].1)) / area;
+        let l2 = ((f[1].0 - f[0].0) * (cy - f[0].1) - (cx - f[0].0) * (f[1].1 - f[0].1)) / area;
+        let l0 = 1.0 - l1 - l2;
+        let got = mock.get(x, y).unwrap();
+        let ch = |c: Rgb888, i: usize| [c.r(), c.g(), c.b()][i] as f64;
+        for i in 0..3 {
+            let exact = l0 * ch(colors[0], i) + l1 * ch(colors[1], i) + l2 * ch(colors[2], i);
+            let g = [got.r(), got.g(), got.b()][i] as f64;
+            assert!((g - exact).abs() <= 0.5 + 1e-9, "({x},{y}) ch{i}: {g} vs {exact}");
+        }
+    }
+}
+
+#[test]
+fn gouraud_sliver_with_huge_gradient_stays_in_range() {
+    let v = [SubPoint::<4>::new(0, 0), SubPoint::new(40 * 16, 30 * 16), SubPoint::new(40 * 16 + 1, 30 * 16)];
+    let colors = [Rgb565::new(31, 0, 0), Rgb565::new(0, 63, 0), Rgb565::new(0, 0, 31)];
+    let mut buf = [0u16; 48 * 32];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 48, 32).unwrap();
+    fill_triangle_gouraud(&mut fb, v, colors).unwrap();
+    let mut mock = StrictMock::<Rgb565>::new(48, 32);
+    fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
+    for (x, y) in mock.written() {
+        assert_eq!(fb.pixel(Point::new(x, y)), mock.get(x, y));
+    }
+}
+
+#[test]
+fn framebuffer_and_any_target_agree_on_gouraud() {
+    let v = [SubPoint::<4>::new(-100, 40), SubPoint::new(700, 100), SubPoint::new(300, 600)];
+    let colors = [Rgb565::new(31, 0, 5), Rgb565::new(3, 63, 0), Rgb565::new(0, 20, 31)];
+    let mut buf = [0u16; 40 * 32];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 40, 32).unwrap();
+    fill_triangle_gouraud(&mut fb, v, colors).unwrap();
+    let mut mock = StrictMock::<Rgb565>::new(40, 32);
+    fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
+    for y in 0..32 {
+        for x in 0..40 {
+            let want = mock.get(x, y).unwrap_or(Rgb565::BLACK);
+            assert_eq!(fb.pixel(Point::new(x, y)), Some(want));
+        }
+    }
+}
+
+fn coord() -> impl Strategy<Value = i32> {
+    -80i32..(48 * 16 + 80)
+}
+
+fn any_sub() -> impl Strategy<Value = i32> {
+    prop_oneof![coord(), any::<i32>(), Just(i32::MIN), Just(i32::MAX), -(1 << 26)..(1 << 26)]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn coverage_equals_reference(x0 in coord(), y0 in coord(), x1 in coord(), y1 in coord(), x2 in coord(), y2 in coord()) {
+        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        prop_assert_eq!(fill_mock(48, 40, v).written(), reference_set(v, 48, 40));
+    }
+
+    #[test]
+    fn coverage_equals_reference_other_bits(x0 in 0i32..2000, y0 in 0i32..2000, x1 in 0i32..2000, y1 in 0i32..2000, x2 in 0i32..2000, y2 in 0i32..2000) {
+        let v6 = [SubPoint::<6>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        prop_assert_eq!(fill_mock(32, 32, v6).written(), reference_set(v6, 32, 32));
+        let v2 = [SubPoint::<2>::new(x0 / 16, y0 / 16), SubPoint::new(x1 / 16, y1 / 16), SubPoint::new(x2 / 16, y2 / 16)];
+        prop_assert_eq!(fill_mock(32, 32, v2).written(), reference_set(v2, 32, 32));
+    }
+
+    #[test]
+    fn fan_is_watertight(cx in 100i32..600, cy in 100i32..500, n in 3usize..24, seed in any::<u64>()) {
+        // A closed fan around a centre: a star-shaped polygon of n spokes at sorted angles. Every pixel
+        // of the union is drawn once (the mock panics otherwise), and the union equals the union of
+        // the reference coverages.
+        let mut rng = seed;
+        let mut next = || { rng ^= rng << 13; rng ^= rng >> 7; rng ^= rng << 17; rng };
+        let ring: Vec<SubPoint<4>> = (0..n).map(|i| {
+            let ang = (i as f64 + (next() % 1000) as f64 / 3000.0) / n as f64 * std::f64::consts::TAU;
+            let r = 60.0 + (next() % 300) as f64;
+            SubPoint::new(cx + (r * ang.cos()) as i32, cy + (r * ang.sin()) as i32)
+        }).collect();
+        let centre = SubPoint::new(cx, cy);
+        let mut mock = StrictMock::<BinaryColor>::new(48, 40);
+        let mut want = BTreeSet::new();
+        for i in 0..n {
+            let t = [centre, ring[i], ring[(i + 1) % n]];
+            fill_triangle(&mut AnyTarget::new(&mut mock), t, BinaryColor::On).unwrap();
+            want.extend(reference_set(t, 48, 40));
+        }
+        prop_assert_eq!(mock.written(), want);
+    }
+
+    #[test]
+    fn jittered_grid_tiles_screen_exactly_once(seed in any::<u64>(), cols in 1usize..7, rows in 1usize..6) {
+        let (w, h) = (48i32, 40i32);
+        let mut rng = seed | 1;
+        let mut next = || { rng ^= rng << 13; rng ^= rng >> 7; rng ^= rng << 17; rng };
+        // Grid corners in 28.4; inner ones jittered; the border stays on the screen edge.
+        let mut pts = vec![vec![SubPoint::<4>::default(); cols + 1]; rows + 1];
+        for (j, row) in pts.iter_mut().enumerate() {
+            for (i, p) in row.iter_mut().enumerate() {
+                let mut x = i as i32 * w * 16 / cols as i32;
+                let mut y = j as i32 * h * 16 / rows as i32;
+                if i > 0 && i < cols { x += (next() % 61) as i32 - 30; }
+                if j > 0 && j < rows { y += (next() % 61) as i32 - 30; }
+                *p = SubPoint::new(x, y);
+            }
+        }
+        let mut mock = StrictMock::<BinaryColor>::new(w as u32, h as u32);
+        for j in 0..rows {
+            for i in 0..cols {
+                let (a, b, c, d) = (pts[j][i], pts[j][i + 1], pts[j + 1][i + 1], pts[j + 1][i]);
+                let flip = next() % 2 == 0;
+                let (t1, t2) = if flip { ([a, b, c], [a, c, d]) } else { ([a, b, d], [b, c, d]) };
+                fill_triangle(&mut AnyTarget::new(&mut mock), t1, BinaryColor::On).unwrap();
+                fill_triangle(&mut AnyTarget::new(&mut mock), t2, BinaryColor::On).unwrap();
+            }
+        }
+        prop_assert_eq!(mock.written().len(), (w * h) as usize);
+    }
+
+    #[test]
+    fn strip_is_watertight(seed in any::<u64>(), n in 3usize..20) {
+        let mut rng = seed | 1;
+        let mut next = || { rng ^= rng << 13; rng ^= rng >> 7; rng ^= rng << 17; rng };
+        let pts: Vec<SubPoint<4>> = (0..n + 2).map(|i| {
+            let x = (i as i32) * 48 * 16 / (n as i32 + 1) + (next() % 21) as i32 - 10;
+            let y = if i % 2 == 0 { 100 + (next() % 100) as i32 } else { 500 + (next() % 100) as i32 };
+            SubPoint::new(x, y)
+        }).collect();
+        let mut mock = StrictMock::<BinaryColor>::new(48, 40);
+        let mut want = BTreeSet::new();
+        for w in pts.windows(3) {
+            let t = [w[0], w[1], w[2]];
+            fill_triangle(&mut AnyTarget::new(&mut mock), t, BinaryColor::On).unwrap();
+            want.extend(reference_set(t, 48, 40));
+        }
+        prop_assert_eq!(mock.written(), want);
+    }
+
+    #[test]
+    fn whole_pixel_translation_translates_pixels(x0 in coord(), y0 in coord(), x1 in coord(), y1 in coord(), x2 in coord(), y2 in coord(), tx in -20i32..20, ty in -20i32..20) {
+        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let moved = v.map(|p| SubPoint::<4>::new(p.x + tx * 16, p.y + ty * 16));
+        // Large target so nothing is clipped away in either.
+        let a: BTreeSet<_> = fill_mock(160, 150, v.map(|p| SubPoint::<4>::new(p.x + 40 * 16, p.y + 40 * 16))).written();
+        let b: BTreeSet<_> = fill_mock(160, 150, moved.map(|p| SubPoint::<4>::new(p.x + 40 * 16, p.y + 40 * 16))).written();
+        let shifted: BTreeSet<_> = a.iter().map(|&(x, y)| (x + tx, y + ty)).collect();
+        prop_assert_eq!(shifted, b);
+    }
+
+    #[test]
+    fn any_i32_input_never_panics_or_writes_out_of_bounds(x0 in any_sub(), y0 in any_sub(), x1 in any_sub(), y1 in any_sub(), x2 in any_sub(), y2 in any_sub()) {
+        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
+        let mut mock = StrictMock::<Rgb565>::new(20, 16);
+        fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
+        let inside = v.iter().all(|p| p.in_guard_band());
+        if inside {
+            prop_assert_eq!(mock.written(), reference_set(v, 20, 16));
+        } else {
+            prop_assert!(mock.written().is_empty());
+        }
+        let mut buf = [0u16; 20 * 16];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 20, 16).unwrap();
+        fill_triangle(&mut fb, v, Rgb565::WHITE).unwrap();
+        let pts = [Point::new(x0, y0), Point::new(x1, y1), Point::new(x2, y2)];
+        let mut outline = StrictMock::<Rgb565>::new(20, 16);
+        draw_triangle(&mut AnyTarget::new(&mut outline), pts, Rgb565::WHITE).unwrap();
+    }
+}
