@@ -1,0 +1,153 @@
+//! The framebuffer targets: construction errors, every pixel format, span fast paths against the
+//! plain `draw_iter` path, and out-of-bounds input.
+
+use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
+use embedded_graphics_core::prelude::*;
+use embedded_graphics_core::primitives::Rectangle;
+use proptest::prelude::*;
+use rasterizer_core::target::{Framebuffer, FramebufferError, Surface, MAX_DIMENSION};
+
+#[test]
+fn wrong_length_is_a_typed_error() {
+    let mut buf = [0u16; 10];
+    assert_eq!(
+        Framebuffer::<Rgb565>::new(&mut buf, 4, 3).unwrap_err(),
+        FramebufferError::WrongLength { expected: 12, actual: 10 }
+    );
+    let mut buf = [0u8; 3 * 4 * 3 + 1];
+    assert_eq!(
+        Framebuffer::<Rgb888>::new(&mut buf, 4, 3).unwrap_err(),
+        FramebufferError::WrongLength { expected: 36, actual: 37 }
+    );
+    let mut buf = [0u8; 6];
+    // 9 pixels a row pack into 2 bytes; 3 rows need 6 bytes.
+    assert!(Framebuffer::<BinaryColor>::new(&mut buf, 9, 3).is_ok());
+    assert_eq!(
+        Framebuffer::<BinaryColor>::new(&mut buf, 17, 3).unwrap_err(),
+        FramebufferError::WrongLength { expected: 9, actual: 6 }
+    );
+}
+
+#[test]
+fn bad_sizes_are_typed_errors() {
+    let mut buf = [0u8; 0];
+    assert_eq!(
+        Framebuffer::<Gray8>::new(&mut buf, 0, 5).unwrap_err(),
+        FramebufferError::BadSize { width: 0, height: 5 }
+    );
+    assert_eq!(
+        Framebuffer::<Gray8>::new(&mut buf, MAX_DIMENSION + 1, 1).unwrap_err(),
+        FramebufferError::BadSize { width: MAX_DIMENSION + 1, height: 1 }
+    );
+    assert_eq!(Framebuffer::<Gray8>::required_len(u32::MAX, u32::MAX), None);
+    let msg = format!("{}", FramebufferError::WrongLength { expected: 4, actual: 2 });
+    assert!(msg.contains('4') && msg.contains('2'));
+}
+
+#[test]
+fn rgb565_layout_is_raw_u16_row_major() {
+    let mut buf = [0u16; 3 * 2];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 3, 2).unwrap();
+    Pixel(Point::new(2, 1), Rgb565::RED).draw(&mut fb).unwrap();
+    Pixel(Point::new(0, 0), Rgb565::BLUE).draw(&mut fb).unwrap();
+    assert_eq!(buf, [0x001F, 0, 0, 0, 0, 0xF800]);
+}
+
+#[test]
+fn rgb888_layout_is_three_bytes_red_first() {
+    let mut buf = [0u8; 2 * 3];
+    let mut fb = Framebuffer::<Rgb888>::new(&mut buf, 2, 1).unwrap();
+    Pixel(Point::new(1, 0), Rgb888::new(1, 2, 3)).draw(&mut fb).unwrap();
+    assert_eq!(buf, [0, 0, 0, 1, 2, 3]);
+}
+
+#[test]
+fn binary_layout_is_msb_first_rows_padded() {
+    let mut buf = [0u8; 2 * 2];
+    let mut fb = Framebuffer::<BinaryColor>::new(&mut buf, 10, 2).unwrap();
+    Pixel(Point::new(0, 0), BinaryColor::On).draw(&mut fb).unwrap();
+    Pixel(Point::new(9, 1), BinaryColor::On).draw(&mut fb).unwrap();
+    Pixel(Point::new(10, 1), BinaryColor::On).draw(&mut fb).unwrap(); // outside: dropped
+    assert_eq!(buf, [0x80, 0x00, 0x00, 0x40]);
+}
+
+#[test]
+fn clear_and_out_of_bounds_are_dropped() {
+    let mut buf = [0u8; 4 * 4];
+    let mut fb = Framebuffer::<Gray8>::new(&mut buf, 4, 4).unwrap();
+    fb.clear(Gray8::new(7)).unwrap();
+    fb.fill_solid(&Rectangle::new(Point::new(-100, 2), Size::new(1000, 1000)), Gray8::new(9))
+        .unwrap();
+    fb.fill_solid(&Rectangle::new(Point::new(i32::MAX, i32::MAX), Size::new(u32::MAX, u32::MAX)), Gray8::WHITE)
+        .unwrap();
+    fb.fill_contiguous(
+        &Rectangle::new(Point::new(3, -1), Size::new(2, 2)),
+        [1u8, 2, 3, 4].map(Gray8::new),
+    )
+    .unwrap();
+    Pixel(Point::new(i32::MIN, 0), Gray8::WHITE).draw(&mut fb).unwrap();
+    let lumas: Vec<u8> = fb.as_slice().to_vec();
+    assert_eq!(lumas, vec![7, 7, 7, 3, 7, 7, 7, 7, 9, 9, 9, 9, 9, 9, 9, 9]);
+}
+
+/// Runs the same drawing on two framebuffers of format `C`: one through the fast span methods and
+/// one pixel by pixel through `draw_iter`, and compares every pixel.
+fn spans_match_pixels<C: rasterizer_core::target::Storage + PartialEq + core::fmt::Debug>(
+    words: usize,
+    w: u32,
+    h: u32,
+    spans: &[(i32, i32, u32)],
+    color: C,
+) where
+    C::Word: Default + Clone + PartialEq + core::fmt::Debug,
+{
+    let mut a = vec![C::Word::default(); words];
+    let mut b = vec![C::Word::default(); words];
+    let mut fa = Framebuffer::<C>::new(&mut a, w, h).unwrap();
+    let mut fb = Framebuffer::<C>::new(&mut b, w, h).unwrap();
+    for &(x, y, len) in spans {
+        fa.fill_span(x, y, len, color).unwrap();
+        fb.draw_iter((x..x + len as i32).map(|x| Pixel(Point::new(x, y), color))).unwrap();
+    }
+    assert_eq!(a, b);
+}
+
+proptest! {
+    #[test]
+    fn binary_spans_match_pixel_writes(spans in proptest::collection::vec((0i32..23, 0i32..5), 1..20), on in any::<bool>()) {
+        // Each span from x to the end of a random length within the 23-pixel row.
+        let spans: Vec<(i32, i32, u32)> = spans.into_iter().map(|(x, y)| (x, y, (23 - x) as u32 / 2 + 1)).collect();
+        spans_match_pixels::<BinaryColor>(3 * 5, 23, 5, &spans, BinaryColor::from(on));
+    }
+
+    #[test]
+    fn all_formats_spans_match_pixel_writes(x in 0i32..17, len in 1u32..5, y in 0i32..3, raw in any::<u32>()) {
+        let len = len.min((17 - x) as u32);
+        spans_match_pixels::<Rgb565>(17 * 3, 17, 3, &[(x, y, len)], Rgb565::new((raw & 31) as u8, (raw >> 5 & 63) as u8, (raw >> 11 & 31) as u8));
+        spans_match_pixels::<Rgb888>(17 * 3 * 3, 17, 3, &[(x, y, len)], Rgb888::new(raw as u8, (raw >> 8) as u8, (raw >> 16) as u8));
+        spans_match_pixels::<Gray8>(17 * 3, 17, 3, &[(x, y, len)], Gray8::new(raw as u8));
+    }
+
+    #[test]
+    fn fill_solid_any_rectangle_stays_in_bounds(x in any::<i32>(), y in any::<i32>(), w in any::<u32>(), h in any::<u32>()) {
+        let mut buf = [0u8; 2 * 7];
+        let mut fb = Framebuffer::<BinaryColor>::new(&mut buf, 13, 7).unwrap();
+        fb.fill_solid(&Rectangle::new(Point::new(x, y), Size::new(w, h)), BinaryColor::On).unwrap();
+        // Padding bits past column 13 stay clear.
+        for row in buf.chunks(2) {
+            prop_assert_eq!(row[1] & 0x07, 0);
+        }
+    }
+}
+
+#[test]
+fn pixel_read_back() {
+    let mut buf = [0u8; 3];
+    let mut fb = Framebuffer::<BinaryColor>::new(&mut buf, 3, 3).unwrap();
+    Pixel(Point::new(1, 2), BinaryColor::On).draw(&mut fb).unwrap();
+    assert_eq!(fb.pixel(Point::new(1, 2)), Some(BinaryColor::On));
+    assert_eq!(fb.pixel(Point::new(0, 2)), Some(BinaryColor::Off));
+    assert_eq!(fb.pixel(Point::new(3, 0)), None);
+    let _ = Gray8::new(1).luma();
+    let _ = Rgb888::RED.r();
+}
