@@ -1,0 +1,74 @@
+//! A `#![no_std] #![no_main]` binary that calls every public drawing entry point of
+//! `rasterizer-core`. If any dependency brings in `std`, linking fails with a duplicate
+//! `panic_impl` lang item; its `.text` size is the first number of the flash budget.
+#![no_std]
+#![no_main]
+
+use core::hint::black_box;
+use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
+use embedded_graphics_core::prelude::*;
+use rasterizer_core::geom::SubPoint;
+use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
+use rasterizer_core::raster::point::draw_point;
+use rasterizer_core::raster::polygon::{FillRule, Polygon};
+use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
+use rasterizer_core::target::{AnyTarget, Framebuffer, Surface};
+
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    loop {}
+}
+
+// The host's C runtime calls `main`; on a microcontroller this would be the reset handler.
+#[link(name = "c")]
+unsafe extern "C" {}
+
+static mut RGB565: [u16; 64 * 48] = [0; 64 * 48];
+
+fn draw_all<S: Surface>(s: &mut S, a: S::Color, b: S::Color, c: S::Color) -> Result<(), S::Error>
+where
+    S::Color: rasterizer_core::color::Channels,
+{
+    let p = |x: i32, y: i32| black_box(Point::new(x, y));
+    let sp = |x: i32, y: i32| black_box(SubPoint::<4>::new(x, y));
+    draw_point(s, p(3, 4), a)?;
+    draw_line(s, p(-5, 2), p(70, 40), a)?;
+    draw_line_gradient(s, p(0, 47), p(63, 0), a, b)?;
+    draw_triangle(s, [p(1, 1), p(60, 5), p(20, 40)], b)?;
+    fill_triangle(s, [sp(10, 10), sp(900, 100), sp(300, 700)], a)?;
+    fill_triangle_gouraud(s, [sp(10, 10), sp(900, 100), sp(300, 700)], [a, b, c])?;
+    let star = [sp(500, 50), sp(700, 700), sp(50, 250), sp(950, 250), sp(300, 700)];
+    if let Ok(poly) = Polygon::<8>::new(&star) {
+        poly.fill(s, FillRule::NonZero, c)?;
+        poly.fill(s, FillRule::EvenOdd, a)?;
+    }
+    Ok(())
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn main() -> i32 {
+    // Rgb565 through the framebuffer's own fast paths, in a static buffer as firmware would.
+    #[allow(static_mut_refs)]
+    let buf = unsafe { &mut RGB565 };
+    if let Ok(mut fb) = Framebuffer::<Rgb565>::new(buf, 64, 48) {
+        let _ = draw_all(&mut fb, Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE);
+        // And through the generic DrawTarget adapter.
+        let _ = draw_all(&mut AnyTarget::new(&mut fb), Rgb565::WHITE, Rgb565::CYAN, Rgb565::BLACK);
+        black_box(fb.as_slice());
+    }
+    let mut rgb = [0u8; 16 * 16 * 3];
+    if let Ok(mut fb) = Framebuffer::<Rgb888>::new(&mut rgb, 16, 16) {
+        let _ = draw_all(&mut fb, Rgb888::RED, Rgb888::GREEN, Rgb888::BLUE);
+    }
+    let mut gray = [0u8; 16 * 16];
+    if let Ok(mut fb) = Framebuffer::<Gray8>::new(&mut gray, 16, 16) {
+        let _ = draw_all(&mut fb, Gray8::WHITE, Gray8::new(80), Gray8::BLACK);
+    }
+    let mut mono = [0u8; 2 * 16];
+    if let Ok(mut fb) = Framebuffer::<BinaryColor>::new(&mut mono, 16, 16) {
+        let _ = fb.clear(BinaryColor::Off);
+        let _ = draw_all(&mut fb, BinaryColor::On, BinaryColor::Off, BinaryColor::On);
+    }
+    black_box((&rgb, &gray, &mono));
+    0
+}
