@@ -40,5 +40,6 @@
 pub mod clip;
 pub mod color;
 pub mod geom;
+pub mod math;
 pub mod raster;
 pub mod target;

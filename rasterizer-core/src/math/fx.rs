@@ -1,0 +1,274 @@
+//! `Fx<F>`: signed 32-bit fixed point with `F` fractional bits.
+//!
+//! One const-generic type covers the formats the accuracy report compares (16.16, 24.8, 8.24) with a
+//! single implementation. Rounding and overflow are explicit: products and quotients go through `i64`
+//! and round half up (towards +inf) once; every operation saturates at the format's range instead of
+//! wrapping, so an overflow shows as a clamped value, never as a sign flip.
+
+use core::fmt;
+use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// Signed fixed point: the raw `i32` `bits` stands for `bits / 2^F`.
+///
+/// Range: `[-2^(31-F), 2^(31-F) - 2^-F]`; for [`Fx16`] that is about ±32768 with a step of
+/// 1/65536 (1.5e-5).
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[repr(transparent)]
+pub struct Fx<const F: u32>(i32);
+
+/// 16.16 fixed point: the geometry format of the pipeline.
+pub type Fx16 = Fx<16>;
+/// 24.8 fixed point: large range, coarse step (1/256).
+pub type Fx8 = Fx<8>;
+/// 8.24 fixed point: fine step (6e-8), range ±128.
+pub type Fx24 = Fx<24>;
+
+impl<const F: u32> Fx<F> {
+    /// Compile-time check: between 1 and 30 fractional bits.
+    const VALID: () = assert!(F >= 1 && F <= 30, "Fx needs 1 to 30 fractional bits");
+    /// 0.
+    pub const ZERO: Self = Self(0);
+    /// 1.
+    pub const ONE: Self = {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::VALID;
+        Self(1 << F)
+    };
+    /// The largest value.
+    pub const MAX: Self = Self(i32::MAX);
+    /// The smallest value.
+    pub const MIN: Self = Self(i32::MIN);
+    /// The smallest positive value, `2^-F`.
+    pub const EPSILON: Self = Self(1);
+
+    /// From raw bits.
+    pub const fn from_bits(bits: i32) -> Self {
+        Self(bits)
+    }
+
+    /// The raw bits.
+    pub const fn to_bits(self) -> i32 {
+        self.0
+    }
+
+    /// Saturates a raw `i64` into range.
+    #[inline]
+    pub const fn saturate(bits: i64) -> Self {
+        if bits > i32::MAX as i64 {
+            Self::MAX
+        } else if bits < i32::MIN as i64 {
+            Self::MIN
+        } else {
+            Self(bits as i32)
+        }
+    }
+
+    /// An integer, saturating.
+    pub const fn from_int(i: i32) -> Self {
+        Self::saturate((i as i64) << F)
+    }
+
+    /// `num / den` rounded to the nearest step (halves up), saturating; `den = 0` gives the largest
+    /// value of `num`'s sign (0 for `0 / 0`).
+    pub const fn from_ratio(num: i64, den: i64) -> Self {
+        if den == 0 {
+            return if num > 0 {
+                Self::MAX
+            } else if num < 0 {
+                Self::MIN
+            } else {
+                Self::ZERO
+            };
+        }
+        let n = (num as i128) << F;
+        Self::saturate_i128(round_div_i128(n, den as i128))
+    }
+
+    /// Saturates a raw `i128` into range.
+    pub(crate) const fn saturate_i128(v: i128) -> Self {
+        if v > i32::MAX as i128 {
+            Self::MAX
+        } else if v < i32::MIN as i128 {
+            Self::MIN
+        } else {
+            Self(v as i32)
+        }
+    }
+
+    /// The same value in another format, rounded to the nearest step (halves up) and saturated.
+    pub const fn convert<const G: u32>(self) -> Fx<G> {
+        if G >= F {
+            Fx::<G>::saturate((self.0 as i64) << (G - F))
+        } else {
+            let sh = F - G;
+            Fx::<G>::saturate(((self.0 as i64) + (1 << (sh - 1))) >> sh)
+        }
+    }
+
+    /// The nearest integer (halves up).
+    pub const fn round_to_int(self) -> i32 {
+        (((self.0 as i64) + (1 << (F - 1))) >> F) as i32
+    }
+
+    /// The largest integer not above the value.
+    pub const fn floor_to_int(self) -> i32 {
+        self.0 >> F
+    }
+
+    /// Absolute value, saturating (`MIN.abs() == MAX`).
+    pub const fn abs(self) -> Self {
+        Self(self.0.saturating_abs())
+    }
+
+    /// Product rounded once, halves up, saturating.
+    #[inline]
+    pub const fn mul_fx(self, rhs: Self) -> Self {
+        let p = (self.0 as i64) * (rhs.0 as i64);
+        Self::saturate((p + (1 << (F - 1))) >> F)
+    }
+
+    /// Quotient rounded once, halves up, saturating; division by zero saturates like
+    /// [`Fx::from_ratio`].
+    #[inline]
+    pub const fn div_fx(self, rhs: Self) -> Self {
+        Self::from_ratio(self.0 as i64, rhs.0 as i64)
+    }
+
+    /// Square root, rounded down to the step; negative input gives 0.
+    pub const fn sqrt(self) -> Self {
+        if self.0 <= 0 {
+            return Self::ZERO;
+        }
+        Self(isqrt_u64((self.0 as u64) << F) as i32)
+    }
+
+    /// `1 / self`, rounded, saturating.
+    pub const fn recip(self) -> Self {
+        Self::from_ratio(1 << F, self.0 as i64)
+    }
+
+    /// The sum of four products, rounded once: more accurate than four rounded products.
+    #[inline]
+    pub const fn dot4(a: [Self; 4], b: [Self; 4]) -> Self {
+        // Each product is at most 2^62 in magnitude; four of them can exceed i64 only when every
+        // factor is near the format's limit, so the sum is taken in i128.
+        let s = (a[0].0 as i128) * (b[0].0 as i128)
+            + (a[1].0 as i128) * (b[1].0 as i128)
+            + (a[2].0 as i128) * (b[2].0 as i128)
+            + (a[3].0 as i128) * (b[3].0 as i128);
+        Self::saturate_i128((s + (1 << (F - 1))) >> F)
+    }
+}
+
+/// `round(n / d)`, halves towards +inf, `d != 0`.
+pub(crate) const fn round_div_i128(n: i128, d: i128) -> i128 {
+    let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+    (2 * n + d).div_euclid(2 * d)
+}
+
+/// `floor(sqrt(v))`.
+pub(crate) const fn isqrt_u64(v: u64) -> u64 {
+    if v < 2 {
+        return v;
+    }
+    // Newton's method from an over-estimate converges monotonically down to the floor.
+    let mut x = 1u64 << (64 - v.leading_zeros()).div_ceil(2);
+    loop {
+        let y = (x + v / x) / 2;
+        if y >= x {
+            return x;
+        }
+        x = y;
+    }
+}
+
+/// `floor(sqrt(v))`.
+pub(crate) const fn isqrt_u128(v: u128) -> u128 {
+    if v < 2 {
+        return v;
+    }
+    let mut x = 1u128 << (128 - v.leading_zeros()).div_ceil(2);
+    loop {
+        let y = (x + v / x) / 2;
+        if y >= x {
+            return x;
+        }
+        x = y;
+    }
+}
+
+impl<const F: u32> Add for Fx<F> {
+    type Output = Self;
+    #[inline]
+    fn add(self, rhs: Self) -> Self {
+        Self(self.0.saturating_add(rhs.0))
+    }
+}
+
+impl<const F: u32> Sub for Fx<F> {
+    type Output = Self;
+    #[inline]
+    fn sub(self, rhs: Self) -> Self {
+        Self(self.0.saturating_sub(rhs.0))
+    }
+}
+
+impl<const F: u32> Mul for Fx<F> {
+    type Output = Self;
+    #[inline]
+    fn mul(self, rhs: Self) -> Self {
+        self.mul_fx(rhs)
+    }
+}
+
+impl<const F: u32> Div for Fx<F> {
+    type Output = Self;
+    #[inline]
+    fn div(self, rhs: Self) -> Self {
+        self.div_fx(rhs)
+    }
+}
+
+impl<const F: u32> Neg for Fx<F> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self(self.0.saturating_neg())
+    }
+}
+
+impl<const F: u32> AddAssign for Fx<F> {
+    fn add_assign(&mut self, rhs: Self) {
+        *self = *self + rhs;
+    }
+}
+
+impl<const F: u32> SubAssign for Fx<F> {
+    fn sub_assign(&mut self, rhs: Self) {
+        *self = *self - rhs;
+    }
+}
+
+impl<const F: u32> MulAssign for Fx<F> {
+    fn mul_assign(&mut self, rhs: Self) {
+        *self = *self * rhs;
+    }
+}
+
+impl<const F: u32> fmt::Debug for Fx<F> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(self, f)
+    }
+}
+
+impl<const F: u32> fmt::Display for Fx<F> {
+    /// Decimal with six fractional digits, exact to that many digits (truncated).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let bits = self.0 as i64;
+        let sign = if bits < 0 { "-" } else { "" };
+        let mag = bits.unsigned_abs();
+        let int = mag >> F;
+        let frac = ((mag & ((1u64 << F) - 1)) as u128 * 1_000_000) >> F;
+        write!(f, "{sign}{int}.{frac:06}")
+    }
+}

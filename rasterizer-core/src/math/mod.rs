@@ -1,0 +1,127 @@
+//! Fixed-point maths for the geometry stages: the [`Scalar`] formats, vectors, 4x4 matrices and
+//! integer trigonometry.
+//!
+//! Everything is generic over [`Scalar`] so that one pipeline runs on 16.16 (the default), other
+//! fixed-point formats, or (behind a feature, for comparison only) `f32`. The fixed-point
+//! implementation rounds every product once, half up, through `i64` and saturates instead of wrapping.
+
+pub mod fx;
+pub mod mat;
+pub mod trig;
+pub mod vec;
+
+pub use fx::{Fx, Fx16, Fx24, Fx8};
+pub use mat::Mat4;
+pub use trig::Angle;
+pub use vec::{Vec3, Vec4};
+
+use core::fmt::Debug;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A number format the geometry pipeline can run on.
+pub trait Scalar:
+    Copy
+    + PartialEq
+    + PartialOrd
+    + Default
+    + Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// An integer (saturating where the format is bounded).
+    fn from_int(i: i32) -> Self;
+    /// `num / den`, rounded to the format (saturating; `den = 0` saturates by `num`'s sign).
+    fn from_ratio(num: i64, den: i64) -> Self;
+    /// A 2.30 fixed-point value (the trigonometry tables' format).
+    fn from_q30(v: i32) -> Self;
+    /// Square root; 0 for negative input.
+    fn sqrt(self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// `a[0] b[0] + ... + a[3] b[3]`, rounded once where the format rounds.
+    fn dot4(a: [Self; 4], b: [Self; 4]) -> Self;
+    /// `sqrt(x² + y² + z²)`, with enough internal precision that tiny vectors keep their length.
+    fn hypot3(x: Self, y: Self, z: Self) -> Self;
+    /// The unit vector along `(x, y, z)`, or `None` for the zero vector; tiny vectors keep their
+    /// direction.
+    fn normalize3(x: Self, y: Self, z: Self) -> Option<(Self, Self, Self)> {
+        let len = Self::hypot3(x, y, z);
+        (len != Self::ZERO).then(|| (x / len, y / len, z / len))
+    }
+    /// `round(self * 2^bits)` as an integer, saturating at the `i32` range (NaN gives 0).
+    fn to_scaled_int(self, bits: u32) -> i32;
+    /// `(sin, cos)` of an angle.
+    fn sin_cos(a: Angle) -> (Self, Self) {
+        let (s, c) = a.sin_cos_q30();
+        (Self::from_q30(s), Self::from_q30(c))
+    }
+}
+
+impl<const F: u32> Scalar for Fx<F> {
+    const ZERO: Self = Fx::ZERO;
+    const ONE: Self = Fx::ONE;
+
+    fn from_int(i: i32) -> Self {
+        Fx::from_int(i)
+    }
+
+    fn from_ratio(num: i64, den: i64) -> Self {
+        Fx::from_ratio(num, den)
+    }
+
+    fn from_q30(v: i32) -> Self {
+        Fx::<30>::from_bits(v).convert()
+    }
+
+    fn sqrt(self) -> Self {
+        Fx::sqrt(self)
+    }
+
+    fn abs(self) -> Self {
+        Fx::abs(self)
+    }
+
+    #[inline]
+    fn dot4(a: [Self; 4], b: [Self; 4]) -> Self {
+        Fx::dot4(a, b)
+    }
+
+    fn hypot3(x: Self, y: Self, z: Self) -> Self {
+        // The squares keep 2F fractional bits: a vector of length 2^-F still has a length.
+        let (x, y, z) = (x.to_bits() as i128, y.to_bits() as i128, z.to_bits() as i128);
+        let sq = (x * x + y * y + z * z) as u128;
+        // sq < 3 * 2^62, so it fits u64.
+        Fx::from_bits(fx::isqrt_u64(sq as u64).min(i32::MAX as u64) as i32)
+    }
+
+    fn normalize3(x: Self, y: Self, z: Self) -> Option<(Self, Self, Self)> {
+        let (x, y, z) = (x.to_bits() as i128, y.to_bits() as i128, z.to_bits() as i128);
+        let sq = (x * x + y * y + z * z) as u128;
+        if sq == 0 {
+            return None;
+        }
+        // The length with 32 more fractional bits than the input, so that a vector a few steps long
+        // still divides into accurate components: len = sqrt(sq) * 2^32, below 2^64.
+        let len = fx::isqrt_u128(sq << 64) as i128;
+        let unit = |v: i128| Fx::saturate_i128(fx::round_div_i128(v << (F + 32), len));
+        Some((unit(x), unit(y), unit(z)))
+    }
+
+    fn to_scaled_int(self, bits: u32) -> i32 {
+        let v = self.to_bits() as i64;
+        let r = if bits >= F {
+            v << (bits - F).min(32)
+        } else {
+            let sh = F - bits;
+            (v + (1 << (sh - 1))) >> sh
+        };
+        r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+    }
+}
