@@ -4,7 +4,7 @@
 //! for red in Rgb565, 8 in Rgb888), so a vertex colour comes back unchanged at its own pixel.
 
 use embedded_graphics_core::pixelcolor::{
-    BinaryColor, Bgr555, Bgr565, Bgr666, Bgr888, Gray2, Gray4, Gray8, GrayColor, Rgb555, Rgb565,
+    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, GrayColor, Rgb555, Rgb565,
     Rgb666, Rgb888, RgbColor,
 };
 use embedded_graphics_core::prelude::PixelColor;

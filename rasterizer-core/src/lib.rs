@@ -13,7 +13,7 @@
 //! let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 320, 240).unwrap();
 //! draw_line(&mut fb, Point::new(0, 0), Point::new(319, 239), Rgb565::WHITE).unwrap();
 //! // Vertices in 28.4 fixed point: 16 units to the pixel.
-//! let v = [SubPoint::new(160 * 16, 8), SubPoint::new(300 * 16, 230 * 16), SubPoint::new(20 * 16, 200 * 16)];
+//! let v = [SubPoint::<4>::new(160 * 16, 8), SubPoint::new(300 * 16, 230 * 16), SubPoint::new(20 * 16, 200 * 16)];
 //! fill_triangle_gouraud(&mut fb, v, [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE]).unwrap();
 //! assert_eq!(fb.pixel(Point::new(0, 0)), Some(Rgb565::WHITE));
 //! ```

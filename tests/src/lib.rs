@@ -106,8 +106,15 @@ impl<C: PixelColor> StrictMock<C> {
         if actual != want {
             panic!(
                 "pattern mismatch\nexpected:\n{}\nactual:\n{}",
-                want.iter().map(|r| format!("|{r}|")).collect::<Vec<_>>().join("\n"),
-                actual.iter().map(|r| format!("|{r}|")).collect::<Vec<_>>().join("\n")
+                want.iter()
+                    .map(|r| format!("|{r}|"))
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+                actual
+                    .iter()
+                    .map(|r| format!("|{r}|"))
+                    .collect::<Vec<_>>()
+                    .join("\n")
             );
         }
     }
@@ -123,7 +130,10 @@ impl<C: PixelColor> DrawTarget for StrictMock<C> {
     type Color = C;
     type Error = core::convert::Infallible;
 
-    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(&mut self, pixels: I) -> Result<(), Self::Error> {
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
         self.calls.draw_iter += 1;
         for Pixel(p, c) in pixels {
             self.write(p, c);
@@ -193,7 +203,12 @@ pub fn nearest_tie_down(n: i128, d: i128) -> i128 {
 
 /// Reference triangle coverage: the pixels whose centres pass all three edge-function tests, with the
 /// top-left rule for centres on an edge. `i128` throughout; `bits` sub-pixel bits.
-pub fn reference_triangle(v: [(i64, i64); 3], bits: u32, width: i32, height: i32) -> Vec<(i32, i32)> {
+pub fn reference_triangle(
+    v: [(i64, i64); 3],
+    bits: u32,
+    width: i32,
+    height: i32,
+) -> Vec<(i32, i32)> {
     let v = v.map(|(x, y)| (x as i128, y as i128));
     let area = (v[1].0 - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (v[1].1 - v[0].1);
     if area == 0 {
@@ -235,7 +250,12 @@ pub fn sp<const B: u32>(x: i32, y: i32) -> SubPoint<B> {
 
 /// The reference line's pixels inside `[0, w) x [0, h)`, for any `i32` endpoints: evaluated only at
 /// the major coordinates on screen, so it stays cheap for lines billions of pixels long.
-pub fn reference_line_on_screen(a: Point, b: Point, w: i32, h: i32) -> std::collections::BTreeSet<(i32, i32)> {
+pub fn reference_line_on_screen(
+    a: Point,
+    b: Point,
+    w: i32,
+    h: i32,
+) -> std::collections::BTreeSet<(i32, i32)> {
     let (ax, ay, bx, by) = (a.x as i128, a.y as i128, b.x as i128, b.y as i128);
     let (dx, dy) = (bx - ax, by - ay);
     let mut want = std::collections::BTreeSet::new();
@@ -244,7 +264,11 @@ pub fn reference_line_on_screen(a: Point, b: Point, w: i32, h: i32) -> std::coll
             if x < ax.min(bx) || x > ax.max(bx) {
                 continue;
             }
-            let y = if dx == 0 { ay } else { nearest_tie_down(ay * dx + (x - ax) * dy, dx) };
+            let y = if dx == 0 {
+                ay
+            } else {
+                nearest_tie_down(ay * dx + (x - ax) * dy, dx)
+            };
             if (0..h as i128).contains(&y) {
                 want.insert((x as i32, y as i32));
             }

@@ -58,7 +58,13 @@ fn load_cases() -> Vec<Case> {
                 .as_array()
                 .unwrap()
                 .iter()
-                .map(|row| row.as_array().unwrap().iter().map(|i| i.as_i64().unwrap()).collect())
+                .map(|row| {
+                    row.as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|i| i.as_i64().unwrap())
+                        .collect()
+                })
                 .collect();
             Case {
                 name,
@@ -109,7 +115,10 @@ fn llvmpipe_coverage_reproduced_exactly() {
 #[test]
 fn llvmpipe_grids_cover_every_pixel_exactly_once() {
     let mut grids = 0;
-    for case in load_cases().into_iter().filter(|c| c.name.starts_with("grid")) {
+    for case in load_cases()
+        .into_iter()
+        .filter(|c| c.name.starts_with("grid"))
+    {
         grids += 1;
         // StrictMock panics on a second write to any pixel.
         let mut mock = StrictMock::<Rgb888>::new(case.width, case.height);

@@ -12,19 +12,28 @@ fn wrong_length_is_a_typed_error() {
     let mut buf = [0u16; 10];
     assert_eq!(
         Framebuffer::<Rgb565>::new(&mut buf, 4, 3).unwrap_err(),
-        FramebufferError::WrongLength { expected: 12, actual: 10 }
+        FramebufferError::WrongLength {
+            expected: 12,
+            actual: 10
+        }
     );
     let mut buf = [0u8; 3 * 4 * 3 + 1];
     assert_eq!(
         Framebuffer::<Rgb888>::new(&mut buf, 4, 3).unwrap_err(),
-        FramebufferError::WrongLength { expected: 36, actual: 37 }
+        FramebufferError::WrongLength {
+            expected: 36,
+            actual: 37
+        }
     );
     let mut buf = [0u8; 6];
     // 9 pixels a row pack into 2 bytes; 3 rows need 6 bytes.
     assert!(Framebuffer::<BinaryColor>::new(&mut buf, 9, 3).is_ok());
     assert_eq!(
         Framebuffer::<BinaryColor>::new(&mut buf, 17, 3).unwrap_err(),
-        FramebufferError::WrongLength { expected: 9, actual: 6 }
+        FramebufferError::WrongLength {
+            expected: 9,
+            actual: 6
+        }
     );
 }
 
@@ -33,14 +42,26 @@ fn bad_sizes_are_typed_errors() {
     let mut buf = [0u8; 0];
     assert_eq!(
         Framebuffer::<Gray8>::new(&mut buf, 0, 5).unwrap_err(),
-        FramebufferError::BadSize { width: 0, height: 5 }
+        FramebufferError::BadSize {
+            width: 0,
+            height: 5
+        }
     );
     assert_eq!(
         Framebuffer::<Gray8>::new(&mut buf, MAX_DIMENSION + 1, 1).unwrap_err(),
-        FramebufferError::BadSize { width: MAX_DIMENSION + 1, height: 1 }
+        FramebufferError::BadSize {
+            width: MAX_DIMENSION + 1,
+            height: 1
+        }
     );
     assert_eq!(Framebuffer::<Gray8>::required_len(u32::MAX, u32::MAX), None);
-    let msg = format!("{}", FramebufferError::WrongLength { expected: 4, actual: 2 });
+    let msg = format!(
+        "{}",
+        FramebufferError::WrongLength {
+            expected: 4,
+            actual: 2
+        }
+    );
     assert!(msg.contains('4') && msg.contains('2'));
 }
 
@@ -57,7 +78,9 @@ fn rgb565_layout_is_raw_u16_row_major() {
 fn rgb888_layout_is_three_bytes_red_first() {
     let mut buf = [0u8; 2 * 3];
     let mut fb = Framebuffer::<Rgb888>::new(&mut buf, 2, 1).unwrap();
-    Pixel(Point::new(1, 0), Rgb888::new(1, 2, 3)).draw(&mut fb).unwrap();
+    Pixel(Point::new(1, 0), Rgb888::new(1, 2, 3))
+        .draw(&mut fb)
+        .unwrap();
     assert_eq!(buf, [0, 0, 0, 1, 2, 3]);
 }
 
@@ -65,9 +88,15 @@ fn rgb888_layout_is_three_bytes_red_first() {
 fn binary_layout_is_msb_first_rows_padded() {
     let mut buf = [0u8; 2 * 2];
     let mut fb = Framebuffer::<BinaryColor>::new(&mut buf, 10, 2).unwrap();
-    Pixel(Point::new(0, 0), BinaryColor::On).draw(&mut fb).unwrap();
-    Pixel(Point::new(9, 1), BinaryColor::On).draw(&mut fb).unwrap();
-    Pixel(Point::new(10, 1), BinaryColor::On).draw(&mut fb).unwrap(); // outside: dropped
+    Pixel(Point::new(0, 0), BinaryColor::On)
+        .draw(&mut fb)
+        .unwrap();
+    Pixel(Point::new(9, 1), BinaryColor::On)
+        .draw(&mut fb)
+        .unwrap();
+    Pixel(Point::new(10, 1), BinaryColor::On)
+        .draw(&mut fb)
+        .unwrap(); // outside: dropped
     assert_eq!(buf, [0x80, 0x00, 0x00, 0x40]);
 }
 
@@ -76,16 +105,27 @@ fn clear_and_out_of_bounds_are_dropped() {
     let mut buf = [0u8; 4 * 4];
     let mut fb = Framebuffer::<Gray8>::new(&mut buf, 4, 4).unwrap();
     fb.clear(Gray8::new(7)).unwrap();
-    fb.fill_solid(&Rectangle::new(Point::new(-100, 2), Size::new(1000, 1000)), Gray8::new(9))
-        .unwrap();
-    fb.fill_solid(&Rectangle::new(Point::new(i32::MAX, i32::MAX), Size::new(u32::MAX, u32::MAX)), Gray8::WHITE)
-        .unwrap();
+    fb.fill_solid(
+        &Rectangle::new(Point::new(-100, 2), Size::new(1000, 1000)),
+        Gray8::new(9),
+    )
+    .unwrap();
+    fb.fill_solid(
+        &Rectangle::new(
+            Point::new(i32::MAX, i32::MAX),
+            Size::new(u32::MAX, u32::MAX),
+        ),
+        Gray8::WHITE,
+    )
+    .unwrap();
     fb.fill_contiguous(
         &Rectangle::new(Point::new(3, -1), Size::new(2, 2)),
         [1u8, 2, 3, 4].map(Gray8::new),
     )
     .unwrap();
-    Pixel(Point::new(i32::MIN, 0), Gray8::WHITE).draw(&mut fb).unwrap();
+    Pixel(Point::new(i32::MIN, 0), Gray8::WHITE)
+        .draw(&mut fb)
+        .unwrap();
     let lumas: Vec<u8> = fb.as_slice().to_vec();
     assert_eq!(lumas, vec![7, 7, 7, 3, 7, 7, 7, 7, 9, 9, 9, 9, 9, 9, 9, 9]);
 }
@@ -107,7 +147,8 @@ fn spans_match_pixels<C: rasterizer_core::target::Storage + PartialEq + core::fm
     let mut fb = Framebuffer::<C>::new(&mut b, w, h).unwrap();
     for &(x, y, len) in spans {
         fa.fill_span(x, y, len, color).unwrap();
-        fb.draw_iter((x..x + len as i32).map(|x| Pixel(Point::new(x, y), color))).unwrap();
+        fb.draw_iter((x..x + len as i32).map(|x| Pixel(Point::new(x, y), color)))
+            .unwrap();
     }
     assert_eq!(a, b);
 }
@@ -144,7 +185,9 @@ proptest! {
 fn pixel_read_back() {
     let mut buf = [0u8; 3];
     let mut fb = Framebuffer::<BinaryColor>::new(&mut buf, 3, 3).unwrap();
-    Pixel(Point::new(1, 2), BinaryColor::On).draw(&mut fb).unwrap();
+    Pixel(Point::new(1, 2), BinaryColor::On)
+        .draw(&mut fb)
+        .unwrap();
     assert_eq!(fb.pixel(Point::new(1, 2)), Some(BinaryColor::On));
     assert_eq!(fb.pixel(Point::new(0, 2)), Some(BinaryColor::Off));
     assert_eq!(fb.pixel(Point::new(3, 0)), None);

@@ -35,12 +35,14 @@ fn point_inside_and_outside() {
 
 #[test]
 fn line_octant_shallow_down_right() {
-    line_mock(8, 4, (0, 0), (7, 3)).assert_pattern(&["##      ", "  ##    ", "    ##  ", "      ##"]);
+    line_mock(8, 4, (0, 0), (7, 3))
+        .assert_pattern(&["##      ", "  ##    ", "    ##  ", "      ##"]);
 }
 
 #[test]
 fn line_octant_shallow_up_right() {
-    line_mock(8, 4, (0, 3), (7, 0)).assert_pattern(&["      ##", "    ##  ", "  ##    ", "##      "]);
+    line_mock(8, 4, (0, 3), (7, 0))
+        .assert_pattern(&["      ##", "    ##  ", "  ##    ", "##      "]);
 }
 
 #[test]
@@ -60,7 +62,16 @@ fn line_octant_steep_down_left() {
 #[test]
 fn line_all_eight_octants_match_reverse_and_reference() {
     let c = (10, 10);
-    for &(dx, dy) in &[(9, 4), (4, 9), (-4, 9), (-9, 4), (-9, -4), (-4, -9), (4, -9), (9, -4)] {
+    for &(dx, dy) in &[
+        (9, 4),
+        (4, 9),
+        (-4, 9),
+        (-9, 4),
+        (-9, -4),
+        (-4, -9),
+        (4, -9),
+        (9, -4),
+    ] {
         let end = (c.0 + dx, c.1 + dy);
         let fwd = line_mock(21, 21, c, end).written();
         let back = line_mock(21, 21, end, c).written();
@@ -109,7 +120,9 @@ fn line_clipped_against_user_viewport() {
         .filter(|p| area.contains(*p))
         .collect();
     assert_eq!(clipped, want);
-    assert!(Line::new(Point::new(0, 10), Point::new(10, 20)).clipped(&area).is_none());
+    assert!(Line::new(Point::new(0, 10), Point::new(10, 20))
+        .clipped(&area)
+        .is_none());
 }
 
 #[test]
@@ -134,7 +147,10 @@ fn line_i32_limits_do_not_overflow() {
 fn line_through_screen_from_i32_extremes_matches_reference_inside() {
     // A line from far outside crossing the screen: compare the visible part with the reference
     // evaluated only at the visible major coordinates.
-    let (a, b) = (Point::new(-1_000_000_000, -999_999_990), Point::new(1_000_000_000, 1_000_000_017));
+    let (a, b) = (
+        Point::new(-1_000_000_000, -999_999_990),
+        Point::new(1_000_000_000, 1_000_000_017),
+    );
     let mut mock = StrictMock::<BinaryColor>::new(32, 32);
     draw_line(&mut AnyTarget::new(&mut mock), a, b, BinaryColor::On).unwrap();
     let want = tests::reference_line_on_screen(a, b, 32, 32);
@@ -148,7 +164,12 @@ fn line_hands_framebuffer_and_any_target_the_same_pixels() {
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 40, 30).unwrap();
     let mut mock = StrictMock::<Rgb565>::new(40, 30);
     mock.allow_overdraw = true;
-    let segs = [((-10, 3), (50, 20)), ((39, 0), (0, 29)), ((5, -4), (7, 40)), ((20, 15), (20, 15))];
+    let segs = [
+        ((-10, 3), (50, 20)),
+        ((39, 0), (0, 29)),
+        ((5, -4), (7, 40)),
+        ((20, 15), (20, 15)),
+    ];
     for &((x0, y0), (x1, y1)) in &segs {
         let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
         draw_line(&mut fb, a, b, Rgb565::RED).unwrap();
@@ -182,7 +203,11 @@ fn gradient_line_endpoints_exact_and_symmetric() {
     for (k, p) in pts.iter().enumerate() {
         let c = fwd.get(p.x, p.y).unwrap();
         let exact = 255.0 * (1.0 - k as f64 / n);
-        assert!((c.r() as f64 - exact).abs() <= 0.5, "k={k}: {} vs {exact}", c.r());
+        assert!(
+            (c.r() as f64 - exact).abs() <= 0.5,
+            "k={k}: {} vs {exact}",
+            c.r()
+        );
     }
 }
 

@@ -43,8 +43,17 @@ fn fx_basics_round_and_saturate() {
 
 #[test]
 fn sine_table_exact_at_quarters_and_accurate() {
-    for (deg, s, c) in [(0, 0, Q30_ONE), (90, Q30_ONE, 0), (180, 0, -Q30_ONE), (270, -Q30_ONE, 0)] {
-        assert_eq!(Angle::from_degrees(deg).sin_cos_q30(), (s, c), "{deg} degrees");
+    for (deg, s, c) in [
+        (0, 0, Q30_ONE),
+        (90, Q30_ONE, 0),
+        (180, 0, -Q30_ONE),
+        (270, -Q30_ONE, 0),
+    ] {
+        assert_eq!(
+            Angle::from_degrees(deg).sin_cos_q30(),
+            (s, c),
+            "{deg} degrees"
+        );
     }
     let mut worst = 0.0f64;
     for a in (0..65536u32).step_by(7) {
@@ -110,7 +119,11 @@ fn gram_schmidt(m: &mut [[f64; 4]; 4]) {
     let r1 = [m[1][0], m[1][1], m[1][2]];
     let d = r0[0] * r1[0] + r0[1] * r1[1] + r0[2] * r1[2];
     let r1 = norm([r1[0] - d * r0[0], r1[1] - d * r0[1], r1[2] - d * r0[2]]);
-    let r2 = [r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2], r0[0] * r1[1] - r0[1] * r1[0]];
+    let r2 = [
+        r0[1] * r1[2] - r0[2] * r1[1],
+        r0[2] * r1[0] - r0[0] * r1[2],
+        r0[0] * r1[1] - r0[1] * r1[0],
+    ];
     for (r, v) in [r0, r1, r2].iter().enumerate() {
         m[r][..3].copy_from_slice(v);
     }
@@ -150,15 +163,24 @@ fn ten_thousand_composed_rotations_stay_within_drift() {
         worst
     };
     let (raw_dev, renorm_dev) = (dev(&raw, &exact), dev(&renorm, &exact_renorm));
-    let (raw_ortho, renorm_ortho) = (orthonormal_error(&to_f64(&raw)), orthonormal_error(&to_f64(&renorm)));
+    let (raw_ortho, renorm_ortho) = (
+        orthonormal_error(&to_f64(&raw)),
+        orthonormal_error(&to_f64(&renorm)),
+    );
     // Stated bounds (measured 7.9e-4 and 9.7e-4): the entries stay within 2e-3 of the f64 chain of the
     // same step, with or without renormalisation. But the 16.16 step matrix is not exactly
     // orthonormal, so without renormalisation the chain's scale drifts (measured 0.11 after 10,000
     // steps); renormalising every 100 steps holds the rows orthonormal to 1e-4 (measured 1.9e-5).
     assert!(raw_dev < 2e-3, "raw drift {raw_dev}");
     assert!(renorm_dev < 2e-3, "renormalised drift {renorm_dev}");
-    assert!(raw_ortho > 0.01, "the raw chain was expected to lose orthonormality: {raw_ortho}");
-    assert!(renorm_ortho < 1e-4, "renormalised orthonormality error {renorm_ortho}");
+    assert!(
+        raw_ortho > 0.01,
+        "the raw chain was expected to lose orthonormality: {raw_ortho}"
+    );
+    assert!(
+        renorm_ortho < 1e-4,
+        "renormalised orthonormality error {renorm_ortho}"
+    );
     eprintln!("drift raw {raw_dev:.2e} (ortho {raw_ortho:.2e}), renormalised {renorm_dev:.2e} (ortho {renorm_ortho:.2e})");
 }
 
@@ -268,7 +290,13 @@ proptest! {
 fn look_at_and_perspective_match_f64() {
     let eye = Vec3::<Fx16>::from_ints(0, 0, 3);
     let view = Mat4::look_at(eye, Vec3::from_ints(0, 0, 0), Vec3::from_ints(0, 1, 0)).unwrap();
-    let proj = Mat4::<Fx16>::perspective(Angle::from_degrees(60), Fx16::from_ratio(4, 3), Fx16::from_ratio(1, 10), Fx16::from_int(100)).unwrap();
+    let proj = Mat4::<Fx16>::perspective(
+        Angle::from_degrees(60),
+        Fx16::from_ratio(4, 3),
+        Fx16::from_ratio(1, 10),
+        Fx16::from_int(100),
+    )
+    .unwrap();
     let mvp = view.then(&proj);
     let fy = 1.0 / (30.0f64.to_radians()).tan();
     for p in [(0.5, 0.25, 0.0), (-1.0, 1.0, 1.0), (0.3, -0.7, -2.0)] {
@@ -277,7 +305,12 @@ fn look_at_and_perspective_match_f64() {
         // f64: view z = p.z - 3 (camera at +3 looking at -z), then projection.
         let (vx, vy, vz) = (f(v.x), f(v.y), f(v.z) - 3.0);
         let (n, fa) = (0.1, 100.0);
-        let want = [fy / (4.0 / 3.0) * vx, fy * vy, (fa + n) / (n - fa) * vz + 2.0 * fa * n / (n - fa), -vz];
+        let want = [
+            fy / (4.0 / 3.0) * vx,
+            fy * vy,
+            (fa + n) / (n - fa) * vz + 2.0 * fa * n / (n - fa),
+            -vz,
+        ];
         for (got, w) in c.to_array().iter().zip(want) {
             assert!((f(*got) - w).abs() < 2e-4, "{p:?}: {} vs {w}", f(*got));
         }
@@ -285,7 +318,13 @@ fn look_at_and_perspective_match_f64() {
     assert!(Mat4::look_at(eye, eye, Vec3::from_ints(0, 1, 0)).is_none());
     assert!(Mat4::look_at(eye, Vec3::from_ints(0, 5, 3), Vec3::from_ints(0, 1, 0)).is_none());
     assert!(Mat4::<Fx16>::perspective(Angle(0), Fx16::ONE, Fx16::ONE, Fx16::from_int(2)).is_none());
-    assert!(Mat4::<Fx16>::perspective(Angle::from_degrees(60), Fx16::ONE, Fx16::from_int(2), Fx16::ONE).is_none());
+    assert!(Mat4::<Fx16>::perspective(
+        Angle::from_degrees(60),
+        Fx16::ONE,
+        Fx16::from_int(2),
+        Fx16::ONE
+    )
+    .is_none());
 }
 
 #[test]
@@ -293,7 +332,10 @@ fn focal_projection_w_is_one_minus_z_over_d() {
     let m = Mat4::<Fx16>::focal(Fx16::from_int(4)).unwrap();
     let c = m.transform_point(Vec3::from_ints(2, 1, 2));
     assert_eq!(c.w, Fx16::from_ratio(1, 2));
-    assert_eq!((c.x, c.y, c.z), (Fx16::from_int(2), Fx16::ONE, Fx16::from_int(2)));
+    assert_eq!(
+        (c.x, c.y, c.z),
+        (Fx16::from_int(2), Fx16::ONE, Fx16::from_int(2))
+    );
     assert!(Mat4::<Fx16>::focal(Fx16::ZERO).is_none());
     let _ = <Fx<16> as Scalar>::ONE;
 }

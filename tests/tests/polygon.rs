@@ -1,10 +1,10 @@
-//! Polygon fill: ASCII patterns, an independent winding-number reference, agreement with the triangle
-//! fill, and hard cases (degenerate, huge, outside the guard band, too many vertices).
+//! Polygon fill: ASCII patterns, an independent winding-number reference, agreement with the
+//! triangle fill, and hard cases (degenerate, huge, outside the guard band, too many vertices).
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::primitives::{PointsIter, Rectangle};
 use embedded_graphics_core::Pixel;
 use proptest::prelude::*;
 use rasterizer_core::geom::{SubPoint, GUARD_BAND_PIXELS};
@@ -226,6 +226,9 @@ fn assert_simple_pattern(width: u32, height: u32, v: &[SubPoint<4>], expected: &
     }
 }
 
+/// Upper end, lower end (doubled sub-pixel units), and +1 / -1 when the outline runs down / up.
+type DirectedEdge = ((i128, i128), (i128, i128), i32);
+
 /// The reference: for every pixel centre in `area`, the winding number of the outline, found
 /// directly from each edge with an exact cross-product sign test in `i128` (no edge walking).
 fn reference(v: &[(i64, i64)], bits: u32, rule: FillRule, area: Rectangle) -> BTreeSet<(i32, i32)> {
@@ -237,7 +240,7 @@ fn reference(v: &[(i64, i64)], bits: u32, rule: FillRule, area: Rectangle) -> BT
     }
     let s = 1i128 << bits;
     // Doubled coordinates: the pixel centre is an integer even with no sub-pixel bits.
-    let edges: Vec<((i128, i128), (i128, i128), i32)> = (0..v.len())
+    let edges: Vec<DirectedEdge> = (0..v.len())
         .filter_map(|i| {
             let (a, b) = (v[i], v[(i + 1) % v.len()]);
             let a = (2 * i128::from(a.0), 2 * i128::from(a.1));
@@ -480,8 +483,8 @@ fn both_windings_and_start_vertices_agree() {
 #[test]
 fn adjacent_polygons_share_an_edge_exactly() {
     // A quad cut by a slanted line into two quads: drawn on one strict target (no overdraw) they
-    // light exactly their union (the cut points are not quite on the quad's edges, so the union is a
-    // hexagon).
+    // light exactly their union (the cut points are not quite on the quad's edges, so the union is
+    // a hexagon).
     let a = [(3, 5), (90, 9), (70, 120), (10, 100)];
     let cut = [(47, 7), (40, 110)];
     let left = raw::<4>(&[a[0], cut[0], cut[1], a[3]]);
@@ -669,7 +672,7 @@ fn polygon_far_larger_than_screen() {
         let mock = fill_both::<4, 4>(20, 12, &huge, rule);
         assert_eq!(mock.pixels().len(), 20 * 12);
     }
-    // Long edges that cross the screen, and a notch in which the screen sits: against the reference.
+    // Long edges across the screen, and a notch the screen sits in: against the reference.
     let screen = Rectangle::new(Point::new(-5, -3), Size::new(20, 12));
     let shapes: [&[(i32, i32)]; 3] = [
         &[(-g, -g), (g, 3 * 16 + 5), (-g, g)],
@@ -769,14 +772,36 @@ fn area() -> impl Strategy<Value = Rectangle> {
 fn extreme() -> impl Strategy<Value = i32> {
     let g = GUARD_BAND_PIXELS;
     prop_oneof![
-        -800i32..800,
-        (g - 40)..=(g + 40),
-        -(g + 40)..=-(g - 40),
-        (g * 16 - 40)..=(g * 16 + 40),
-        -(g * 16 + 40)..=-(g * 16 - 40),
-        Just(i32::MIN),
-        Just(i32::MAX),
-        any::<i32>(),
+        8 => -800i32..800,
+        1 => (g - 40)..=(g + 40),
+        1 => -(g + 40)..=-(g - 40),
+        1 => (g * 16 - 40)..=(g * 16 + 40),
+        1 => -(g * 16 + 40)..=-(g * 16 - 40),
+        1 => Just(i32::MIN),
+        1 => Just(i32::MAX),
+        1 => any::<i32>(),
+    ]
+}
+
+/// 28.4 coordinates inside the guard band, often near its edge.
+fn in_band_4() -> impl Strategy<Value = i32> {
+    let limit = GUARD_BAND_PIXELS << 4;
+    prop_oneof![
+        3 => -64 * 16..64 * 16,
+        2 => -limit..=limit,
+        1 => Just(limit),
+        1 => Just(-limit),
+        1 => (limit - 64)..=limit,
+    ]
+}
+
+/// The top-left corner of a target: usually near the origin, sometimes at the ends of `i32`.
+fn corner() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        6 => -40i32..40,
+        1 => Just(i32::MIN),
+        1 => Just(i32::MAX - 40),
+        1 => any::<i32>(),
     ]
 }
 
@@ -834,7 +859,8 @@ proptest! {
     ) {
         let hull = convex_hull(&points);
         prop_assume!(hull.len() >= 3);
-        let triangles: Vec<_> = (1..hull.len() - 1).map(|i| [hull[0], hull[i], hull[i + 1]]).collect();
+        let triangles: Vec<_> =
+            (1..hull.len() - 1).map(|i| [hull[0], hull[i], hull[i + 1]]).collect();
         let want = fill_triangles(area, &triangles);
         let mut v = to_sub::<4>(&hull);
         for rule in RULES {
@@ -844,7 +870,7 @@ proptest! {
         prop_assert_eq!(&fill_mock::<24, 4>(area, &v, FillRule::NonZero).pixels(), &want);
     }
 
-    /// A random star-shaped (so simple) polygon, cut into the fan of triangles around its kernel point.
+    /// A random star-shaped (so simple) polygon, cut into the fan of triangles around its centre.
     #[test]
     fn simple_polygon_equals_its_triangles(
         centre in (0i64..32 * 16, 0i64..24 * 16),
@@ -914,8 +940,8 @@ proptest! {
     #[test]
     fn extreme_coordinates_are_safe_and_exact(
         v in prop::collection::vec((extreme(), extreme()), 0..10),
-        x in prop_oneof![-40i32..40, Just(i32::MIN), Just(i32::MAX - 40), any::<i32>()],
-        y in prop_oneof![-40i32..40, Just(i32::MIN), Just(i32::MAX - 40), any::<i32>()],
+        x in corner(),
+        y in corner(),
         w in 1u32..40,
         h in 1u32..40,
     ) {
@@ -925,11 +951,28 @@ proptest! {
         let area = Rectangle::new(Point::new(x, y), Size::new(w, h));
         for rule in RULES {
             let b4 = raw::<4>(&v);
-            prop_assert_eq!(fill_mock::<10, 4>(area, &b4, rule).pixels(), reference(&as_i64(&b4), 4, rule, area));
+            let want = reference(&as_i64(&b4), 4, rule, area);
+            prop_assert_eq!(fill_mock::<10, 4>(area, &b4, rule).pixels(), want);
             let b0 = raw::<0>(&v);
-            prop_assert_eq!(fill_mock::<10, 0>(area, &b0, rule).pixels(), reference(&as_i64(&b0), 0, rule, area));
+            let want = reference(&as_i64(&b0), 0, rule, area);
+            prop_assert_eq!(fill_mock::<10, 0>(area, &b0, rule).pixels(), want);
             let b8 = raw::<8>(&v);
-            prop_assert_eq!(fill_mock::<10, 8>(area, &b8, rule).pixels(), reference(&as_i64(&b8), 8, rule, area));
+            let want = reference(&as_i64(&b8), 8, rule, area);
+            prop_assert_eq!(fill_mock::<10, 8>(area, &b8, rule).pixels(), want);
+        }
+    }
+
+    /// Huge polygons inside the guard band, mixed with small vertices so that long edges cross the
+    /// target: exactly the reference's pixels.
+    #[test]
+    fn huge_polygons_inside_the_guard_band_match_reference(
+        v in prop::collection::vec((in_band_4(), in_band_4()), 3..10),
+        area in area(),
+    ) {
+        let sub = raw::<4>(&v);
+        for rule in RULES {
+            let want = reference(&as_i64(&sub), 4, rule, area);
+            prop_assert_eq!(fill_mock::<10, 4>(area, &sub, rule).pixels(), want);
         }
     }
 
@@ -937,7 +980,8 @@ proptest! {
     fn too_many_vertices_is_typed_error(v in vertices(-100, 100, 20)) {
         let result = Polygon::<8>::new(&raw::<4>(&v));
         if v.len() > 8 {
-            prop_assert_eq!(result.unwrap_err(), PolygonError::TooManyVertices { capacity: 8, given: v.len() });
+            let want = PolygonError::TooManyVertices { capacity: 8, given: v.len() };
+            prop_assert_eq!(result.unwrap_err(), want);
         } else {
             prop_assert!(result.is_ok());
         }

@@ -29,9 +29,8 @@ fn reference_set<const B: u32>(v: [SubPoint<B>; 3], w: i32, h: i32) -> BTreeSet<
 
 #[test]
 fn fill_right_triangle_top_left() {
-    fill_mock(6, 6, [px(0, 0), px(6, 0), px(0, 6)]).assert_pattern(&[
-        "##### ", "####  ", "###   ", "##    ", "#     ", "      ",
-    ]);
+    fill_mock(6, 6, [px(0, 0), px(6, 0), px(0, 6)])
+        .assert_pattern(&["##### ", "####  ", "###   ", "##    ", "#     ", "      "]);
 }
 
 #[test]
@@ -44,12 +43,10 @@ fn fill_same_triangle_in_both_windings() {
 
 #[test]
 fn fill_flat_bottom_and_flat_top() {
-    fill_mock(7, 4, [px(3, 0), px(7, 4), px(0, 4)]).assert_pattern(&[
-        "       ", "  ##   ", " ####  ", "###### ",
-    ]);
-    fill_mock(7, 4, [px(0, 0), px(7, 0), px(3, 4)]).assert_pattern(&[
-        "###### ", " ####  ", "  ##   ", "       ",
-    ]);
+    fill_mock(7, 4, [px(3, 0), px(7, 4), px(0, 4)])
+        .assert_pattern(&["       ", "  ##   ", " ####  ", "###### "]);
+    fill_mock(7, 4, [px(0, 0), px(7, 0), px(3, 4)])
+        .assert_pattern(&["###### ", " ####  ", "  ##   ", "       "]);
 }
 
 #[test]
@@ -69,7 +66,11 @@ fn fill_all_orientations_match_reference() {
             let x = if k >= 4 { -x } else { x };
             SubPoint::<4>::new((x + 8) * 16 + 5, (y + 8) * 16 + 3)
         });
-        assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16), "orientation {k}");
+        assert_eq!(
+            fill_mock(16, 16, v).written(),
+            reference_set(v, 16, 16),
+            "orientation {k}"
+        );
     }
 }
 
@@ -92,7 +93,11 @@ fn zero_area_triangles_draw_nothing() {
         [px(0, 0), px(3, 3), px(6, 6)],
         [px(0, 2), px(5, 2), px(3, 2)],
         [px(2, 0), px(2, 5), px(2, 3)],
-        [SubPoint::new(17, 17), SubPoint::new(33, 33), SubPoint::new(49, 49)],
+        [
+            SubPoint::new(17, 17),
+            SubPoint::new(33, 33),
+            SubPoint::new(49, 49),
+        ],
     ] {
         assert!(fill_mock(8, 8, v).written().is_empty(), "{v:?}");
     }
@@ -100,8 +105,12 @@ fn zero_area_triangles_draw_nothing() {
 
 #[test]
 fn collinear_and_repeated_vertices_draw_nothing() {
-    assert!(fill_mock(8, 8, [px(3, 3), px(3, 3), px(6, 1)]).written().is_empty());
-    assert!(fill_mock(8, 8, [px(0, 7), px(7, 0), px(7, 0)]).written().is_empty());
+    assert!(fill_mock(8, 8, [px(3, 3), px(3, 3), px(6, 1)])
+        .written()
+        .is_empty());
+    assert!(fill_mock(8, 8, [px(0, 7), px(7, 0), px(7, 0)])
+        .written()
+        .is_empty());
 }
 
 #[test]
@@ -139,7 +148,12 @@ fn sliver_triangle_no_gap() {
         .collect();
     let mut mock = StrictMock::<BinaryColor>::new(40, 30);
     for w in ring.windows(2) {
-        fill_triangle(&mut AnyTarget::new(&mut mock), [centre, w[0], w[1]], BinaryColor::On).unwrap();
+        fill_triangle(
+            &mut AnyTarget::new(&mut mock),
+            [centre, w[0], w[1]],
+            BinaryColor::On,
+        )
+        .unwrap();
     }
     assert_eq!(mock.written().len(), 40 * 30);
 }
@@ -158,27 +172,51 @@ fn triangle_far_larger_than_screen() {
 #[test]
 fn triangle_outside_guard_band_draws_nothing() {
     let far = (GUARD_BAND_PIXELS + 1) * 16;
-    let v = [SubPoint::<4>::new(-far, -far), SubPoint::new(far, 0), SubPoint::new(0, far)];
+    let v = [
+        SubPoint::<4>::new(-far, -far),
+        SubPoint::new(far, 0),
+        SubPoint::new(0, far),
+    ];
     assert!(fill_mock(8, 8, v).written().is_empty());
-    let v = [SubPoint::<4>::new(i32::MIN, i32::MIN), SubPoint::new(i32::MAX, 0), SubPoint::new(0, i32::MAX)];
+    let v = [
+        SubPoint::<4>::new(i32::MIN, i32::MIN),
+        SubPoint::new(i32::MAX, 0),
+        SubPoint::new(0, i32::MAX),
+    ];
     assert!(fill_mock(8, 8, v).written().is_empty());
 }
 
 #[test]
 fn triangle_at_guard_band_edge_matches_reference() {
     let g = GUARD_BAND_PIXELS * 16;
-    let v = [SubPoint::<4>::new(-g, -g), SubPoint::new(g, -g + 5), SubPoint::new(3, g)];
+    let v = [
+        SubPoint::<4>::new(-g, -g),
+        SubPoint::new(g, -g + 5),
+        SubPoint::new(3, g),
+    ];
     assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16));
     let g8 = GUARD_BAND_PIXELS << 8;
-    let v = [SubPoint::<8>::new(-g8, 17), SubPoint::new(g8, -g8), SubPoint::new(g8, g8)];
+    let v = [
+        SubPoint::<8>::new(-g8, 17),
+        SubPoint::new(g8, -g8),
+        SubPoint::new(g8, g8),
+    ];
     assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16));
 }
 
 #[test]
 fn subpixel_bits_zero_and_eight() {
-    let v0 = [SubPoint::<0>::new(0, 0), SubPoint::new(9, 2), SubPoint::new(3, 8)];
+    let v0 = [
+        SubPoint::<0>::new(0, 0),
+        SubPoint::new(9, 2),
+        SubPoint::new(3, 8),
+    ];
     assert_eq!(fill_mock(10, 10, v0).written(), reference_set(v0, 10, 10));
-    let v8 = [SubPoint::<8>::new(37, 300), SubPoint::new(2000, 1000), SubPoint::new(900, 2400)];
+    let v8 = [
+        SubPoint::<8>::new(37, 300),
+        SubPoint::new(2000, 1000),
+        SubPoint::new(900, 2400),
+    ];
     assert_eq!(fill_mock(10, 10, v8).written(), reference_set(v8, 10, 10));
 }
 
@@ -191,7 +229,9 @@ fn outline_draws_each_pixel_once() {
         BinaryColor::On,
     )
     .unwrap();
-    mock.assert_pattern(&["##      ", "# ####  ", " #    ##", " #   ## ", "  ###   ", "  #     "]);
+    mock.assert_pattern(&[
+        "##      ", "# ####  ", " #    ##", " #   ## ", "  ###   ", "  #     ",
+    ]);
     // A thin triangle whose edges share pixels along their length.
     let mut thin = StrictMock::<BinaryColor>::new(12, 3);
     draw_triangle(
@@ -208,7 +248,11 @@ fn outline_clipped_far_outside() {
     let mut mock = StrictMock::<BinaryColor>::new(8, 8);
     draw_triangle(
         &mut AnyTarget::new(&mut mock),
-        [Point::new(i32::MIN, 3), Point::new(i32::MAX, 4), Point::new(3, i32::MAX)],
+        [
+            Point::new(i32::MIN, 3),
+            Point::new(i32::MAX, 4),
+            Point::new(3, i32::MAX),
+        ],
         BinaryColor::On,
     )
     .unwrap();
@@ -220,13 +264,21 @@ fn gouraud_vertex_pixels_get_vertex_colours() {
     // Vertices on pixel centres: the pixels there that are covered get exactly the vertex colour.
     let c = |x: i32, y: i32| SubPoint::<4>::new(x * 16 + 8, y * 16 + 8);
     let v = [c(1, 1), c(30, 4), c(6, 20)];
-    let colors = [Rgb888::new(255, 0, 0), Rgb888::new(0, 255, 0), Rgb888::new(0, 0, 255)];
+    let colors = [
+        Rgb888::new(255, 0, 0),
+        Rgb888::new(0, 255, 0),
+        Rgb888::new(0, 0, 255),
+    ];
     let mut mock = StrictMock::<Rgb888>::new(32, 24);
     fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
     // (1,1) is the top vertex: on two edges, a left one and the right one, so not covered; the others
     // are covered (left vertex) or not (right) by the top-left rule. Check the ones that are.
     let mut checked = 0;
-    for (p, col) in [((1, 1), colors[0]), ((30, 4), colors[1]), ((6, 20), colors[2])] {
+    for (p, col) in [
+        ((1, 1), colors[0]),
+        ((30, 4), colors[1]),
+        ((6, 20), colors[2]),
+    ] {
         if let Some(got) = mock.get(p.0, p.1) {
             assert_eq!(got, col, "vertex pixel {p:?}");
             checked += 1;
@@ -244,8 +296,16 @@ fn gouraud_vertex_pixels_get_vertex_colours() {
 
 #[test]
 fn gouraud_same_pixels_as_flat_and_within_half_step_of_exact() {
-    let v = [SubPoint::<4>::new(13, 21), SubPoint::new(600, 90), SubPoint::new(170, 470)];
-    let colors = [Rgb888::new(250, 10, 0), Rgb888::new(0, 200, 30), Rgb888::new(40, 40, 255)];
+    let v = [
+        SubPoint::<4>::new(13, 21),
+        SubPoint::new(600, 90),
+        SubPoint::new(170, 470),
+    ];
+    let colors = [
+        Rgb888::new(250, 10, 0),
+        Rgb888::new(0, 200, 30),
+        Rgb888::new(40, 40, 255),
+    ];
     let mut mock = StrictMock::<Rgb888>::new(40, 32);
     fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
     assert_eq!(mock.written(), reference_set(v, 40, 32));
@@ -262,15 +322,26 @@ fn gouraud_same_pixels_as_flat_and_within_half_step_of_exact() {
         for i in 0..3 {
             let exact = l0 * ch(colors[0], i) + l1 * ch(colors[1], i) + l2 * ch(colors[2], i);
             let g = [got.r(), got.g(), got.b()][i] as f64;
-            assert!((g - exact).abs() <= 0.5 + 1e-9, "({x},{y}) ch{i}: {g} vs {exact}");
+            assert!(
+                (g - exact).abs() <= 0.5 + 1e-9,
+                "({x},{y}) ch{i}: {g} vs {exact}"
+            );
         }
     }
 }
 
 #[test]
 fn gouraud_sliver_with_huge_gradient_stays_in_range() {
-    let v = [SubPoint::<4>::new(0, 0), SubPoint::new(40 * 16, 30 * 16), SubPoint::new(40 * 16 + 1, 30 * 16)];
-    let colors = [Rgb565::new(31, 0, 0), Rgb565::new(0, 63, 0), Rgb565::new(0, 0, 31)];
+    let v = [
+        SubPoint::<4>::new(0, 0),
+        SubPoint::new(40 * 16, 30 * 16),
+        SubPoint::new(40 * 16 + 1, 30 * 16),
+    ];
+    let colors = [
+        Rgb565::new(31, 0, 0),
+        Rgb565::new(0, 63, 0),
+        Rgb565::new(0, 0, 31),
+    ];
     let mut buf = [0u16; 48 * 32];
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 48, 32).unwrap();
     fill_triangle_gouraud(&mut fb, v, colors).unwrap();
@@ -283,8 +354,16 @@ fn gouraud_sliver_with_huge_gradient_stays_in_range() {
 
 #[test]
 fn framebuffer_and_any_target_agree_on_gouraud() {
-    let v = [SubPoint::<4>::new(-100, 40), SubPoint::new(700, 100), SubPoint::new(300, 600)];
-    let colors = [Rgb565::new(31, 0, 5), Rgb565::new(3, 63, 0), Rgb565::new(0, 20, 31)];
+    let v = [
+        SubPoint::<4>::new(-100, 40),
+        SubPoint::new(700, 100),
+        SubPoint::new(300, 600),
+    ];
+    let colors = [
+        Rgb565::new(31, 0, 5),
+        Rgb565::new(3, 63, 0),
+        Rgb565::new(0, 20, 31),
+    ];
     let mut buf = [0u16; 40 * 32];
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 40, 32).unwrap();
     fill_triangle_gouraud(&mut fb, v, colors).unwrap();
@@ -303,7 +382,13 @@ fn coord() -> impl Strategy<Value = i32> {
 }
 
 fn any_sub() -> impl Strategy<Value = i32> {
-    prop_oneof![coord(), any::<i32>(), Just(i32::MIN), Just(i32::MAX), -(1 << 26)..(1 << 26)]
+    prop_oneof![
+        coord(),
+        any::<i32>(),
+        Just(i32::MIN),
+        Just(i32::MAX),
+        -(1 << 26)..(1 << 26)
+    ]
 }
 
 proptest! {

@@ -85,7 +85,11 @@ fn first_step_reaching(line: &Line, q: i64) -> Option<i64> {
     if line.b == 0 {
         return None;
     }
-    let (a, b, t) = (i128::from(line.a), i128::from(line.b), i128::from(line.tie()));
+    let (a, b, t) = (
+        i128::from(line.a),
+        i128::from(line.b),
+        i128::from(line.tie()),
+    );
     let k = ceil_div_i128(2 * a * i128::from(q) - a + t, 2 * b);
     (k <= a).then_some(k as i64)
 }
@@ -95,7 +99,11 @@ fn last_step_within(line: &Line, q: i64) -> Option<i64> {
     if line.b == 0 {
         return None;
     }
-    let (a, b, t) = (i128::from(line.a), i128::from(line.b), i128::from(line.tie()));
+    let (a, b, t) = (
+        i128::from(line.a),
+        i128::from(line.b),
+        i128::from(line.tie()),
+    );
     let k = ceil_div_i128(2 * a * i128::from(q) + a + t, 2 * b) - 1;
     (k < a).then_some(k as i64)
 }

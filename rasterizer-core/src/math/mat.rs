@@ -188,7 +188,12 @@ impl<S: Scalar> Mat4<S> {
         Some(Self::from_rows([
             [f / aspect, o, o, o],
             [o, f, o, o],
-            [o, o, (far + near) / depth, (far * near + far * near) / depth],
+            [
+                o,
+                o,
+                (far + near) / depth,
+                (far * near + far * near) / depth,
+            ],
             [o, o, -S::ONE, o],
         ]))
     }

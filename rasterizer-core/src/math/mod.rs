@@ -95,14 +95,22 @@ impl<const F: u32> Scalar for Fx<F> {
 
     fn hypot3(x: Self, y: Self, z: Self) -> Self {
         // The squares keep 2F fractional bits: a vector of length 2^-F still has a length.
-        let (x, y, z) = (x.to_bits() as i128, y.to_bits() as i128, z.to_bits() as i128);
+        let (x, y, z) = (
+            x.to_bits() as i128,
+            y.to_bits() as i128,
+            z.to_bits() as i128,
+        );
         let sq = (x * x + y * y + z * z) as u128;
         // sq < 3 * 2^62, so it fits u64.
         Fx::from_bits(fx::isqrt_u64(sq as u64).min(i32::MAX as u64) as i32)
     }
 
     fn normalize3(x: Self, y: Self, z: Self) -> Option<(Self, Self, Self)> {
-        let (x, y, z) = (x.to_bits() as i128, y.to_bits() as i128, z.to_bits() as i128);
+        let (x, y, z) = (
+            x.to_bits() as i128,
+            y.to_bits() as i128,
+            z.to_bits() as i128,
+        );
         let sq = (x * x + y * y + z * z) as u128;
         if sq == 0 {
             return None;

@@ -46,9 +46,18 @@ impl<S: Scalar> Vec3<S> {
     /// Cross product, each component rounded once.
     pub fn cross(self, o: Self) -> Self {
         Self::new(
-            S::dot4([self.y, -self.z, S::ZERO, S::ZERO], [o.z, o.y, S::ZERO, S::ZERO]),
-            S::dot4([self.z, -self.x, S::ZERO, S::ZERO], [o.x, o.z, S::ZERO, S::ZERO]),
-            S::dot4([self.x, -self.y, S::ZERO, S::ZERO], [o.y, o.x, S::ZERO, S::ZERO]),
+            S::dot4(
+                [self.y, -self.z, S::ZERO, S::ZERO],
+                [o.z, o.y, S::ZERO, S::ZERO],
+            ),
+            S::dot4(
+                [self.z, -self.x, S::ZERO, S::ZERO],
+                [o.x, o.z, S::ZERO, S::ZERO],
+            ),
+            S::dot4(
+                [self.x, -self.y, S::ZERO, S::ZERO],
+                [o.y, o.x, S::ZERO, S::ZERO],
+            ),
         )
     }
 

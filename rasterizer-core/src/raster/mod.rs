@@ -3,6 +3,7 @@
 //! Every rasterizer clips to the surface's clip area before it writes, so out-of-bounds pixels never
 //! reach the target, and hands the target whole spans where the primitive has them.
 
+pub(crate) mod edge;
 pub mod line;
 pub mod point;
 pub mod polygon;

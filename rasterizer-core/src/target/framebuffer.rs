@@ -43,7 +43,10 @@ impl core::fmt::Display for FramebufferError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Self::WrongLength { expected, actual } => {
-                write!(f, "framebuffer slice has {actual} words, the size needs {expected}")
+                write!(
+                    f,
+                    "framebuffer slice has {actual} words, the size needs {expected}"
+                )
             }
             Self::BadSize { width, height } => write!(
                 f,
@@ -326,7 +329,9 @@ impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
                 let Some(color) = colors.next() else {
                     return Ok(());
                 };
-                if (0..i64::from(self.width)).contains(&x) && (0..i64::from(self.height)).contains(&y) {
+                if (0..i64::from(self.width)).contains(&x)
+                    && (0..i64::from(self.height)).contains(&y)
+                {
                     C::set(self.row_mut(y as usize), x as usize, color);
                 }
             }
@@ -342,7 +347,12 @@ impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
             return Ok(());
         }
         for y in y0..y1 {
-            C::fill(self.row_mut(y as usize), x0 as usize, (x1 - x0) as usize, color);
+            C::fill(
+                self.row_mut(y as usize),
+                x0 as usize,
+                (x1 - x0) as usize,
+                color,
+            );
         }
         Ok(())
     }

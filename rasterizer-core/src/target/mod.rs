@@ -29,7 +29,13 @@ pub trait Surface: DrawTarget {
     }
 
     /// Fills `len` pixels of row `y` starting at column `x` with one colour.
-    fn fill_span(&mut self, x: i32, y: i32, len: u32, color: Self::Color) -> Result<(), Self::Error> {
+    fn fill_span(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
         self.fill_solid(&Rectangle::new(Point::new(x, y), Size::new(len, 1)), color)
     }
 
@@ -43,11 +49,18 @@ pub trait Surface: DrawTarget {
         mut shade: F,
     ) -> Result<(), Self::Error> {
         let area = Rectangle::new(Point::new(x, y), Size::new(len, 1));
-        self.fill_contiguous(&area, core::iter::repeat_with(&mut shade).take(len as usize))
+        self.fill_contiguous(
+            &area,
+            core::iter::repeat_with(&mut shade).take(len as usize),
+        )
     }
 
     /// Draws every pixel of a line walk in one colour.
-    fn draw_line_points(&mut self, points: LinePoints, color: Self::Color) -> Result<(), Self::Error> {
+    fn draw_line_points(
+        &mut self,
+        points: LinePoints,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
         self.draw_iter(points.map(|p| Pixel(p, color)))
     }
 }

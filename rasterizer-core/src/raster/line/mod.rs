@@ -139,14 +139,17 @@ impl Line {
 
     /// A walk over steps `k0 ..= k1` (both within 0 ..= A, `k0 <= k1`).
     pub(crate) fn walk_from(&self, k0: i64, k1: i64) -> LinePoints {
-        let (x, y) = self.point_at(k0);
         let two_major = 2 * self.a;
-        // Remainder of (2 k0 B + A - t) / 2A; its quotient is already in point_at.
-        let err = if self.a == 0 {
-            0
+        // Remainder of (2 k0 B + A - t) / 2A; its quotient is already in point_at. At k0 = 0 (every
+        // unclipped start) the quotient is 0 and the remainder A - t, with no 128-bit division.
+        let ((x, y), err) = if self.a == 0 {
+            (self.point_at(k0), 0)
+        } else if k0 == 0 {
+            let start = (i64::from(self.start.x), i64::from(self.start.y));
+            (start, self.a - self.tie())
         } else {
             let num = 2 * i128::from(k0) * i128::from(self.b) + i128::from(self.a - self.tie());
-            (num % i128::from(two_major)) as i64
+            (self.point_at(k0), (num % i128::from(two_major)) as i64)
         };
         let (step_x, step_y) = if self.major_x {
             (1, self.minor_step)

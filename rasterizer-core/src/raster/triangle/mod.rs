@@ -6,11 +6,10 @@
 //! therefore never leave a gap between them and never draw a pixel twice, and the coverage matches
 //! OpenGL's (checked against Mesa's llvmpipe in the conformance tests). Either winding is drawn.
 //!
-//! Spans are found by an exact edge walk (`edge.rs`): one division per edge at set-up, then two adds
+//! Spans are found by an exact edge walk (`raster/edge.rs`): one division per edge at set-up, then two adds
 //! and a compare per edge per row. Zero-area triangles draw nothing; so does a triangle with a vertex
 //! outside the guard band ([`crate::geom::GUARD_BAND_PIXELS`]).
 
-mod edge;
 mod setup;
 
 use crate::color::Channels;

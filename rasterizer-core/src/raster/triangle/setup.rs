@@ -1,9 +1,8 @@
 //! Triangle set-up shared by the flat and Gouraud fills: sort by y, reject what cannot be drawn,
 //! and walk the spans row by row.
 
-use super::edge::EdgeWalk;
 use crate::geom::{PixelRect, SubPoint};
-use crate::raster::ceil_div_i64;
+use crate::raster::edge::{row_at_or_below, EdgeWalk};
 
 /// A triangle sorted by y (top first), in `i64` sub-pixel units.
 #[derive(Debug, Clone, Copy)]
@@ -41,12 +40,6 @@ impl Sorted {
         let cross = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1);
         (cross != 0).then_some(Self { v: p, order, cross })
     }
-}
-
-/// The first row whose sample `r S + S/2` lies at or below `y`.
-#[inline(always)]
-fn row_at_or_below(y: i64, s: i64) -> i64 {
-    ceil_div_i64(2 * y - s, 2 * s)
 }
 
 /// Calls `span(row, x0, x1)` for every non-empty span of the triangle inside `clip`, top to bottom;

@@ -23,8 +23,8 @@ pub(crate) struct EdgeWalk {
 impl EdgeWalk {
     /// Sets the walk up at row `row` for the edge `a -> b` (`b.y > a.y`), `s` the sub-pixel unit.
     ///
-    /// Bound: inside the guard band `|N| <= 12 M^2 < 2^62` (see [`crate::geom::GUARD_BAND_PIXELS`]);
-    /// `row` is a screen row, `|row| <= 2^15`.
+    /// Bound: inside the guard band `|N| <= 12 M^2 < 2^62` (see [`crate::geom::GUARD_BAND_PIXELS`]):
+    /// callers only set the walk up at a row whose sample lies within the edge's own rows.
     #[inline(always)]
     pub fn new(a: (i64, i64), b: (i64, i64), s: i64, row: i64) -> Self {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
@@ -53,4 +53,10 @@ impl EdgeWalk {
             self.col -= 1;
         }
     }
+}
+
+/// The first row whose sample `r S + S/2` lies at or below `y` (sub-pixel units, `S` the unit).
+#[inline(always)]
+pub(crate) fn row_at_or_below(y: i64, s: i64) -> i64 {
+    ceil_div_i64(2 * y - s, 2 * s)
 }
