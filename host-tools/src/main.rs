@@ -1,1 +1,66 @@
-fn main() {}
+//! `host-tools`: command-line tools that run `rasterizer-core` on a desktop machine.
+//!
+//! Run `cargo run --release -p host-tools -- --help` for the list of commands.
+#![deny(missing_docs)]
+
+mod demo;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Host-side tools for the rasterizer-core crate.
+#[derive(Debug, Parser)]
+#[command(
+    name = "host-tools",
+    version,
+    about = "Host-side tools for rasterizer-core, the no_std fixed-point rasterizer",
+    long_about = "Host-side tools for rasterizer-core, the no_std fixed-point rasterizer.\n\n\
+        Everything here runs on your desktop: the rasterizer draws into an in-memory \
+        embedded-graphics simulator display instead of a real screen.\n\n\
+        Start with `host-tools demo`, which renders the example pictures shown in README.md."
+)]
+struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// The subcommands. Add new tools here as new variants.
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Render the demo pictures (lines, triangles, polygons, clipping) as PNG files.
+    #[command(long_about = "Render the demo pictures as PNG files.\n\n\
+        Each picture is drawn by rasterizer-core through `AnyTarget` onto an \
+        embedded-graphics-simulator display (200x150 pixels) and saved at 3x scale, so \
+        single pixels are easy to see. The file names are fixed (lines_octants.png, \
+        lines_gradient.png, triangle_outlines.png, triangles_flat.png, \
+        triangles_gouraud.png, polygons.png, clipping.png); existing files are overwritten.\n\n\
+        Example: cargo run --release -p host-tools -- demo --out /tmp/pictures")]
+    Demo(DemoArgs),
+}
+
+/// Options of the `demo` command.
+#[derive(Debug, clap::Args)]
+struct DemoArgs {
+    /// Directory to write the PNG files into; it is created if it does not exist.
+    ///
+    /// A relative path is taken from the current directory: run from the repository root to
+    /// refresh the pictures README.md shows.
+    #[arg(long, value_name = "DIR", default_value = "docs/images")]
+    out: PathBuf,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Demo(args) => demo::run(&args.out, |path| println!("wrote {}", path.display())),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

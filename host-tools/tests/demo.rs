@@ -1,0 +1,77 @@
+//! Runs the `demo` command end to end: every PNG is written, and a bad `--out` fails cleanly.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// The PNG files the demo promises (README.md links to them).
+const FILES: [&str; 7] = [
+    "lines_octants.png",
+    "lines_gradient.png",
+    "triangle_outlines.png",
+    "triangles_flat.png",
+    "triangles_gouraud.png",
+    "polygons.png",
+    "clipping.png",
+];
+
+/// A fresh directory under the system temp dir, unique to this test and process.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("host-tools-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn demo_writes_every_picture() {
+    let dir = scratch("demo-ok");
+    let out = dir.join("images");
+    let run = Command::new(env!("CARGO_BIN_EXE_host-tools"))
+        .args(["demo", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "demo failed: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(
+        stdout.lines().count(),
+        FILES.len(),
+        "one line per file:\n{stdout}"
+    );
+    for file in FILES {
+        let path = out.join(file);
+        let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert!(
+            bytes.starts_with(b"\x89PNG\r\n\x1a\n"),
+            "{file} is not a PNG"
+        );
+        // A blank 600x450 picture compresses to well under a kilobyte; every scene has real content.
+        assert!(bytes.len() > 2000, "{file} is only {} bytes", bytes.len());
+        assert!(stdout.contains(file), "{file} not reported:\n{stdout}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn demo_reports_an_unwritable_output_directory() {
+    let dir = scratch("demo-bad");
+    let file = dir.join("not-a-directory");
+    std::fs::write(&file, b"a regular file").unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_host-tools"))
+        .args(["demo", "--out"])
+        .arg(file.join("images"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success(), "demo should fail");
+    assert_ne!(run.status.code(), Some(0));
+    assert!(
+        stderr.lines().any(|l| l.starts_with("error:")),
+        "no `error:` line in stderr:\n{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
