@@ -1,0 +1,3 @@
+//! Host-side helpers shared by the host tools, benches and examples.
+
+pub mod scenes;
