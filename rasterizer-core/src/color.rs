@@ -17,6 +17,12 @@ pub trait Channels: PixelColor {
     fn to_channels(self) -> [u8; 4];
     /// The colour from channels at native depth. Values above a channel's maximum are clamped.
     fn from_channels(c: [u8; 4]) -> Self;
+    /// The colour from channels already known to be within range (interpolation between valid
+    /// colours). An out-of-range value gives an unspecified colour, never a panic.
+    #[inline]
+    fn from_channels_in_range(c: [u8; 4]) -> Self {
+        Self::from_channels(c)
+    }
 }
 
 macro_rules! rgb_channels {
@@ -34,6 +40,11 @@ macro_rules! rgb_channels {
                     c[1].min(<$t>::MAX_G),
                     c[2].min(<$t>::MAX_B),
                 )
+            }
+            #[inline]
+            fn from_channels_in_range(c: [u8; 4]) -> Self {
+                // `new` masks each channel to its width, so this cannot panic.
+                <$t>::new(c[0], c[1], c[2])
             }
         }
     )*};

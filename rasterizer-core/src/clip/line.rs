@@ -19,6 +19,7 @@ const TOP: u8 = 4;
 const BOTTOM: u8 = 8;
 
 /// Cohen-Sutherland outcode of `p` against `r`.
+#[inline]
 fn outcode(p: Point, r: &PixelRect) -> u8 {
     let (x, y) = (i64::from(p.x), i64::from(p.y));
     let mut code = 0;
@@ -36,6 +37,7 @@ fn outcode(p: Point, r: &PixelRect) -> u8 {
 }
 
 /// The first and last step of `line` whose pixel lies inside `area`, or `None` when none does.
+#[inline]
 pub(crate) fn clip_steps(line: &Line, area: &Rectangle) -> Option<(i64, i64)> {
     let r = PixelRect::from_rectangle(area);
     if r.is_empty() {

@@ -58,5 +58,7 @@ impl EdgeWalk {
 /// The first row whose sample `r S + S/2` lies at or below `y` (sub-pixel units, `S` the unit).
 #[inline(always)]
 pub(crate) fn row_at_or_below(y: i64, s: i64) -> i64 {
-    ceil_div_i64(2 * y - s, 2 * s)
+    // `s` is a power of two: ceil(n / 2s) = -floor(-n / 2s), an arithmetic shift.
+    let shift = (2 * s).trailing_zeros();
+    -((s - 2 * y) >> shift)
 }

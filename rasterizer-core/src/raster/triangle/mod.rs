@@ -18,7 +18,7 @@ use crate::raster::line::{draw_line, Line};
 use crate::target::Surface;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
-use setup::{walk_spans, Sorted};
+use setup::{walk_spans, Sorted, SpanSink};
 
 /// Fills a triangle in one colour.
 ///
@@ -42,47 +42,39 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
         return Ok(());
     };
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    walk_spans(&t, 1 << BITS, &clip, |y, x0, x1| {
-        surface.fill_span(x0, y, (x1 - x0) as u32, color)
-    })
+    walk_spans(&t, 1 << BITS, &clip, &mut Flat { surface, color })
+}
+
+/// Spans in one colour.
+struct Flat<'a, S: Surface> {
+    surface: &'a mut S,
+    color: S::Color,
+}
+
+impl<S: Surface> SpanSink for Flat<'_, S> {
+    type Error = S::Error;
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
+        self.surface
+            .fill_span(x0, row, (x1 - x0) as u32, self.color)
+    }
 }
 
 /// Fractional bits of the interpolated colour channels.
 const FRAC: u32 = 16;
 
-/// `round(n / d)` for `d > 0`, exact; `n` may need more than 64 bits.
+/// `round(n / (2 half))` for `half > 0`, halves up; `n` may need more than 64 bits.
 #[inline]
-fn div_round(n: i128, d: i64) -> i64 {
-    let d = i128::from(d);
-    let q = n.div_euclid(d);
-    let r = n.rem_euclid(d);
-    (if 2 * r >= d { q + 1 } else { q }) as i64
-}
-
-/// `round(a * b / d)` for `d > 0`, in `i64` when the product fits and in `i128` when it does not.
-#[inline]
-fn mul_div_round(a: i64, b: i64, d: i64) -> i64 {
-    match a.checked_mul(b) {
-        Some(n) => {
-            let q = n.div_euclid(d);
-            let r = n.rem_euclid(d);
-            // r < d <= 2^62, so 2 r cannot overflow.
-            if 2 * r >= d {
-                q + 1
-            } else {
-                q
-            }
-        }
-        None => div_round(i128::from(a) * i128::from(b), d),
-    }
+fn div_round_wide(n: i128, half: i64) -> i64 {
+    (n + i128::from(half)).div_euclid(2 * i128::from(half)) as i64
 }
 
 /// Fills a triangle with its vertex colours interpolated across it (Gouraud shading).
 ///
 /// Each channel is interpolated at its native depth. The value at a pixel centre is the exact
-/// barycentric blend rounded to the nearest step, computed exactly at the start of each span and
-/// stepped across it in 16.16 fixed point, so a pixel whose centre is a vertex gets exactly that
-/// vertex's colour, and no pixel leaves the range of the three colours.
+/// barycentric blend rounded to the nearest step, computed exactly at the start of each span (one
+/// division per channel) and stepped across it in 16.16 fixed point, so a pixel whose centre is a
+/// vertex gets exactly that vertex's colour, and no pixel leaves the range of the three colours.
 pub fn fill_triangle_gouraud<S, const BITS: u32>(
     surface: &mut S,
     vertices: [SubPoint<BITS>; 3],
@@ -101,48 +93,95 @@ where
     // The colour plane c(x, y) = c0 + (a (x - x0) + b (y - y0)) / cross, per channel, with the sign of
     // `cross` moved into the numerators so the divisor is positive. Bound: |a|, |b| <= 2^9 * 2M = 2^39.
     let sign = t.cross.signum();
-    let den = t.cross.abs();
-    let mut a = [0i64; 4];
-    let mut b = [0i64; 4];
-    let mut lo = [0i32; 4];
-    let mut hi = [0i32; 4];
-    let mut step = [0i32; 4];
+    let mut g = Gouraud {
+        surface,
+        s,
+        v0,
+        den: t.cross.abs(),
+        a: [0; 4],
+        b: [0; 4],
+        base: [0; 4],
+        lo: [0; 4],
+        hi: [0; 4],
+        step: [0; 4],
+    };
     for i in 0..S::Color::COUNT {
         let (c0, c1, c2) = (i64::from(c[0][i]), i64::from(c[1][i]), i64::from(c[2][i]));
-        a[i] = sign * ((c1 - c0) * (v2.1 - v0.1) - (c2 - c0) * (v1.1 - v0.1));
-        b[i] = sign * ((c2 - c0) * (v1.0 - v0.0) - (c1 - c0) * (v2.0 - v0.0));
-        lo[i] = (c0.min(c1).min(c2) << FRAC) as i32;
-        hi[i] = (c0.max(c1).max(c2) << FRAC) as i32;
-        // One pixel is `s` sub-pixel units. A step too large for i32 only ever lands on spans of one
-        // pixel (two centres inside the triangle differ by at most 255), so saturating it is harmless.
-        let per_pixel = mul_div_round(a[i], s << FRAC, den);
-        step[i] = per_pixel.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+        g.a[i] = sign * ((c1 - c0) * (v2.1 - v0.1) - (c2 - c0) * (v1.1 - v0.1));
+        g.b[i] = sign * ((c2 - c0) * (v1.0 - v0.0) - (c1 - c0) * (v2.0 - v0.0));
+        g.base[i] = c0 << FRAC;
+        g.lo[i] = c0.min(c1).min(c2) << FRAC;
+        g.hi[i] = c0.max(c1).max(c2) << FRAC;
+        // One pixel is `s` sub-pixel units, 2s in the doubled units of `span`. A step too large for
+        // i32 only ever lands on spans of one pixel (two centres inside the triangle differ by at
+        // most 255), so saturating it is harmless.
+        let per_pixel = match g.a[i].checked_mul(s << (FRAC + 1)) {
+            Some(n) if n.unsigned_abs() < 1 << 62 => (n + g.den).div_euclid(2 * g.den),
+            _ => div_round_wide(i128::from(g.a[i]) * i128::from(s << (FRAC + 1)), g.den),
+        };
+        g.step[i] = per_pixel.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
     }
-    let clip = PixelRect::from_rectangle(&surface.clip_area());
-    walk_spans(&t, s, &clip, |y, x0, x1| {
+    let clip = PixelRect::from_rectangle(&g.surface.clip_area());
+    walk_spans(&t, s, &clip, &mut g)
+}
+
+/// Gouraud spans: the colour plane evaluated exactly at each span's first pixel, then stepped.
+struct Gouraud<'a, S: Surface> {
+    surface: &'a mut S,
+    s: i64,
+    v0: (i64, i64),
+    /// |cross|: the plane's divisor is `2 den` in doubled units.
+    den: i64,
+    a: [i64; 4],
+    b: [i64; 4],
+    base: [i64; 4],
+    lo: [i64; 4],
+    hi: [i64; 4],
+    step: [i32; 4],
+}
+
+impl<S: Surface> SpanSink for Gouraud<'_, S>
+where
+    S::Color: Channels,
+{
+    type Error = S::Error;
+
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         // Doubled pixel-centre offsets from v0: exact integers even with no sub-pixel bits.
-        let dx2 = (2 * i64::from(x0) + 1) * s - 2 * v0.0;
-        let dy2 = (2 * i64::from(y) + 1) * s - 2 * v0.1;
+        let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.v0.0;
+        let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.v0.1;
         let mut acc = [0i32; 4];
         for i in 0..S::Color::COUNT {
-            let f = i128::from(a[i]) * i128::from(dx2) + i128::from(b[i]) * i128::from(dy2);
-            let start = match i64::try_from(f).ok().and_then(|f| f.checked_mul(1 << FRAC)) {
-                Some(n) => mul_div_round(n, 1, 2 * den),
-                None => div_round(f << FRAC, 2 * den),
+            // value = c0 + f / (2 den), f = a dx2 + b dy2, in 16.16 rounded. The i64 path covers
+            // every triangle of a few thousand pixels; larger ones take the i128 path.
+            let fast = self.a[i]
+                .checked_mul(dx2)
+                .and_then(|p| p.checked_add(self.b[i].checked_mul(dy2)?))
+                .filter(|f| f.unsigned_abs() < 1 << 46);
+            let start = match fast {
+                Some(f) => ((f << FRAC) + self.den).div_euclid(2 * self.den),
+                None => {
+                    let f = i128::from(self.a[i]) * i128::from(dx2)
+                        + i128::from(self.b[i]) * i128::from(dy2);
+                    div_round_wide(f << FRAC, self.den)
+                }
             };
-            let base = i64::from(c[0][i]) << FRAC;
-            let v = (base + start).clamp(i64::from(lo[i]), i64::from(hi[i])) as i32;
-            acc[i] = v + (1 << (FRAC - 1));
+            let v = (self.base[i] + start).clamp(self.lo[i], self.hi[i]);
+            acc[i] = v as i32 + (1 << (FRAC - 1));
         }
-        surface.shade_span(x0, y, (x1 - x0) as u32, || {
+        let step = self.step;
+        // Within a span the value stays inside the triangle's colour range up to the stepping error
+        // (at most 2^-17 per pixel, under 1/2 for any span), so no clamping is needed per pixel.
+        self.surface.shade_span(x0, row, (x1 - x0) as u32, || {
             let mut ch = [0u8; 4];
             for i in 0..S::Color::COUNT {
-                ch[i] = (acc[i].max(0) >> FRAC) as u8;
+                ch[i] = (acc[i] >> FRAC) as u8;
                 acc[i] = acc[i].wrapping_add(step[i]);
             }
-            S::Color::from_channels(ch)
+            S::Color::from_channels_in_range(ch)
         })
-    })
+    }
 }
 
 /// Draws the outline of a triangle: its three edges as [`crate::raster::line`] lines, each pixel once.

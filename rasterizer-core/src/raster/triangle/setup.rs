@@ -42,16 +42,25 @@ impl Sorted {
     }
 }
 
-/// Calls `span(row, x0, x1)` for every non-empty span of the triangle inside `clip`, top to bottom;
-/// the span covers columns `x0 .. x1`.
+/// Receives the spans of a triangle.
+pub(crate) trait SpanSink {
+    /// The target's error.
+    type Error;
+    /// Draws columns `x0 .. x1` (`x0 < x1`, inside the clip area) of `row`.
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), Self::Error>;
+}
+
+/// Hands `sink` every non-empty span of the triangle inside `clip`, top to bottom.
 ///
 /// Rows run over `y0 <= yc < y2`; in each, columns run from the left edge's column (inclusive: a centre
 /// on a left edge is inside) to the right edge's column (exclusive): the top-left rule.
 #[inline(always)]
-pub(crate) fn walk_spans<E, F>(t: &Sorted, s: i64, clip: &PixelRect, mut span: F) -> Result<(), E>
-where
-    F: FnMut(i32, i32, i32) -> Result<(), E>,
-{
+pub(crate) fn walk_spans<K: SpanSink>(
+    t: &Sorted,
+    s: i64,
+    clip: &PixelRect,
+    sink: &mut K,
+) -> Result<(), K::Error> {
     let [v0, v1, v2] = t.v;
     let top = row_at_or_below(v0.1, s).max(clip.y0);
     let mid = row_at_or_below(v1.1, s).clamp(top, clip.y1.max(top));
@@ -59,35 +68,60 @@ where
     if top >= bottom {
         return Ok(());
     }
-    let short_is_left = t.cross < 0;
+    // Columns need clamping only when the triangle's x extent leaves the clip area: a non-empty
+    // span's ends lie between the leftmost and rightmost vertex.
+    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+    let inside_x = xmin >= clip.x0 * s && xmax <= clip.x1 * s;
     let mut long = EdgeWalk::new(v0, v2, s, top);
-    let mut emit = |row: i64, short: &EdgeWalk, long: &EdgeWalk| {
-        let (l, r) = if short_is_left {
-            (short.col, long.col)
-        } else {
-            (long.col, short.col)
-        };
-        let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
-        if x0 < x1 {
-            span(row as i32, x0 as i32, x1 as i32)
-        } else {
-            Ok(())
-        }
-    };
+    let short_is_left = t.cross < 0;
     if top < mid {
         let mut upper = EdgeWalk::new(v0, v1, s, top);
-        for row in top..mid.min(bottom) {
-            emit(row, &upper, &long)?;
-            upper.step();
-            long.step();
-        }
+        let (l, r) = if short_is_left {
+            (&mut upper, &mut long)
+        } else {
+            (&mut long, &mut upper)
+        };
+        rows_of(l, r, top..mid.min(bottom), clip, inside_x, sink)?;
     }
     if mid < bottom {
         let mut lower = EdgeWalk::new(v1, v2, s, mid);
-        for row in mid..bottom {
-            emit(row, &lower, &long)?;
-            lower.step();
-            long.step();
+        let (l, r) = if short_is_left {
+            (&mut lower, &mut long)
+        } else {
+            (&mut long, &mut lower)
+        };
+        rows_of(l, r, mid..bottom, clip, inside_x, sink)?;
+    }
+    Ok(())
+}
+
+/// The spans of `rows` between two edge walks, clamped to the clip area's columns unless the
+/// triangle lies inside them (`inside_x`).
+#[inline(always)]
+fn rows_of<K: SpanSink>(
+    left: &mut EdgeWalk,
+    right: &mut EdgeWalk,
+    rows: core::ops::Range<i64>,
+    clip: &PixelRect,
+    inside_x: bool,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    if inside_x {
+        for row in rows {
+            if left.col < right.col {
+                sink.span(row as i32, left.col as i32, right.col as i32)?;
+            }
+            left.step();
+            right.step();
+        }
+    } else {
+        for row in rows {
+            let (x0, x1) = (left.col.max(clip.x0), right.col.min(clip.x1));
+            if x0 < x1 {
+                sink.span(row as i32, x0 as i32, x1 as i32)?;
+            }
+            left.step();
+            right.step();
         }
     }
     Ok(())
