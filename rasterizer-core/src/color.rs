@@ -3,6 +3,7 @@
 //! Gouraud triangles and colour-interpolated lines work on each channel at its native depth (5 bits
 //! for red in Rgb565, 8 in Rgb888), so a vertex colour comes back unchanged at its own pixel.
 
+use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::{
     Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, GrayColor, Rgb555, Rgb565,
     Rgb666, Rgb888, RgbColor,
@@ -22,6 +23,17 @@ pub trait Channels: PixelColor {
     #[inline]
     fn from_channels_in_range(c: [u8; 4]) -> Self {
         Self::from_channels(c)
+    }
+    /// The colour from fixed-point channels with 16 fractional bits, truncated: the inner loop of
+    /// interpolation. Each value must lie in `0 ..= max << 16 | 0xFFFF`; others give an unspecified
+    /// colour, never a panic.
+    #[inline]
+    fn from_fixed16(acc: &[i32; 4]) -> Self {
+        let mut c = [0u8; 4];
+        for (ch, a) in c.iter_mut().zip(acc).take(Self::COUNT) {
+            *ch = (a >> 16) as u8;
+        }
+        Self::from_channels_in_range(c)
     }
 }
 
@@ -49,7 +61,31 @@ macro_rules! rgb_channels {
         }
     )*};
 }
-rgb_channels!(Rgb555, Bgr555, Rgb565, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+rgb_channels!(Rgb555, Bgr555, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+
+impl Channels for Rgb565 {
+    const COUNT: usize = 3;
+    #[inline]
+    fn to_channels(self) -> [u8; 4] {
+        [self.r(), self.g(), self.b(), 0]
+    }
+    #[inline]
+    fn from_channels(c: [u8; 4]) -> Self {
+        Rgb565::new(c[0].min(31), c[1].min(63), c[2].min(31))
+    }
+    #[inline]
+    fn from_channels_in_range(c: [u8; 4]) -> Self {
+        Rgb565::new(c[0], c[1], c[2])
+    }
+    #[inline]
+    fn from_fixed16(acc: &[i32; 4]) -> Self {
+        // Shift each channel's integer bits straight to their place in the 16-bit word.
+        let r = (acc[0] >> 5) as u16 & 0xF800;
+        let g = (acc[1] >> 11) as u16 & 0x07E0;
+        let b = (acc[2] >> 16) as u16 & 0x001F;
+        RawU16::new(r | g | b).into()
+    }
+}
 
 macro_rules! gray_channels {
     ($($t:ty, $max:expr);*) => {$(

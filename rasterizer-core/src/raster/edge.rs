@@ -6,14 +6,27 @@
 //! columns `col >= ceil(N / D)`, `N = (2 yc - 2 ya) dx + (2 xa - S) dy`, `D = 2 S dy` (doubled so that
 //! the half-pixel offset stays an integer even with no sub-pixel bits). Moving down a row adds `2 S dx`
 //! to `N`; the walk keeps `col` and the remainder `rem = col D - N` in `[0, D)`, like Bresenham.
+//! The remainder is stored biased by `-D` so that the carry test is a sign test.
 
-use crate::raster::ceil_div_i64;
+use core::num::NonZeroU64;
+
+/// `ceil(n / d)` for `d > 0`. Unsigned division by a `NonZeroU64` needs no zero or overflow
+/// checks, which are a measurable share of the set-up of a small triangle.
+#[inline(always)]
+fn ceil_div(n: i64, d: NonZeroU64) -> i64 {
+    if n >= 0 {
+        n.unsigned_abs().div_ceil(d.get()) as i64
+    } else {
+        -((n.unsigned_abs() / d) as i64)
+    }
+}
 
 /// The column walk of one edge.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct EdgeWalk {
     /// `ceil(N / D)` for the current row.
     pub col: i64,
+    /// `col D - N - D`, in `[-D, 0)`.
     rem: i64,
     d: i64,
     col_step: i64,
@@ -31,12 +44,17 @@ impl EdgeWalk {
         let d = 2 * s * dy;
         let yc2 = 2 * row * s + s;
         let n = (yc2 - 2 * a.1) * dx + (2 * a.0 - s) * dy;
-        let col = ceil_div_i64(n, d);
+        // dy > 0 for every edge a caller walks; a zero divisor would only mean a wrong span.
+        let nz = NonZeroU64::new(d.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
+        let col = ceil_div(n, nz);
         let step = 2 * s * dx;
-        let col_step = ceil_div_i64(step, d);
+        let col_step = ceil_div(
+            dx,
+            NonZeroU64::new(dy.unsigned_abs()).unwrap_or(NonZeroU64::MIN),
+        );
         Self {
             col,
-            rem: col * d - n,
+            rem: col * d - n - d,
             d,
             col_step,
             rem_step: col_step * d - step,
@@ -48,7 +66,7 @@ impl EdgeWalk {
     pub fn step(&mut self) {
         self.col += self.col_step;
         self.rem += self.rem_step;
-        if self.rem >= self.d {
+        if self.rem >= 0 {
             self.rem -= self.d;
             self.col -= 1;
         }

@@ -11,14 +11,6 @@ pub mod triangle;
 
 /// `ceil(n / d)` for `d > 0`.
 #[inline]
-pub(crate) fn ceil_div_i64(n: i64, d: i64) -> i64 {
-    // Truncating division leaves a positive remainder exactly when rounding up is due.
-    let (q, r) = (n / d, n % d);
-    q + i64::from(r > 0)
-}
-
-/// `ceil(n / d)` for `d > 0`.
-#[inline]
 pub(crate) fn ceil_div_i128(n: i128, d: i128) -> i128 {
     let q = n.div_euclid(d);
     if q * d == n {

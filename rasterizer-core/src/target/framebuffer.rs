@@ -77,6 +77,13 @@ pub trait Storage: PixelColor {
             Self::set(row, i, color);
         }
     }
+    /// Sets pixels `x .. x + len` of a row to the colours `shade` yields, left to right.
+    #[inline]
+    fn shade<F: FnMut() -> Self>(row: &mut [Self::Word], x: usize, len: usize, mut shade: F) {
+        for i in x..x + len {
+            Self::set(row, i, shade());
+        }
+    }
     /// Fills pixels `x .. x + len` of row `y` of the whole buffer (`stride` words per row).
     #[inline]
     fn fill_span(
@@ -193,6 +200,12 @@ impl Storage for Rgb565 {
             &mut buf[start..start + len],
             RawU16::from(color).into_inner(),
         );
+    }
+    #[inline(always)]
+    fn shade<F: FnMut() -> Self>(row: &mut [u16], x: usize, len: usize, mut shade: F) {
+        for w in &mut row[x..x + len] {
+            *w = RawU16::from(shade()).into_inner();
+        }
     }
     #[inline]
     fn walk(buf: &mut [u16], stride: usize, points: LinePoints, color: Self) {
@@ -463,12 +476,9 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         x: i32,
         y: i32,
         len: u32,
-        mut shade: F,
+        shade: F,
     ) -> Result<(), Self::Error> {
-        let row = self.row_mut(y as usize);
-        for i in x as usize..x as usize + len as usize {
-            C::set(row, i, shade());
-        }
+        C::shade(self.row_mut(y as usize), x as usize, len as usize, shade);
         Ok(())
     }
 

@@ -16,6 +16,7 @@ use crate::color::Channels;
 use crate::geom::{PixelRect, SubPoint};
 use crate::raster::line::{draw_line, Line};
 use crate::target::Surface;
+use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
 use setup::{walk_spans, Sorted, SpanSink};
@@ -63,12 +64,6 @@ impl<S: Surface> SpanSink for Flat<'_, S> {
 /// Fractional bits of the interpolated colour channels.
 const FRAC: u32 = 16;
 
-/// `round(n / (2 half))` for `half > 0`, halves up; `n` may need more than 64 bits.
-#[inline]
-fn div_round_wide(n: i128, half: i64) -> i64 {
-    (n + i128::from(half)).div_euclid(2 * i128::from(half)) as i64
-}
-
 /// Fills a triangle with its vertex colours interpolated across it (Gouraud shading).
 ///
 /// Each channel is interpolated at its native depth. The value at a pixel centre is the exact
@@ -90,39 +85,65 @@ where
     let s: i64 = 1 << BITS;
     let c = t.order.map(|i| colors[i].to_channels());
     let [v0, v1, v2] = t.v;
-    // The colour plane c(x, y) = c0 + (a (x - x0) + b (y - y0)) / cross, per channel, with the sign of
-    // `cross` moved into the numerators so the divisor is positive. Bound: |a|, |b| <= 2^9 * 2M = 2^39.
+    // Span starts are pixel centres inside the triangle, so their doubled offsets from v0 are
+    // bounded by twice the triangle's extent plus a pixel.
+    let (xs, ys) = ([v0.0, v1.0, v2.0], [v0.1, v1.1, v2.1]);
+    let extent = |v: [i64; 3]| {
+        let (lo, hi) = (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]));
+        2 * (hi - lo).unsigned_abs() + 2 * s as u64
+    };
+    let (ex, ey) = (extent(xs), extent(ys));
+    let den = t.cross.unsigned_abs();
     let sign = t.cross.signum();
     let mut g = Gouraud {
         surface,
         s,
         v0,
-        den: t.cross.abs(),
+        den,
+        den2: NonZeroU64::new(2 * den).unwrap_or(NonZeroU64::MIN),
         a: [0; 4],
         b: [0; 4],
         base: [0; 4],
-        lo: [0; 4],
-        hi: [0; 4],
         step: [0; 4],
+        wide: false,
     };
+    // One index runs over several per-channel arrays at once.
+    #[allow(clippy::needless_range_loop)]
     for i in 0..S::Color::COUNT {
         let (c0, c1, c2) = (i64::from(c[0][i]), i64::from(c[1][i]), i64::from(c[2][i]));
+        // The colour plane c = c0 + (a dx2 + b dy2) / (2 den) in doubled offsets from v0, the sign
+        // of `cross` moved into the numerators. Bound: |a|, |b| <= 2^8 * 2 * 2M = 2^39.
         g.a[i] = sign * ((c1 - c0) * (v2.1 - v0.1) - (c2 - c0) * (v1.1 - v0.1));
         g.b[i] = sign * ((c2 - c0) * (v1.0 - v0.0) - (c1 - c0) * (v2.0 - v0.0));
-        g.base[i] = c0 << FRAC;
-        g.lo[i] = c0.min(c1).min(c2) << FRAC;
-        g.hi[i] = c0.max(c1).max(c2) << FRAC;
-        // One pixel is `s` sub-pixel units, 2s in the doubled units of `span`. A step too large for
-        // i32 only ever lands on spans of one pixel (two centres inside the triangle differ by at
-        // most 255), so saturating it is harmless.
+        // The rounding of one pixel's step: 2s doubled units, 16 fractional bits. A step too large
+        // for i32 only ever lands on spans of one pixel (two centres inside the triangle differ by
+        // at most 255), so saturating it is harmless.
         let per_pixel = match g.a[i].checked_mul(s << (FRAC + 1)) {
-            Some(n) if n.unsigned_abs() < 1 << 62 => (n + g.den).div_euclid(2 * g.den),
-            _ => div_round_wide(i128::from(g.a[i]) * i128::from(s << (FRAC + 1)), g.den),
+            Some(n) if n.unsigned_abs() < 1 << 62 => {
+                i128::from((n + den as i64).div_euclid(2 * den as i64))
+            }
+            _ => round_div(i128::from(g.a[i]) * i128::from(s << (FRAC + 1)), den),
         };
-        g.step[i] = per_pixel.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+        g.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
+        // c0 (2 den) folds the base colour into the numerator, which is then never negative at a
+        // pixel inside the triangle.
+        let base = u64::from(c[0][i]) * 2 * den;
+        g.base[i] = base as i64;
+        let bound = g.a[i]
+            .unsigned_abs()
+            .saturating_mul(ex)
+            .saturating_add(g.b[i].unsigned_abs().saturating_mul(ey))
+            .saturating_add(base);
+        g.wide |= bound >= 1 << 46;
     }
     let clip = PixelRect::from_rectangle(&g.surface.clip_area());
     walk_spans(&t, s, &clip, &mut g)
+}
+
+/// `round(n / (2 den))`, halves up, for `den > 0`.
+#[inline]
+fn round_div(n: i128, den: u64) -> i128 {
+    (n + i128::from(den)).div_euclid(2 * i128::from(den))
 }
 
 /// Gouraud spans: the colour plane evaluated exactly at each span's first pixel, then stepped.
@@ -131,13 +152,16 @@ struct Gouraud<'a, S: Surface> {
     s: i64,
     v0: (i64, i64),
     /// |cross|: the plane's divisor is `2 den` in doubled units.
-    den: i64,
+    den: u64,
+    /// `2 den`, never zero (the triangle has area).
+    den2: NonZeroU64,
     a: [i64; 4],
     b: [i64; 4],
+    /// `c0 * 2 den`.
     base: [i64; 4],
-    lo: [i64; 4],
-    hi: [i64; 4],
     step: [i32; 4],
+    /// The plane numerators need `i128` (a triangle of millions of pixels).
+    wide: bool,
 }
 
 impl<S: Surface> SpanSink for Gouraud<'_, S>
@@ -152,34 +176,32 @@ where
         let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.v0.0;
         let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.v0.1;
         let mut acc = [0i32; 4];
+        #[allow(clippy::needless_range_loop)]
         for i in 0..S::Color::COUNT {
-            // value = c0 + f / (2 den), f = a dx2 + b dy2, in 16.16 rounded. The i64 path covers
-            // every triangle of a few thousand pixels; larger ones take the i128 path.
-            let fast = self.a[i]
-                .checked_mul(dx2)
-                .and_then(|p| p.checked_add(self.b[i].checked_mul(dy2)?))
-                .filter(|f| f.unsigned_abs() < 1 << 46);
-            let start = match fast {
-                Some(f) => ((f << FRAC) + self.den).div_euclid(2 * self.den),
-                None => {
-                    let f = i128::from(self.a[i]) * i128::from(dx2)
-                        + i128::from(self.b[i]) * i128::from(dy2);
-                    div_round_wide(f << FRAC, self.den)
-                }
+            // The exact value at an inside pixel lies in the vertex colours' range, so its 16.16
+            // rounding does too: no clamping. Unless `wide`, the numerator is below 2^62 and not
+            // negative, and the division is unsigned (no sign or overflow fix-ups).
+            let v = if self.wide {
+                let f = i128::from(self.base[i])
+                    + i128::from(self.a[i]) * i128::from(dx2)
+                    + i128::from(self.b[i]) * i128::from(dy2);
+                round_div(f << FRAC, self.den).clamp(0, 255 << FRAC) as i32
+            } else {
+                let f = self.base[i] + self.a[i] * dx2 + self.b[i] * dy2;
+                let n = ((f.max(0) as u64) << FRAC) + self.den;
+                (n / self.den2) as i32
             };
-            let v = (self.base[i] + start).clamp(self.lo[i], self.hi[i]);
-            acc[i] = v as i32 + (1 << (FRAC - 1));
+            acc[i] = v + (1 << (FRAC - 1));
         }
         let step = self.step;
         // Within a span the value stays inside the triangle's colour range up to the stepping error
         // (at most 2^-17 per pixel, under 1/2 for any span), so no clamping is needed per pixel.
         self.surface.shade_span(x0, row, (x1 - x0) as u32, || {
-            let mut ch = [0u8; 4];
-            for i in 0..S::Color::COUNT {
-                ch[i] = (acc[i] >> FRAC) as u8;
-                acc[i] = acc[i].wrapping_add(step[i]);
+            let color = S::Color::from_fixed16(&acc);
+            for (a, st) in acc.iter_mut().zip(step).take(S::Color::COUNT) {
+                *a = a.wrapping_add(st);
             }
-            S::Color::from_channels_in_range(ch)
+            color
         })
     }
 }
