@@ -42,4 +42,5 @@ pub mod color;
 pub mod geom;
 pub mod math;
 pub mod raster;
+pub mod shade;
 pub mod target;

@@ -1,0 +1,8 @@
+//! Lighting: Phong and Blinn-Phong shading of a surface point, in integers only.
+//!
+//! [`Lighting`] turns a position and a normal into a lit colour, per vertex (Gouraud) or per pixel,
+//! with fixed-capacity light lists and no floats, so it runs on the same cores as the rasterizer.
+
+pub mod light;
+
+pub use light::{Light, Lighting, Material, Specular};
