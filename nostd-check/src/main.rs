@@ -37,7 +37,13 @@ where
     draw_triangle(s, [p(1, 1), p(60, 5), p(20, 40)], b)?;
     fill_triangle(s, [sp(10, 10), sp(900, 100), sp(300, 700)], a)?;
     fill_triangle_gouraud(s, [sp(10, 10), sp(900, 100), sp(300, 700)], [a, b, c])?;
-    let star = [sp(500, 50), sp(700, 700), sp(50, 250), sp(950, 250), sp(300, 700)];
+    let star = [
+        sp(500, 50),
+        sp(700, 700),
+        sp(50, 250),
+        sp(950, 250),
+        sp(300, 700),
+    ];
     if let Ok(poly) = Polygon::<8>::new(&star) {
         poly.fill(s, FillRule::NonZero, c)?;
         poly.fill(s, FillRule::EvenOdd, a)?;
@@ -53,7 +59,12 @@ pub extern "C" fn main() -> i32 {
     if let Ok(mut fb) = Framebuffer::<Rgb565>::new(buf, 64, 48) {
         let _ = draw_all(&mut fb, Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE);
         // And through the generic DrawTarget adapter.
-        let _ = draw_all(&mut AnyTarget::new(&mut fb), Rgb565::WHITE, Rgb565::CYAN, Rgb565::BLACK);
+        let _ = draw_all(
+            &mut AnyTarget::new(&mut fb),
+            Rgb565::WHITE,
+            Rgb565::CYAN,
+            Rgb565::BLACK,
+        );
         black_box(fb.as_slice());
     }
     let mut rgb = [0u8; 16 * 16 * 3];
