@@ -19,6 +19,11 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     loop {}
 }
 
+// The prebuilt compiler_builtins (128-bit division, used by the wide set-up paths) refers to the
+// unwinding personality even with panic = "abort"; nothing here unwinds, so an empty one links.
+#[unsafe(no_mangle)]
+pub extern "C" fn rust_eh_personality() {}
+
 // The host's C runtime calls `main`; on a microcontroller this would be the reset handler.
 #[link(name = "c")]
 unsafe extern "C" {}
