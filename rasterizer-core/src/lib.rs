@@ -41,6 +41,7 @@ pub mod clip;
 pub mod color;
 pub mod geom;
 pub mod math;
+pub mod pipeline;
 pub mod raster;
 pub mod shade;
 pub mod target;

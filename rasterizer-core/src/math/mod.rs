@@ -57,6 +57,14 @@ pub trait Scalar:
     }
     /// `round(self * 2^bits)` as an integer, saturating at the `i32` range (NaN gives 0).
     fn to_scaled_int(self, bits: u32) -> i32;
+    /// `round(num * scale / (den * div))` as an integer (0 when `den * div <= 0`), the perspective
+    /// divide and viewport in one step. `|scale|, |div| < 2^31`. Exact for fixed point: the only
+    /// error is the final rounding, halves up.
+    fn scaled_ratio(num: Self, den: Self, scale: i64, div: i64) -> i64;
+    /// The value in 16.16 bits (saturating), the format shaders interpolate positions and normals in.
+    fn to_fx16_bits(self) -> i32;
+    /// The value from 16.16 bits.
+    fn from_fx16_bits(bits: i32) -> Self;
     /// `(sin, cos)` of an angle.
     fn sin_cos(a: Angle) -> (Self, Self) {
         let (s, c) = a.sin_cos_q30();
@@ -120,6 +128,25 @@ impl<const F: u32> Scalar for Fx<F> {
         let len = fx::isqrt_u128(sq << 64) as i128;
         let unit = |v: i128| Fx::saturate_i128(fx::round_div_i128(v << (F + 32), len));
         Some((unit(x), unit(y), unit(z)))
+    }
+
+    fn scaled_ratio(num: Self, den: Self, scale: i64, div: i64) -> i64 {
+        // |num bits * scale| < 2^62 and |den bits * div| < 2^62: one i64 division.
+        let n = num.to_bits() as i64 * scale;
+        let d = den.to_bits() as i64 * div;
+        if d <= 0 {
+            return 0;
+        }
+        // floor((n + floor(d/2)) / d) rounds halves up: an exact half needs an even d.
+        (n + d / 2).div_euclid(d)
+    }
+
+    fn to_fx16_bits(self) -> i32 {
+        self.convert::<16>().to_bits()
+    }
+
+    fn from_fx16_bits(bits: i32) -> Self {
+        Fx::<16>::from_bits(bits).convert()
     }
 
     fn to_scaled_int(self, bits: u32) -> i32 {

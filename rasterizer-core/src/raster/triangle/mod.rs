@@ -10,7 +10,7 @@
 //! and a compare per edge per row. Zero-area triangles draw nothing; so does a triangle with a vertex
 //! outside the guard band ([`crate::geom::GUARD_BAND_PIXELS`]).
 
-mod setup;
+pub(crate) mod setup;
 
 use crate::color::Channels;
 use crate::geom::{PixelRect, SubPoint};

@@ -1,0 +1,389 @@
+//! The 3D pipeline: mesh -> vertex transform -> clip -> project -> cull -> raster -> shade -> target.
+//!
+//! [`Pipeline`] is generic over its stages: culling ([`cull`]), the depth test
+//! ([`crate::raster::interp::DepthTest`]) and the shading model ([`shading`]). A stage that is off
+//! is a zero-sized type whose methods are empty, so a frame without depth, culling or lighting
+//! compiles none of that code and keeps none of its state. Geometry runs in any
+//! [`crate::math::Scalar`] (16.16 by default); everything after the perspective divide is integer.
+
+pub mod cull;
+pub mod shading;
+
+use crate::clip::polygon::{clip_segment, clip_triangle, outcode, trivially_outside, ClipVertex};
+use crate::geom::SubPoint;
+use crate::math::{Mat4, Scalar, Vec3, Vec4};
+use crate::raster::interp::{fill_triangle_interp, DepthTest, ScreenVertex};
+use crate::raster::line::draw_line;
+use crate::target::Surface;
+use cull::Cull;
+use embedded_graphics_core::geometry::Point;
+use embedded_graphics_core::pixelcolor::Rgb888;
+use embedded_graphics_core::prelude::RgbColor;
+use shading::{Shading, VertexIn};
+
+/// An index into a mesh's vertex arrays.
+pub trait VertexIndex: Copy {
+    /// As `usize`.
+    fn index(self) -> usize;
+}
+
+impl VertexIndex for u8 {
+    #[inline(always)]
+    fn index(self) -> usize {
+        usize::from(self)
+    }
+}
+
+impl VertexIndex for u16 {
+    #[inline(always)]
+    fn index(self) -> usize {
+        usize::from(self)
+    }
+}
+
+impl VertexIndex for u32 {
+    #[inline(always)]
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// A triangle mesh as plain slices: nothing is copied.
+#[derive(Debug, Clone, Copy)]
+pub struct Mesh<'a, S, I = u16> {
+    /// Vertex positions in model space.
+    pub positions: &'a [Vec3<S>],
+    /// Vertex normals in model space, one per position; lit shaders use the face normal when
+    /// absent.
+    pub normals: Option<&'a [Vec3<S>]>,
+    /// Vertex colours, one per position; white when absent.
+    pub colors: Option<&'a [Rgb888]>,
+    /// Triangles as three vertex indices. A triangle with an index out of range is skipped and
+    /// counted in [`RenderStats::invalid`].
+    pub triangles: &'a [[I; 3]],
+}
+
+impl<'a, S, I> Mesh<'a, S, I> {
+    /// A mesh of positions and triangles only.
+    pub fn new(positions: &'a [Vec3<S>], triangles: &'a [[I; 3]]) -> Self {
+        Self {
+            positions,
+            normals: None,
+            colors: None,
+            triangles,
+        }
+    }
+}
+
+/// Where normalised device coordinates land on the target: `x = -1` at the left edge of the
+/// rectangle, `y = +1` at its top (the y flip), in whole pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Viewport {
+    /// Left edge.
+    pub x: i32,
+    /// Top edge.
+    pub y: i32,
+    /// Width in pixels, at most 32767.
+    pub width: u32,
+    /// Height in pixels, at most 32767.
+    pub height: u32,
+}
+
+impl Viewport {
+    /// A viewport covering `width` x `height` pixels from the origin.
+    pub const fn new(width: u32, height: u32) -> Self {
+        Self {
+            x: 0,
+            y: 0,
+            width,
+            height,
+        }
+    }
+}
+
+/// What happened to the triangles of one draw call.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    /// Triangles in the mesh.
+    pub triangles: u32,
+    /// Skipped for an index out of range.
+    pub invalid: u32,
+    /// Entirely outside the view volume.
+    pub outside: u32,
+    /// Needed clipping in homogeneous space.
+    pub clipped: u32,
+    /// Dropped by culling (or of zero area on screen).
+    pub culled: u32,
+    /// Handed to the rasterizer (as one or more triangles).
+    pub drawn: u32,
+}
+
+/// The transforms of a draw call.
+#[derive(Debug, Clone, Copy)]
+pub struct Transforms<S> {
+    /// Model to world.
+    pub model: Mat4<S>,
+    /// World to view (e.g. [`Mat4::look_at`]).
+    pub view: Mat4<S>,
+    /// View to clip space (e.g. [`Mat4::perspective`]).
+    pub projection: Mat4<S>,
+}
+
+/// A configured pipeline: transforms, viewport and the compile-time choice of stages.
+#[derive(Debug, Clone)]
+pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 4> {
+    mvp: Mat4<S>,
+    model: Mat4<S>,
+    normal_matrix: Mat4<S>,
+    viewport: Viewport,
+    /// The culling stage.
+    pub cull: C,
+    /// The depth stage.
+    pub depth: D,
+    /// The shading stage.
+    pub shading: Sh,
+}
+
+impl<S, C, D, Sh, const BITS: u32> Pipeline<S, C, D, Sh, BITS>
+where
+    S: Scalar,
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<S>,
+{
+    /// A pipeline. Normals are transformed by the model matrix's upper 3x3, which is right for
+    /// rotations, reflections, translations and uniform scales; use [`Pipeline::set_normal_matrix`]
+    /// with the inverse transpose for shear or non-uniform scale.
+    pub fn new(
+        transforms: &Transforms<S>,
+        viewport: Viewport,
+        cull: C,
+        depth: D,
+        shading: Sh,
+    ) -> Self {
+        let mvp = transforms
+            .model
+            .then(&transforms.view)
+            .then(&transforms.projection);
+        Self {
+            mvp,
+            model: transforms.model,
+            normal_matrix: transforms.model,
+            viewport,
+            cull,
+            depth,
+            shading,
+        }
+    }
+
+    /// Replaces the matrix that carries normals to world space.
+    pub fn set_normal_matrix(&mut self, m: Mat4<S>) {
+        self.normal_matrix = m;
+    }
+
+    /// The composed model-view-projection matrix.
+    pub fn mvp(&self) -> &Mat4<S> {
+        &self.mvp
+    }
+
+    /// Projects a clip-space point (w > 0) to sub-pixel screen coordinates and depth: the divide and
+    /// the viewport in one rounding per coordinate (error at most half a sub-pixel unit and half a
+    /// depth step, beyond the error already in the clip-space coordinates).
+    #[inline]
+    pub fn project(&self, p: &Vec4<S>) -> (SubPoint<BITS>, u16) {
+        let vp = &self.viewport;
+        // x_s = (x/w + 1) W/2 in sub-pixels, y flipped, depth = (z/w + 1)/2 * 65535.
+        let sx = S::scaled_ratio(p.x + p.w, p.w, i64::from(vp.width) << BITS, 2);
+        let sy = S::scaled_ratio(p.w - p.y, p.w, i64::from(vp.height) << BITS, 2);
+        let z = S::scaled_ratio(p.z + p.w, p.w, 65535, 2).clamp(0, 65535) as u16;
+        let ox = i64::from(vp.x) << BITS;
+        let oy = i64::from(vp.y) << BITS;
+        let clamp = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+        (SubPoint::new(clamp(sx + ox), clamp(sy + oy)), z)
+    }
+
+    /// The world-space data of a vertex the shader may read.
+    #[inline(always)]
+    fn vertex_in<I: VertexIndex>(&self, mesh: &Mesh<'_, S, I>, i: usize) -> VertexIn<S> {
+        let color = mesh
+            .colors
+            .and_then(|c| c.get(i).copied())
+            .unwrap_or(Rgb888::WHITE);
+        if !Sh::NEEDS_WORLD {
+            return VertexIn {
+                position: Vec3::default(),
+                normal: Vec3::default(),
+                color,
+            };
+        }
+        let position = self.model.transform_point(mesh.positions[i]).xyz();
+        let normal = match mesh.normals.and_then(|n| n.get(i)) {
+            Some(n) => self.normal_matrix.transform_dir(*n),
+            None => Vec3::default(),
+        };
+        VertexIn {
+            position,
+            normal,
+            color,
+        }
+    }
+
+    /// Draws a mesh filled with the pipeline's shading, depth test and culling.
+    pub fn draw<T, I>(
+        &mut self,
+        target: &mut T,
+        mesh: &Mesh<'_, S, I>,
+    ) -> Result<RenderStats, T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        I: VertexIndex,
+    {
+        let mut stats = RenderStats {
+            triangles: mesh.triangles.len().min(u32::MAX as usize) as u32,
+            ..RenderStats::default()
+        };
+        let n = mesh.positions.len();
+        for tri in mesh.triangles {
+            let idx = tri.map(VertexIndex::index);
+            if idx.iter().any(|&i| i >= n) {
+                stats.invalid += 1;
+                continue;
+            }
+            let clip = idx.map(|i| self.mvp.transform_point(mesh.positions[i]));
+            if trivially_outside(&clip) {
+                stats.outside += 1;
+                continue;
+            }
+            let codes = clip.map(|p| outcode(&p));
+            if codes.iter().all(|&c| c == 0) {
+                // The common case: project first, so culled triangles are never shaded.
+                let projected = clip.map(|p| self.project(&p));
+                let [a, b, c] = projected.map(|(p, _)| (i64::from(p.x), i64::from(p.y)));
+                let area = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+                if area == 0 || !self.cull.keep(area) {
+                    stats.culled += 1;
+                    continue;
+                }
+                let vin = idx.map(|i| self.vertex_in(mesh, i));
+                self.shading.face(&vin);
+                let var = vin.map(|v| self.shading.vertex(&v));
+                let sv = [0, 1, 2].map(|k| ScreenVertex {
+                    p: projected[k].0,
+                    z: projected[k].1,
+                    var: var[k],
+                });
+                let shading = &self.shading;
+                fill_triangle_interp(target, &mut self.depth, sv, |v| shading.pixel(v))?;
+                stats.drawn += 1;
+                continue;
+            }
+            stats.clipped += 1;
+            let vin = idx.map(|i| self.vertex_in(mesh, i));
+            let tri = [0, 1, 2].map(|k| ClipVertex {
+                pos: clip[k],
+                var: self.shading.vertex(&vin[k]),
+            });
+            let poly = clip_triangle(&tri, codes);
+            if poly.len() < 3 {
+                stats.outside += 1;
+                continue;
+            }
+            let mut screen: heapless::Vec<
+                ScreenVertex<Sh::Varyings, BITS>,
+                { crate::clip::polygon::MAX_CLIPPED },
+            > = heapless::Vec::new();
+            let mut area = 0i64;
+            for v in &poly {
+                let (p, z) = self.project(&v.pos);
+                let _ = screen.push(ScreenVertex { p, z, var: v.var });
+            }
+            // The clipped polygon is convex: its total signed area decides its facing.
+            for k in 1..screen.len() - 1 {
+                let (a, b, c) = (screen[0].p, screen[k].p, screen[k + 1].p);
+                area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
+                    - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
+            }
+            if area == 0 || !self.cull.keep(area) {
+                stats.culled += 1;
+                continue;
+            }
+            self.shading.face(&vin);
+            let shading = &self.shading;
+            for k in 1..screen.len() - 1 {
+                let t = [screen[0], screen[k], screen[k + 1]];
+                fill_triangle_interp(target, &mut self.depth, t, |v| shading.pixel(v))?;
+            }
+            stats.drawn += 1;
+        }
+        Ok(stats)
+    }
+
+    /// Draws a mesh's edges in one colour, clipped in homogeneous space (nothing behind the camera
+    /// is drawn) and then to the target. Culling applies, so a closed mesh shows only its front
+    /// edges; there is no depth test.
+    pub fn draw_wireframe<T, I>(
+        &mut self,
+        target: &mut T,
+        mesh: &Mesh<'_, S, I>,
+        color: T::Color,
+    ) -> Result<RenderStats, T::Error>
+    where
+        T: Surface,
+        I: VertexIndex,
+    {
+        let mut stats = RenderStats {
+            triangles: mesh.triangles.len().min(u32::MAX as usize) as u32,
+            ..RenderStats::default()
+        };
+        let n = mesh.positions.len();
+        for tri in mesh.triangles {
+            let idx = tri.map(VertexIndex::index);
+            if idx.iter().any(|&i| i >= n) {
+                stats.invalid += 1;
+                continue;
+            }
+            let clip = idx.map(|i| self.mvp.transform_point(mesh.positions[i]));
+            if trivially_outside(&clip) {
+                stats.outside += 1;
+                continue;
+            }
+            let codes = clip.map(|p| outcode(&p));
+            if codes.iter().any(|&c| c != 0) {
+                stats.clipped += 1;
+            }
+            // Facing from the clipped polygon's area, as for filled triangles.
+            let tri = clip.map(|pos| ClipVertex {
+                pos,
+                var: [0i32; 0],
+            });
+            let poly = clip_triangle(&tri, codes);
+            if poly.len() < 3 {
+                stats.outside += 1;
+                continue;
+            }
+            let corners: heapless::Vec<SubPoint<BITS>, { crate::clip::polygon::MAX_CLIPPED }> =
+                poly.iter().map(|v| self.project(&v.pos).0).collect();
+            let mut area = 0i64;
+            for k in 1..corners.len() - 1 {
+                let (a, b, c) = (corners[0], corners[k], corners[k + 1]);
+                area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
+                    - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
+            }
+            if area != 0 && !self.cull.keep(area) {
+                stats.culled += 1;
+                continue;
+            }
+            // The visible part of each of the triangle's own edges; the pixel of a point is the one
+            // that contains it.
+            for k in 0..3 {
+                if let Some((a, b)) = clip_segment(clip[k], clip[(k + 1) % 3]) {
+                    let (pa, pb) = (self.project(&a).0, self.project(&b).0);
+                    let px = |p: SubPoint<BITS>| Point::new(p.x >> BITS, p.y >> BITS);
+                    draw_line(target, px(pa), px(pb), color)?;
+                }
+            }
+            stats.drawn += 1;
+        }
+        Ok(stats)
+    }
+}

@@ -1,0 +1,364 @@
+//! Triangles with a depth test and interpolated values: the rasterizer behind the 3D pipeline.
+//!
+//! Coverage is exactly that of [`crate::raster::triangle::fill_triangle`] (the same span walk). Depth
+//! and every shader value are planes over the screen, evaluated exactly at the first pixel of each
+//! span and stepped across it in 16 fractional bits; the depth test splits a span into runs of
+//! passing pixels, and each run goes to the target as one `shade_span`. With [`NoDepth`] the test
+//! and its buffer compile away.
+
+use crate::geom::{PixelRect, SubPoint};
+use crate::raster::triangle::setup::{walk_spans, Sorted, SpanSink};
+use crate::shade::{Varyings, MAX_VARYINGS};
+use crate::target::Surface;
+
+/// How a depth buffer compares a new depth with the stored one; 0 is nearest, 65535 farthest.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Compare {
+    /// Draw when nearer (the usual test; clear the buffer to 65535).
+    #[default]
+    Less,
+    /// Draw when nearer or equal.
+    LessEqual,
+    /// Draw when farther.
+    Greater,
+    /// Draw when farther or equal.
+    GreaterEqual,
+    /// Draw when equal.
+    Equal,
+    /// Draw when different.
+    NotEqual,
+    /// Always draw (and store the depth).
+    Always,
+    /// Never draw.
+    Never,
+}
+
+impl Compare {
+    #[inline(always)]
+    fn pass(self, new: u16, old: u16) -> bool {
+        match self {
+            Compare::Less => new < old,
+            Compare::LessEqual => new <= old,
+            Compare::Greater => new > old,
+            Compare::GreaterEqual => new >= old,
+            Compare::Equal => new == old,
+            Compare::NotEqual => new != old,
+            Compare::Always => true,
+            Compare::Never => false,
+        }
+    }
+}
+
+/// A depth test: which pixels of a span may be drawn.
+pub trait DepthTest {
+    /// Calls `run(offset, len)` for each run of pixels of row `y`, columns `x .. x + len`, that
+    /// passes, storing their depths first. The depth of pixel `i` is `(z + i dz) >> 16`, clamped
+    /// to `0 ..= 65535`.
+    fn test_span<E, F>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i64,
+        dz: i64,
+        run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>;
+}
+
+/// No depth test: every pixel passes and no depth is computed.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoDepth;
+
+impl DepthTest for NoDepth {
+    #[inline(always)]
+    fn test_span<E, F>(
+        &mut self,
+        _: i32,
+        _: i32,
+        len: u32,
+        _: i64,
+        _: i64,
+        mut run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        run(0, len)
+    }
+}
+
+/// Why a [`DepthBuffer`] could not be made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DepthBufferError {
+    /// Entries the size needs.
+    pub expected: usize,
+    /// Entries the slice has.
+    pub actual: usize,
+}
+
+/// A depth buffer over a caller-provided `&mut [u16]`, one entry per pixel, rows top to bottom.
+#[derive(Debug)]
+pub struct DepthBuffer<'a> {
+    buf: &'a mut [u16],
+    width: u32,
+    height: u32,
+    compare: Compare,
+}
+
+impl<'a> DepthBuffer<'a> {
+    /// A depth buffer of `width` x `height` over `buf` (exactly `width * height` entries).
+    ///
+    /// # Errors
+    /// [`DepthBufferError`] when the slice has another length.
+    pub fn new(
+        buf: &'a mut [u16],
+        width: u32,
+        height: u32,
+        compare: Compare,
+    ) -> Result<Self, DepthBufferError> {
+        let expected = width as usize * height as usize;
+        if buf.len() != expected {
+            return Err(DepthBufferError {
+                expected,
+                actual: buf.len(),
+            });
+        }
+        Ok(Self {
+            buf,
+            width,
+            height,
+            compare,
+        })
+    }
+
+    /// Sets every entry to `depth` (65535 before a frame with [`Compare::Less`]).
+    pub fn clear(&mut self, depth: u16) {
+        self.buf.fill(depth);
+    }
+
+    /// The stored depths.
+    pub fn as_slice(&self) -> &[u16] {
+        self.buf
+    }
+
+    /// The comparison in use.
+    pub fn compare(&self) -> Compare {
+        self.compare
+    }
+}
+
+impl DepthTest for DepthBuffer<'_> {
+    #[inline(always)]
+    fn test_span<E, F>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i64,
+        dz: i64,
+        mut run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips).
+        if y < 0 || y as u32 >= self.height || x < 0 {
+            return Ok(());
+        }
+        let len = len.min(self.width.saturating_sub(x as u32));
+        let start = y as usize * self.width as usize + x as usize;
+        let Some(row) = self.buf.get_mut(start..start + len as usize) else {
+            return Ok(());
+        };
+        let compare = self.compare;
+        let mut z = z;
+        let mut i = 0usize;
+        while i < row.len() {
+            let begin = i;
+            while i < row.len() {
+                let d = (z >> 16).clamp(0, 65535) as u16;
+                if !compare.pass(d, row[i]) {
+                    break;
+                }
+                row[i] = d;
+                i += 1;
+                z += dz;
+            }
+            if i > begin {
+                run(begin as u32, (i - begin) as u32)?;
+            }
+            // Skip the failing pixel(s).
+            while i < row.len() {
+                let d = (z >> 16).clamp(0, 65535) as u16;
+                if compare.pass(d, row[i]) {
+                    break;
+                }
+                i += 1;
+                z += dz;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A vertex in screen space: sub-pixel position, depth and the shader's values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScreenVertex<V, const BITS: u32 = 4> {
+    /// Position.
+    pub p: SubPoint<BITS>,
+    /// Depth, 0 nearest.
+    pub z: u16,
+    /// The values to interpolate.
+    pub var: V,
+}
+
+/// Fractional bits of interpolated values.
+const FRAC: u32 = 16;
+
+/// One linear function over the screen: `v(dx2, dy2) = v0 + (a dx2 + b dy2) / den2` in doubled
+/// sub-pixel offsets from the first vertex.
+#[derive(Debug, Clone, Copy, Default)]
+struct Plane {
+    v0: i64,
+    a: i64,
+    b: i64,
+}
+
+/// `round(f 2^16 / den2)`, halves up, for `den2 > 0`, without overflow: quotient and remainder are
+/// scaled separately (`den2 < 2^46` on the fast path; larger divisors go through `i128`).
+#[inline(always)]
+fn scaled_div(f: i128, den2: i64) -> i64 {
+    if den2 < 1 << 46 {
+        if let Ok(f) = i64::try_from(f) {
+            let (q, r) = (f.div_euclid(den2), f.rem_euclid(den2));
+            return (q << FRAC) + (((r << FRAC) + den2 / 2) / den2);
+        }
+    }
+    (((f << FRAC) + i128::from(den2 / 2)).div_euclid(i128::from(den2))) as i64
+}
+
+struct Interp<'a, S: Surface, D, V, F> {
+    surface: &'a mut S,
+    depth: &'a mut D,
+    shade: F,
+    s: i64,
+    origin: (i64, i64),
+    den2: i64,
+    z: Plane,
+    planes: [Plane; MAX_VARYINGS],
+    count: usize,
+    _v: core::marker::PhantomData<V>,
+}
+
+impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color> Interp<'_, S, D, V, F> {
+    /// The plane's value at an offset, in 16.16, and its step per pixel.
+    #[inline(always)]
+    fn at(&self, p: &Plane, dx2: i64, dy2: i64) -> i64 {
+        let f = i128::from(p.a) * i128::from(dx2) + i128::from(p.b) * i128::from(dy2);
+        (p.v0 << FRAC) + scaled_div(f, self.den2)
+    }
+
+    #[inline(always)]
+    fn step(&self, p: &Plane) -> i64 {
+        scaled_div(i128::from(p.a) * i128::from(2 * self.s), self.den2)
+    }
+}
+
+impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color> SpanSink
+    for Interp<'_, S, D, V, F>
+{
+    type Error = S::Error;
+
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
+        let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.origin.0;
+        let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
+        let z0 = self.at(&self.z, dx2, dy2);
+        let dz = self.step(&self.z);
+        let mut start = [0i64; MAX_VARYINGS];
+        let mut step = [0i64; MAX_VARYINGS];
+        for i in 0..self.count {
+            start[i] = self.at(&self.planes[i], dx2, dy2);
+            step[i] = self.step(&self.planes[i]);
+        }
+        let count = self.count;
+        let Self {
+            surface,
+            depth,
+            shade,
+            ..
+        } = self;
+        depth.test_span(row, x0, (x1 - x0) as u32, z0, dz, |offset, len| {
+            let mut acc = start;
+            for i in 0..count {
+                acc[i] += step[i] * i64::from(offset);
+            }
+            surface.shade_span(x0 + offset as i32, row, len, || {
+                let mut v = V::default();
+                for (out, a) in v.as_mut_slice().iter_mut().zip(&acc) {
+                    // Rounded to the nearest unit of the value.
+                    *out = ((a + (1 << (FRAC - 1))) >> FRAC) as i32;
+                }
+                for i in 0..count {
+                    acc[i] += step[i];
+                }
+                shade(&v)
+            })
+        })
+    }
+}
+
+/// Fills a triangle with a depth test and interpolated values: `shade` turns the values at each
+/// pixel into its colour. Coverage follows the top-left rule exactly as
+/// [`crate::raster::triangle::fill_triangle`]; a zero-area triangle or one outside the guard band
+/// draws nothing.
+pub fn fill_triangle_interp<S, D, V, F, const BITS: u32>(
+    surface: &mut S,
+    depth: &mut D,
+    vertices: [ScreenVertex<V, BITS>; 3],
+    shade: F,
+) -> Result<(), S::Error>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    F: FnMut(&V) -> S::Color,
+{
+    let Some(t) = Sorted::new(&vertices.map(|v| v.p)) else {
+        return Ok(());
+    };
+    let [v0, v1, v2] = t.v;
+    let [o0, o1, o2] = t.order;
+    let sign = t.cross.signum();
+    let den2 = 2 * t.cross.abs();
+    // The plane through three values, in doubled offsets from v0, the sign moved into a and b.
+    let plane = |f0: i64, f1: i64, f2: i64| Plane {
+        v0: f0,
+        a: sign * ((f1 - f0) * (v2.1 - v0.1) - (f2 - f0) * (v1.1 - v0.1)),
+        b: sign * ((f2 - f0) * (v1.0 - v0.0) - (f1 - f0) * (v2.0 - v0.0)),
+    };
+    let zs = [vertices[o0].z, vertices[o1].z, vertices[o2].z].map(i64::from);
+    let mut planes = [Plane::default(); MAX_VARYINGS];
+    let values = [vertices[o0].var, vertices[o1].var, vertices[o2].var];
+    let count = values[0].as_slice().len().min(MAX_VARYINGS);
+    for (i, p) in planes.iter_mut().enumerate().take(count) {
+        let at = |k: usize| i64::from(values[k].as_slice()[i]);
+        *p = plane(at(0), at(1), at(2));
+    }
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    let mut sink = Interp {
+        surface,
+        depth,
+        shade,
+        s: 1 << BITS,
+        origin: v0,
+        den2,
+        z: plane(zs[0], zs[1], zs[2]),
+        planes,
+        count,
+        _v: core::marker::PhantomData,
+    };
+    walk_spans(&t, 1 << BITS, &clip, &mut sink)
+}
