@@ -31,7 +31,10 @@
 //! - Interpolated colour: each channel at its native depth, 16 fractional bits.
 //!
 //! # Features
-//! None yet; the crate needs no allocator and no `std`.
+//! - `float` (off by default): [`math::Scalar`] for `f32` with micromath, so the same pipeline can
+//!   run in floating point for accuracy comparisons. The default build contains no float code.
+//!
+//! The crate needs no allocator and no `std`.
 #![no_std]
 #![deny(unsafe_code)]
 #![deny(missing_docs)]

@@ -5,6 +5,8 @@
 //! fixed-point formats, or (behind a feature, for comparison only) `f32`. The fixed-point
 //! implementation rounds every product once, half up, through `i64` and saturates instead of wrapping.
 
+#[cfg(feature = "float")]
+pub mod float;
 pub mod fx;
 pub mod mat;
 pub mod trig;
