@@ -54,7 +54,8 @@ impl Scalar for f32 {
     }
 
     fn sqrt(self) -> Self {
-        if !(self > 0.0) || self.is_infinite() {
+        // Zero, negative and NaN give 0; infinity stays.
+        if self.is_nan() || self <= 0.0 || self.is_infinite() {
             return if self > 0.0 { self } else { 0.0 };
         }
         let mut s = F32Ext::sqrt(self);
