@@ -130,8 +130,12 @@ pub struct Transforms<S> {
 }
 
 /// A configured pipeline: transforms, viewport and the compile-time choice of stages.
+///
+/// `BITS` is the number of sub-pixel bits of screen coordinates (4: 28.4). With `PERSPECTIVE` the
+/// shader's values are interpolated perspective-correctly (two divisions per pixel); without, they
+/// are affine in screen space (depth is always exact, being affine in screen space anyway).
 #[derive(Debug, Clone)]
-pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 4> {
+pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 4, const PERSPECTIVE: bool = false> {
     mvp: Mat4<S>,
     model: Mat4<S>,
     normal_matrix: Mat4<S>,
@@ -144,7 +148,7 @@ pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 4> {
     pub shading: Sh,
 }
 
-impl<S, C, D, Sh, const BITS: u32> Pipeline<S, C, D, Sh, BITS>
+impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool> Pipeline<S, C, D, Sh, BITS, PERSPECTIVE>
 where
     S: Scalar,
     C: Cull,
@@ -200,6 +204,16 @@ where
         let oy = i64::from(vp.y) << BITS;
         let clamp = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
         (SubPoint::new(clamp(sx + ox), clamp(sy + oy)), z)
+    }
+
+    /// `2^20 / w` for perspective-correct interpolation (not computed otherwise).
+    #[inline(always)]
+    fn q(p: &Vec4<S>) -> i64 {
+        if PERSPECTIVE {
+            S::scaled_ratio(S::ONE, p.w, 1 << 20, 1)
+        } else {
+            0
+        }
     }
 
     /// The world-space data of a vertex the shader may read.
@@ -271,9 +285,15 @@ where
                     p: projected[k].0,
                     z: projected[k].1,
                     var: var[k],
+                    q: Self::q(&clip[k]),
                 });
                 let shading = &self.shading;
-                fill_triangle_interp(target, &mut self.depth, sv, |v| shading.pixel(v))?;
+                fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
+                    target,
+                    &mut self.depth,
+                    sv,
+                    |v| shading.pixel(v),
+                )?;
                 stats.drawn += 1;
                 continue;
             }
@@ -295,7 +315,12 @@ where
             let mut area = 0i64;
             for v in &poly {
                 let (p, z) = self.project(&v.pos);
-                let _ = screen.push(ScreenVertex { p, z, var: v.var });
+                let _ = screen.push(ScreenVertex {
+                    p,
+                    z,
+                    var: v.var,
+                    q: Self::q(&v.pos),
+                });
             }
             // The clipped polygon is convex: its total signed area decides its facing.
             for k in 1..screen.len() - 1 {
@@ -311,7 +336,12 @@ where
             let shading = &self.shading;
             for k in 1..screen.len() - 1 {
                 let t = [screen[0], screen[k], screen[k + 1]];
-                fill_triangle_interp(target, &mut self.depth, t, |v| shading.pixel(v))?;
+                fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
+                    target,
+                    &mut self.depth,
+                    t,
+                    |v| shading.pixel(v),
+                )?;
             }
             stats.drawn += 1;
         }

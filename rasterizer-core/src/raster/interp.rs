@@ -212,6 +212,8 @@ pub struct ScreenVertex<V, const BITS: u32 = 4> {
     pub z: u16,
     /// The values to interpolate.
     pub var: V,
+    /// `2^20 / w`, clamped to `1 ..= Q_MAX`: read only by perspective-correct interpolation.
+    pub q: i64,
 }
 
 /// Fractional bits of interpolated values.
@@ -239,7 +241,7 @@ fn scaled_div(f: i128, den2: i64) -> i64 {
     (((f << FRAC) + i128::from(den2 / 2)).div_euclid(i128::from(den2))) as i64
 }
 
-struct Interp<'a, S: Surface, D, V, F> {
+struct Interp<'a, S: Surface, D, V, F, const P: bool> {
     surface: &'a mut S,
     depth: &'a mut D,
     shade: F,
@@ -247,27 +249,35 @@ struct Interp<'a, S: Surface, D, V, F> {
     origin: (i64, i64),
     den2: i64,
     z: Plane,
+    /// Affine: the values' planes. Perspective-correct: `1/w` and the two scaled barycentrics.
     planes: [Plane; MAX_VARYINGS],
     count: usize,
+    /// Perspective-correct only: the first vertex's values and the differences to the other two.
+    base: [i64; MAX_VARYINGS],
+    d1: [i64; MAX_VARYINGS],
+    d2: [i64; MAX_VARYINGS],
     _v: core::marker::PhantomData<V>,
 }
 
-impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color> Interp<'_, S, D, V, F> {
-    /// The plane's value at an offset, in 16.16, and its step per pixel.
+impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: bool>
+    Interp<'_, S, D, V, F, P>
+{
+    /// The plane's value at an offset, in 16.16.
     #[inline(always)]
     fn at(&self, p: &Plane, dx2: i64, dy2: i64) -> i64 {
         let f = i128::from(p.a) * i128::from(dx2) + i128::from(p.b) * i128::from(dy2);
         (p.v0 << FRAC) + scaled_div(f, self.den2)
     }
 
+    /// The plane's step per pixel, in 16.16.
     #[inline(always)]
     fn step(&self, p: &Plane) -> i64 {
         scaled_div(i128::from(p.a) * i128::from(2 * self.s), self.den2)
     }
 }
 
-impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color> SpanSink
-    for Interp<'_, S, D, V, F>
+impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: bool> SpanSink
+    for Interp<'_, S, D, V, F, P>
 {
     type Error = S::Error;
 
@@ -277,9 +287,10 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color> SpanSink
         let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
         let z0 = self.at(&self.z, dx2, dy2);
         let dz = self.step(&self.z);
+        let planes = if P { 3 } else { self.count };
         let mut start = [0i64; MAX_VARYINGS];
         let mut step = [0i64; MAX_VARYINGS];
-        for i in 0..self.count {
+        for i in 0..planes {
             start[i] = self.at(&self.planes[i], dx2, dy2);
             step[i] = self.step(&self.planes[i]);
         }
@@ -288,20 +299,34 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color> SpanSink
             surface,
             depth,
             shade,
+            base,
+            d1,
+            d2,
             ..
         } = self;
         depth.test_span(row, x0, (x1 - x0) as u32, z0, dz, |offset, len| {
             let mut acc = start;
-            for i in 0..count {
+            for i in 0..planes {
                 acc[i] += step[i] * i64::from(offset);
             }
             surface.shade_span(x0 + offset as i32, row, len, || {
                 let mut v = V::default();
-                for (out, a) in v.as_mut_slice().iter_mut().zip(&acc) {
-                    // Rounded to the nearest unit of the value.
-                    *out = ((a + (1 << (FRAC - 1))) >> FRAC) as i32;
+                if P {
+                    // The barycentrics divided by w, over 1/w: one division each per pixel.
+                    let q = acc[0].max(1);
+                    let l1 = (acc[1].max(0) << FRAC) / q;
+                    let l2 = (acc[2].max(0) << FRAC) / q;
+                    for (i, out) in v.as_mut_slice().iter_mut().enumerate().take(count) {
+                        let mix = l1 * d1[i] + l2 * d2[i];
+                        *out = (base[i] + ((mix + (1 << (FRAC - 1))) >> FRAC)) as i32;
+                    }
+                } else {
+                    for (out, a) in v.as_mut_slice().iter_mut().zip(&acc) {
+                        // Rounded to the nearest unit of the value.
+                        *out = ((a + (1 << (FRAC - 1))) >> FRAC) as i32;
+                    }
                 }
-                for i in 0..count {
+                for i in 0..planes {
                     acc[i] += step[i];
                 }
                 shade(&v)
@@ -314,7 +339,12 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color> SpanSink
 /// pixel into its colour. Coverage follows the top-left rule exactly as
 /// [`crate::raster::triangle::fill_triangle`]; a zero-area triangle or one outside the guard band
 /// draws nothing.
-pub fn fill_triangle_interp<S, D, V, F, const BITS: u32>(
+///
+/// With `PERSPECTIVE` the values are interpolated perspective-correctly from the vertices' `q`
+/// (`1/w`, see [`ScreenVertex::q`]): the barycentrics divided by `w` are planes over the screen and
+/// each pixel divides them by `1/w` (two divisions per pixel). Without it they are affine in screen
+/// space, which is exact for depth and close for small triangles.
+pub fn fill_triangle_interp<S, D, V, F, const BITS: u32, const PERSPECTIVE: bool>(
     surface: &mut S,
     depth: &mut D,
     vertices: [ScreenVertex<V, BITS>; 3],
@@ -343,12 +373,29 @@ where
     let mut planes = [Plane::default(); MAX_VARYINGS];
     let values = [vertices[o0].var, vertices[o1].var, vertices[o2].var];
     let count = values[0].as_slice().len().min(MAX_VARYINGS);
-    for (i, p) in planes.iter_mut().enumerate().take(count) {
-        let at = |k: usize| i64::from(values[k].as_slice()[i]);
-        *p = plane(at(0), at(1), at(2));
+    let value = |k: usize, i: usize| i64::from(values[k].as_slice()[i]);
+    let (mut base, mut d1, mut d2) = (
+        [0i64; MAX_VARYINGS],
+        [0i64; MAX_VARYINGS],
+        [0i64; MAX_VARYINGS],
+    );
+    if PERSPECTIVE {
+        let q = [vertices[o0].q, vertices[o1].q, vertices[o2].q].map(|q| q.clamp(1, Q_MAX));
+        planes[0] = plane(q[0], q[1], q[2]);
+        planes[1] = plane(0, q[1], 0);
+        planes[2] = plane(0, 0, q[2]);
+        for i in 0..count {
+            base[i] = value(0, i);
+            d1[i] = value(1, i) - value(0, i);
+            d2[i] = value(2, i) - value(0, i);
+        }
+    } else {
+        for (i, p) in planes.iter_mut().enumerate().take(count) {
+            *p = plane(value(0, i), value(1, i), value(2, i));
+        }
     }
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    let mut sink = Interp {
+    let mut sink = Interp::<S, D, V, F, PERSPECTIVE> {
         surface,
         depth,
         shade,
@@ -358,7 +405,13 @@ where
         z: plane(zs[0], zs[1], zs[2]),
         planes,
         count,
+        base,
+        d1,
+        d2,
         _v: core::marker::PhantomData,
     };
     walk_spans(&t, 1 << BITS, &clip, &mut sink)
 }
+
+/// The largest `q` a vertex may carry: `1/w` for `w = 2^-8` in the scale of [`ScreenVertex::q`].
+pub const Q_MAX: i64 = 1 << 28;
