@@ -150,12 +150,25 @@ impl<const F: u32> Fx<F> {
     /// The sum of four products, rounded once: more accurate than four rounded products.
     #[inline]
     pub const fn dot4(a: [Self; 4], b: [Self; 4]) -> Self {
-        // Each product is at most 2^62 in magnitude; four of them can exceed i64 only when every
-        // factor is near the format's limit, so the sum is taken in i128.
-        let s = (a[0].0 as i128) * (b[0].0 as i128)
-            + (a[1].0 as i128) * (b[1].0 as i128)
-            + (a[2].0 as i128) * (b[2].0 as i128)
-            + (a[3].0 as i128) * (b[3].0 as i128);
+        // Each product is at most 2^62 in magnitude; four of them can exceed i64 only when the
+        // factors are near the format's limit. The sum is taken in i64 with overflow checks (one
+        // branch each, never taken for geometry) and in i128 only when one fires.
+        let p = [
+            (a[0].0 as i64) * (b[0].0 as i64),
+            (a[1].0 as i64) * (b[1].0 as i64),
+            (a[2].0 as i64) * (b[2].0 as i64),
+            (a[3].0 as i64) * (b[3].0 as i64),
+        ];
+        if let Some(s) = p[0].checked_add(p[1]) {
+            if let Some(s) = s.checked_add(p[2]) {
+                if let Some(s) = s.checked_add(p[3]) {
+                    if let Some(s) = s.checked_add(1 << (F - 1)) {
+                        return Self::saturate(s >> F);
+                    }
+                }
+            }
+        }
+        let s = p[0] as i128 + p[1] as i128 + p[2] as i128 + p[3] as i128;
         Self::saturate_i128((s + (1 << (F - 1))) >> F)
     }
 }
@@ -173,21 +186,6 @@ pub(crate) const fn isqrt_u64(v: u64) -> u64 {
     }
     // Newton's method from an over-estimate converges monotonically down to the floor.
     let mut x = 1u64 << (64 - v.leading_zeros()).div_ceil(2);
-    loop {
-        let y = (x + v / x) / 2;
-        if y >= x {
-            return x;
-        }
-        x = y;
-    }
-}
-
-/// `floor(sqrt(v))`.
-pub(crate) const fn isqrt_u128(v: u128) -> u128 {
-    if v < 2 {
-        return v;
-    }
-    let mut x = 1u128 << (128 - v.leading_zeros()).div_ceil(2);
     loop {
         let y = (x + v / x) / 2;
         if y >= x {

@@ -74,6 +74,13 @@ pub trait Scalar:
     }
 }
 
+/// `x² + y² + z²` of raw values: at most `3 · 2^62`, so it fits `u64`.
+#[inline]
+fn square_sum(x: i32, y: i32, z: i32) -> u64 {
+    let sq = |v: i32| (v.unsigned_abs() as u64) * (v.unsigned_abs() as u64);
+    sq(x) + sq(y) + sq(z)
+}
+
 impl<const F: u32> Scalar for Fx<F> {
     const ZERO: Self = Fx::ZERO;
     const ONE: Self = Fx::ONE;
@@ -105,30 +112,26 @@ impl<const F: u32> Scalar for Fx<F> {
 
     fn hypot3(x: Self, y: Self, z: Self) -> Self {
         // The squares keep 2F fractional bits: a vector of length 2^-F still has a length.
-        let (x, y, z) = (
-            x.to_bits() as i128,
-            y.to_bits() as i128,
-            z.to_bits() as i128,
-        );
-        let sq = (x * x + y * y + z * z) as u128;
-        // sq < 3 * 2^62, so it fits u64.
-        Fx::from_bits(fx::isqrt_u64(sq as u64).min(i32::MAX as u64) as i32)
+        let sq = square_sum(x.to_bits(), y.to_bits(), z.to_bits());
+        Fx::from_bits(fx::isqrt_u64(sq).min(i32::MAX as u64) as i32)
     }
 
     fn normalize3(x: Self, y: Self, z: Self) -> Option<(Self, Self, Self)> {
-        let (x, y, z) = (
-            x.to_bits() as i128,
-            y.to_bits() as i128,
-            z.to_bits() as i128,
-        );
-        let sq = (x * x + y * y + z * z) as u128;
+        let (x, y, z) = (x.to_bits(), y.to_bits(), z.to_bits());
+        let sq = square_sum(x, y, z);
         if sq == 0 {
             return None;
         }
-        // The length with 32 more fractional bits than the input, so that a vector a few steps long
-        // still divides into accurate components: len = sqrt(sq) * 2^32, below 2^64.
-        let len = fx::isqrt_u128(sq << 64) as i128;
-        let unit = |v: i128| Fx::saturate_i128(fx::round_div_i128(v << (F + 32), len));
+        // Scale the squared length into [2^60, 2^62) by an even shift 2k, so its root has 30 to 31
+        // significant bits however short the vector: len = sqrt(sq) 2^k. Each component is then
+        // v 2^(k+F) / len; |v| <= sqrt(sq) keeps v 2^k below 2^31, so the dividend fits i64 for
+        // F <= 30. Cost: one 64-bit square root (Newton, a few divisions) and three divisions.
+        let k = sq.leading_zeros().saturating_sub(2) / 2;
+        let len = fx::isqrt_u64(sq << (2 * k)) as i64;
+        let unit = |v: i32| {
+            let n = (v as i64) << (k + F);
+            Fx::saturate((2 * n + len).div_euclid(2 * len))
+        };
         Some((unit(x), unit(y), unit(z)))
     }
 
