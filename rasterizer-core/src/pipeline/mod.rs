@@ -9,7 +9,9 @@
 pub mod cull;
 pub mod shading;
 
-use crate::clip::polygon::{clip_segment, clip_triangle, outcode, trivially_outside, ClipVertex};
+use crate::clip::polygon::{
+    clip_segment, clip_triangle, outcode, trivially_outside, ClipVertex, Outcode,
+};
 use crate::geom::SubPoint;
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
 use crate::raster::interp::{fill_triangle_interp, DepthTest, ScreenVertex};
@@ -116,6 +118,21 @@ pub struct RenderStats {
     pub culled: u32,
     /// Handed to the rasterizer (as one or more triangles).
     pub drawn: u32,
+}
+
+/// One vertex's work, kept for the other triangles that share it ([`Pipeline::draw_cached`]).
+///
+/// Its size is the RAM a cached draw needs per mesh vertex: 40 bytes for 16.16 with three
+/// varyings (Gouraud), so 20 KB for Suzanne's 507 vertices.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CachedVertex<S, V, const BITS: u32 = 4> {
+    clip: Vec4<S>,
+    screen: SubPoint<BITS>,
+    z: u16,
+    code: Outcode,
+    /// 0: nothing yet; 1: transformed (and projected when inside); 2: also shaded.
+    state: u8,
+    var: V,
 }
 
 /// The transforms of a draw call.
@@ -243,10 +260,88 @@ where
     }
 
     /// Draws a mesh filled with the pipeline's shading, depth test and culling.
+    ///
+    /// Each triangle transforms and shades its three vertices, so a vertex shared by six triangles
+    /// is processed six times; [`Pipeline::draw_cached`] trades RAM for that work.
     pub fn draw<T, I>(
         &mut self,
         target: &mut T,
         mesh: &Mesh<'_, S, I>,
+    ) -> Result<RenderStats, T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        I: VertexIndex,
+    {
+        self.draw_with(target, mesh, &mut [])
+    }
+
+    /// Draws a mesh like [`Pipeline::draw`], processing each vertex at most once: `cache` holds
+    /// one [`CachedVertex`] per mesh vertex (its contents on entry do not matter). Vertices beyond
+    /// the cache's length are processed per triangle, so a short cache is slower, never wrong.
+    pub fn draw_cached<T, I>(
+        &mut self,
+        target: &mut T,
+        mesh: &Mesh<'_, S, I>,
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+    ) -> Result<RenderStats, T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        I: VertexIndex,
+    {
+        for c in cache.iter_mut() {
+            c.state = 0;
+        }
+        self.draw_with(target, mesh, cache)
+    }
+
+    /// A vertex's clip-space position and outcode, from the cache when it has them.
+    #[inline(always)]
+    fn clip_of<I: VertexIndex>(
+        &self,
+        mesh: &Mesh<'_, S, I>,
+        i: usize,
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+    ) -> (Vec4<S>, Outcode) {
+        if let Some(c) = cache.get_mut(i) {
+            if c.state == 0 {
+                c.clip = self.mvp.transform_point(mesh.positions[i]);
+                c.code = outcode(&c.clip);
+                if c.code == 0 {
+                    (c.screen, c.z) = self.project(&c.clip);
+                }
+                c.state = 1;
+            }
+            return (c.clip, c.code);
+        }
+        let clip = self.mvp.transform_point(mesh.positions[i]);
+        (clip, outcode(&clip))
+    }
+
+    /// A vertex's shader values, from the cache when it has them.
+    #[inline(always)]
+    fn var_of<I: VertexIndex>(
+        &mut self,
+        mesh: &Mesh<'_, S, I>,
+        i: usize,
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+    ) -> Sh::Varyings {
+        if let Some(c) = cache.get_mut(i) {
+            if c.state < 2 {
+                let vin = self.vertex_in(mesh, i);
+                c.var = self.shading.vertex(&vin);
+                c.state = 2;
+            }
+            return c.var;
+        }
+        let vin = self.vertex_in(mesh, i);
+        self.shading.vertex(&vin)
+    }
+
+    fn draw_with<T, I>(
+        &mut self,
+        target: &mut T,
+        mesh: &Mesh<'_, S, I>,
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
     ) -> Result<RenderStats, T::Error>
     where
         T: Surface<Color = Sh::Color>,
@@ -263,24 +358,30 @@ where
                 stats.invalid += 1;
                 continue;
             }
-            let clip = idx.map(|i| self.mvp.transform_point(mesh.positions[i]));
+            let vc = idx.map(|i| self.clip_of(mesh, i, cache));
+            let clip = vc.map(|(p, _)| p);
+            let codes = vc.map(|(_, c)| c);
             if trivially_outside(&clip) {
                 stats.outside += 1;
                 continue;
             }
-            let codes = clip.map(|p| outcode(&p));
             if codes.iter().all(|&c| c == 0) {
                 // The common case: project first, so culled triangles are never shaded.
-                let projected = clip.map(|p| self.project(&p));
+                let projected = [0, 1, 2].map(|k| match cache.get(idx[k]) {
+                    Some(c) => (c.screen, c.z),
+                    None => self.project(&clip[k]),
+                });
                 let [a, b, c] = projected.map(|(p, _)| (i64::from(p.x), i64::from(p.y)));
                 let area = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
                 if area == 0 || !self.cull.keep(area) {
                     stats.culled += 1;
                     continue;
                 }
-                let vin = idx.map(|i| self.vertex_in(mesh, i));
-                self.shading.face(&vin);
-                let var = vin.map(|v| self.shading.vertex(&v));
+                if Sh::NEEDS_FACE {
+                    let vin = idx.map(|i| self.vertex_in(mesh, i));
+                    self.shading.face(&vin);
+                }
+                let var = idx.map(|i| self.var_of(mesh, i, cache));
                 let sv = [0, 1, 2].map(|k| ScreenVertex {
                     p: projected[k].0,
                     z: projected[k].1,
@@ -298,10 +399,10 @@ where
                 continue;
             }
             stats.clipped += 1;
-            let vin = idx.map(|i| self.vertex_in(mesh, i));
+            let var = idx.map(|i| self.var_of(mesh, i, cache));
             let tri = [0, 1, 2].map(|k| ClipVertex {
                 pos: clip[k],
-                var: self.shading.vertex(&vin[k]),
+                var: var[k],
             });
             let poly = clip_triangle(&tri, codes);
             if poly.len() < 3 {
@@ -332,7 +433,10 @@ where
                 stats.culled += 1;
                 continue;
             }
-            self.shading.face(&vin);
+            if Sh::NEEDS_FACE {
+                let vin = idx.map(|i| self.vertex_in(mesh, i));
+                self.shading.face(&vin);
+            }
             let shading = &self.shading;
             for k in 1..screen.len() - 1 {
                 let t = [screen[0], screen[k], screen[k + 1]];

@@ -29,6 +29,9 @@ pub trait Shading<S: Scalar> {
     type Varyings: Varyings;
     /// The shader reads world positions and normals (the pipeline skips them otherwise).
     const NEEDS_WORLD: bool;
+    /// The shader does work per triangle in [`Shading::face`] (the pipeline skips the call and
+    /// the world data it needs otherwise).
+    const NEEDS_FACE: bool = false;
     /// Per vertex: the values to interpolate.
     fn vertex(&mut self, v: &VertexIn<S>) -> Self::Varyings;
     /// Once per visible triangle, before its pixels.
@@ -122,6 +125,7 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for Fla
     type Color = C;
     type Varyings = [i32; 0];
     const NEEDS_WORLD: bool = true;
+    const NEEDS_FACE: bool = true;
     #[inline(always)]
     fn vertex(&mut self, _: &VertexIn<S>) -> [i32; 0] {
         []
