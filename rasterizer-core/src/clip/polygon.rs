@@ -52,7 +52,8 @@ const VIEW_X_NEG: u8 = 128;
 fn distance<S: Scalar>(p: &Vec4<S>, bit: u8) -> S {
     let g = S::from_int(GUARD);
     match bit {
-        W_MIN => p.w - S::from_ratio(1, 1 << W_MIN_SHIFT),
+        // 2^-8 as 16.16 bits: exact in every fixed-point format and in f32, and no division.
+        W_MIN => p.w - S::from_fx16_bits(1 << (16 - W_MIN_SHIFT)),
         NEAR => p.z + p.w,
         FAR => p.w - p.z,
         LEFT => p.x + g * p.w,
@@ -76,9 +77,10 @@ pub fn outcode<S: Scalar>(p: &Vec4<S>) -> Outcode {
 
 /// True when the three points lie outside one of the visible frustum's planes together, so the
 /// triangle cannot show (the screen planes `|x|, |y| <= w` are stricter than the guard band).
+/// `codes` are the points' [`outcode`]s.
 #[inline]
-pub fn trivially_outside<S: Scalar>(p: &[Vec4<S>; 3]) -> bool {
-    let view = |v: &Vec4<S>| -> u8 {
+pub fn trivially_outside<S: Scalar>(p: &[Vec4<S>; 3], codes: [Outcode; 3]) -> bool {
+    let view = |v: &Vec4<S>, code: Outcode| -> u8 {
         let mut c = 0;
         if v.x < -v.w {
             c |= VIEW_X_NEG;
@@ -92,9 +94,9 @@ pub fn trivially_outside<S: Scalar>(p: &[Vec4<S>; 3]) -> bool {
         if v.y > v.w {
             c |= TOP;
         }
-        c | outcode(v) & (W_MIN | NEAR | FAR)
+        c | code & (W_MIN | NEAR | FAR)
     };
-    view(&p[0]) & view(&p[1]) & view(&p[2]) != 0
+    view(&p[0], codes[0]) & view(&p[1], codes[1]) & view(&p[2], codes[2]) != 0
 }
 
 /// `a + (b - a) t` for a varying, `t` in 2.30.

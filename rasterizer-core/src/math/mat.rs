@@ -192,7 +192,9 @@ impl<S: Scalar> Mat4<S> {
                 o,
                 o,
                 (far + near) / depth,
-                (far * near + far * near) / depth,
+                // 2 far near / (near - far) without forming far * near, which saturates (and
+                // silently gives a wrong matrix) once it passes the format's range.
+                (near + near) * (far / depth),
             ],
             [o, o, -S::ONE, o],
         ]))

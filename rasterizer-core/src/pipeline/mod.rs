@@ -361,7 +361,7 @@ where
             let vc = idx.map(|i| self.clip_of(mesh, i, cache));
             let clip = vc.map(|(p, _)| p);
             let codes = vc.map(|(_, c)| c);
-            if trivially_outside(&clip) {
+            if trivially_outside(&clip, codes) {
                 stats.outside += 1;
                 continue;
             }
@@ -477,11 +477,11 @@ where
                 continue;
             }
             let clip = idx.map(|i| self.mvp.transform_point(mesh.positions[i]));
-            if trivially_outside(&clip) {
+            let codes = clip.map(|p| outcode(&p));
+            if trivially_outside(&clip, codes) {
                 stats.outside += 1;
                 continue;
             }
-            let codes = clip.map(|p| outcode(&p));
             if codes.iter().any(|&c| c != 0) {
                 stats.clipped += 1;
             }

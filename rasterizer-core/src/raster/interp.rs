@@ -51,6 +51,8 @@ impl Compare {
 
 /// A depth test: which pixels of a span may be drawn.
 pub trait DepthTest {
+    /// The test reads depths: when false the rasterizer computes none.
+    const ENABLED: bool = true;
     /// Calls `run(offset, len)` for each run of pixels of row `y`, columns `x .. x + len`, that
     /// passes, storing their depths first. The depth of pixel `i` is `(z + i dz) >> 16`, clamped
     /// to `0 ..= 65535`.
@@ -72,6 +74,7 @@ pub trait DepthTest {
 pub struct NoDepth;
 
 impl DepthTest for NoDepth {
+    const ENABLED: bool = false;
     #[inline(always)]
     fn test_span<E, F>(
         &mut self,
@@ -249,8 +252,12 @@ struct Interp<'a, S: Surface, D, V, F, const P: bool> {
     origin: (i64, i64),
     den2: i64,
     z: Plane,
+    /// The depth plane's step per pixel (16.16).
+    dz: i64,
     /// Affine: the values' planes. Perspective-correct: `1/w` and the two scaled barycentrics.
     planes: [Plane; MAX_VARYINGS],
+    /// The planes' steps per pixel (16.16), the same for every span.
+    steps: [i64; MAX_VARYINGS],
     count: usize,
     /// Perspective-correct only: the first vertex's values and the differences to the other two.
     base: [i64; MAX_VARYINGS],
@@ -268,12 +275,6 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
         let f = i128::from(p.a) * i128::from(dx2) + i128::from(p.b) * i128::from(dy2);
         (p.v0 << FRAC) + scaled_div(f, self.den2)
     }
-
-    /// The plane's step per pixel, in 16.16.
-    #[inline(always)]
-    fn step(&self, p: &Plane) -> i64 {
-        scaled_div(i128::from(p.a) * i128::from(2 * self.s), self.den2)
-    }
 }
 
 impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: bool> SpanSink
@@ -285,15 +286,18 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.origin.0;
         let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
-        let z0 = self.at(&self.z, dx2, dy2);
-        let dz = self.step(&self.z);
+        let z0 = if D::ENABLED {
+            self.at(&self.z, dx2, dy2)
+        } else {
+            0
+        };
+        let dz = self.dz;
         let planes = if P { 3 } else { self.count };
         let mut start = [0i64; MAX_VARYINGS];
-        let mut step = [0i64; MAX_VARYINGS];
-        for i in 0..planes {
-            start[i] = self.at(&self.planes[i], dx2, dy2);
-            step[i] = self.step(&self.planes[i]);
+        for (i, s) in start.iter_mut().enumerate().take(planes) {
+            *s = self.at(&self.planes[i], dx2, dy2);
         }
+        let step = self.steps;
         let count = self.count;
         let Self {
             surface,
@@ -395,15 +399,26 @@ where
         }
     }
     let clip = PixelRect::from_rectangle(&surface.clip_area());
+    let s = 1i64 << BITS;
+    let step = |p: &Plane| scaled_div(i128::from(p.a) * i128::from(2 * s), den2);
+    let z = plane(zs[0], zs[1], zs[2]);
+    let dz = if D::ENABLED { step(&z) } else { 0 };
+    let mut steps = [0i64; MAX_VARYINGS];
+    let used = if PERSPECTIVE { 3 } else { count };
+    for (st, p) in steps.iter_mut().zip(&planes).take(used) {
+        *st = step(p);
+    }
     let mut sink = Interp::<S, D, V, F, PERSPECTIVE> {
         surface,
         depth,
         shade,
-        s: 1 << BITS,
+        s,
         origin: v0,
         den2,
-        z: plane(zs[0], zs[1], zs[2]),
+        z,
+        dz,
         planes,
+        steps,
         count,
         base,
         d1,
