@@ -113,10 +113,17 @@ fn crossing<S: Scalar, V: Varyings>(
     bit: u8,
 ) -> ClipVertex<S, V> {
     let (di, do_) = (distance(&inside.pos, bit), distance(&outside.pos, bit));
-    // di >= 0 > do_, so the denominator is positive and t lies in [0, 1].
-    let t = di / (di - do_);
-    let pos = inside.pos.lerp(outside.pos, t);
-    let t30 = i64::from(t.to_scaled_int(30)).clamp(0, 1 << 30);
+    // di >= 0 > do_, so the denominator is positive and t = di / (di - do_) lies in [0, 1]; each
+    // coordinate is interpolated with the exact ratio, rounded once.
+    let den = di - do_;
+    let (a, b) = (&inside.pos, &outside.pos);
+    let pos = Vec4::new(
+        S::lerp_ratio(a.x, b.x, di, den),
+        S::lerp_ratio(a.y, b.y, di, den),
+        S::lerp_ratio(a.z, b.z, di, den),
+        S::lerp_ratio(a.w, b.w, di, den),
+    );
+    let t30 = S::scaled_ratio(di, den, 1 << 30, 1).clamp(0, 1 << 30);
     let mut var = inside.var;
     for (v, o) in var.as_mut_slice().iter_mut().zip(outside.var.as_slice()) {
         *v = lerp_i32(*v, *o, t30);

@@ -86,6 +86,13 @@ impl Scalar for f32 {
         round_sat(num * scale as f32 / d, i64::MIN / 2, i64::MAX / 2)
     }
 
+    fn lerp_ratio(a: Self, b: Self, num: Self, den: Self) -> Self {
+        if den == 0.0 {
+            return a;
+        }
+        a + (b - a) * (num / den)
+    }
+
     fn to_fx16_bits(self) -> i32 {
         self.to_scaled_int(16)
     }

@@ -177,12 +177,13 @@ impl<S: Scalar> Mat4<S> {
     /// clip planes at `near` and `far` (`0 < near < far`). `None` for a degenerate field of view or
     /// planes.
     pub fn perspective(fov_y: Angle, aspect: S, near: S, far: S) -> Option<Self> {
-        let half = Angle(fov_y.0 / 2);
-        let (s, c) = S::sin_cos(half);
+        // cot(fov / 2) = (1 + cos fov) / sin fov: the whole angle, so an odd number of angle units
+        // is not rounded down by halving it first.
+        let (s, c) = S::sin_cos(fov_y);
         if s <= S::ZERO || aspect <= S::ZERO || near <= S::ZERO || far <= near {
             return None;
         }
-        let f = c / s;
+        let f = (S::ONE + c) / s;
         let o = S::ZERO;
         let depth = near - far;
         Some(Self::from_rows([

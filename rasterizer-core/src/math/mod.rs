@@ -63,6 +63,10 @@ pub trait Scalar:
     /// divide and viewport in one step. `|scale|, |div| < 2^31`. Exact for fixed point: the only
     /// error is the final rounding, halves up.
     fn scaled_ratio(num: Self, den: Self, scale: i64, div: i64) -> i64;
+    /// `a + (b - a) num / den`, rounded once (`den != 0`): the point where a clipping plane cuts
+    /// an edge, without first rounding the ratio (which would move a far-away crossing point, and
+    /// with it the visible edge, by the ratio's rounding times the edge's length).
+    fn lerp_ratio(a: Self, b: Self, num: Self, den: Self) -> Self;
     /// The value in 16.16 bits (saturating), the format shaders interpolate positions and normals in.
     fn to_fx16_bits(self) -> i32;
     /// The value from 16.16 bits.
@@ -144,6 +148,16 @@ impl<const F: u32> Scalar for Fx<F> {
         }
         // floor((n + floor(d/2)) / d) rounds halves up: an exact half needs an even d.
         (n + d / 2).div_euclid(d)
+    }
+
+    fn lerp_ratio(a: Self, b: Self, num: Self, den: Self) -> Self {
+        let d = den.to_bits() as i128;
+        if d == 0 {
+            return a;
+        }
+        // |b - a| < 2^32 and |num| < 2^31: the product fits i128; used only when clipping.
+        let n = (b.to_bits() as i128 - a.to_bits() as i128) * num.to_bits() as i128;
+        Fx::saturate_i128(a.to_bits() as i128 + fx::round_div_i128(n, d))
     }
 
     fn to_fx16_bits(self) -> i32 {
