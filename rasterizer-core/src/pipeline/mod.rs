@@ -16,11 +16,12 @@ use crate::geom::SubPoint;
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
 use crate::raster::interp::{fill_triangle_interp, DepthTest, ScreenVertex};
 use crate::raster::line::draw_line;
-use crate::target::Surface;
+use crate::target::{ClipTo, Surface};
 use cull::Cull;
-use embedded_graphics_core::geometry::Point;
+use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::RgbColor;
+use embedded_graphics_core::primitives::Rectangle;
 use shading::{Shading, VertexIn};
 
 /// An index into a mesh's vertex arrays.
@@ -78,7 +79,8 @@ impl<'a, S, I> Mesh<'a, S, I> {
 }
 
 /// Where normalised device coordinates land on the target: `x = -1` at the left edge of the
-/// rectangle, `y = +1` at its top (the y flip), in whole pixels.
+/// rectangle, `y = +1` at its top (the y flip), in whole pixels. The pipeline also clips to it, so
+/// several viewports can share one target.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Viewport {
     /// Left edge.
@@ -92,6 +94,14 @@ pub struct Viewport {
 }
 
 impl Viewport {
+    /// The rectangle of pixels the viewport covers: the pipeline draws nothing outside it.
+    pub fn rectangle(&self) -> Rectangle {
+        Rectangle::new(
+            Point::new(self.x, self.y),
+            Size::new(self.width, self.height),
+        )
+    }
+
     /// A viewport covering `width` x `height` pixels from the origin.
     pub const fn new(width: u32, height: u32) -> Self {
         Self {
@@ -272,7 +282,11 @@ where
         T: Surface<Color = Sh::Color>,
         I: VertexIndex,
     {
-        self.draw_with(target, mesh, &mut [])
+        self.draw_with(
+            &mut ClipTo::new(target, self.viewport.rectangle()),
+            mesh,
+            &mut [],
+        )
     }
 
     /// Draws a mesh like [`Pipeline::draw`], processing each vertex at most once: `cache` holds
@@ -291,7 +305,11 @@ where
         for c in cache.iter_mut() {
             c.state = 0;
         }
-        self.draw_with(target, mesh, cache)
+        self.draw_with(
+            &mut ClipTo::new(target, self.viewport.rectangle()),
+            mesh,
+            cache,
+        )
     }
 
     /// A vertex's clip-space position and outcode, from the cache when it has them.
@@ -465,6 +483,7 @@ where
         T: Surface,
         I: VertexIndex,
     {
+        let target = &mut ClipTo::new(target, self.viewport.rectangle());
         let mut stats = RenderStats {
             triangles: mesh.triangles.len().min(u32::MAX as usize) as u32,
             ..RenderStats::default()

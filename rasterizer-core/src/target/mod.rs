@@ -128,3 +128,89 @@ impl<T: DrawTarget> DrawTarget for AnyTarget<'_, T> {
 }
 
 impl<T: DrawTarget> Surface for AnyTarget<'_, T> {}
+
+/// A [`Surface`] whose clip area is narrowed to a rectangle: everything drawn through it stays
+/// inside both the rectangle and the wrapped surface's own clip area. The span methods forward to
+/// the wrapped surface, so its fast paths are kept.
+///
+/// ```
+/// # use rasterizer_core::target::{ClipTo, Framebuffer, Surface};
+/// # use embedded_graphics_core::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
+/// use rasterizer_core::raster::line::draw_line;
+/// let mut buf = [0u8; 8 * 8];
+/// let mut fb = Framebuffer::<Gray8>::new(&mut buf, 8, 8).unwrap();
+/// let mut left = ClipTo::new(&mut fb, Rectangle::new(Point::zero(), Size::new(4, 8)));
+/// draw_line(&mut left, Point::new(0, 0), Point::new(7, 0), Gray8::WHITE).unwrap();
+/// assert_eq!(fb.pixel(Point::new(3, 0)), Some(Gray8::WHITE));
+/// assert_eq!(fb.pixel(Point::new(4, 0)), Some(Gray8::BLACK));
+/// ```
+#[derive(Debug)]
+pub struct ClipTo<'a, T> {
+    inner: &'a mut T,
+    area: Rectangle,
+}
+
+impl<'a, T: Surface> ClipTo<'a, T> {
+    /// Narrows `inner`'s clip area to `area`.
+    pub fn new(inner: &'a mut T, area: Rectangle) -> Self {
+        let area = inner.clip_area().intersection(&area);
+        Self { inner, area }
+    }
+}
+
+impl<T: Surface> Dimensions for ClipTo<'_, T> {
+    fn bounding_box(&self) -> Rectangle {
+        self.area
+    }
+}
+
+impl<T: Surface> DrawTarget for ClipTo<'_, T> {
+    type Color = T::Color;
+    type Error = T::Error;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<Self::Color>>,
+    {
+        let area = self.area;
+        self.inner
+            .draw_iter(pixels.into_iter().filter(|p| area.contains(p.0)))
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: Self::Color) -> Result<(), Self::Error> {
+        self.inner.fill_solid(&area.intersection(&self.area), color)
+    }
+}
+
+impl<T: Surface> Surface for ClipTo<'_, T> {
+    #[inline]
+    fn fill_span(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        self.inner.fill_span(x, y, len, color)
+    }
+
+    #[inline]
+    fn shade_span<F: FnMut() -> Self::Color>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        shade: F,
+    ) -> Result<(), Self::Error> {
+        self.inner.shade_span(x, y, len, shade)
+    }
+
+    #[inline]
+    fn draw_line_points(
+        &mut self,
+        points: LinePoints,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        self.inner.draw_line_points(points, color)
+    }
+}
