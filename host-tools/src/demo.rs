@@ -1,8 +1,10 @@
 //! The `demo` command: renders example pictures with `rasterizer-core` and saves them as PNG files.
 //!
-//! Every picture is drawn onto an `embedded_graphics_simulator::SimulatorDisplay<Rgb888>` through
-//! [`AnyTarget`], the adapter that lets the rasterizer drive any embedded-graphics `DrawTarget`.
+//! Every 2D picture is drawn onto an `embedded_graphics_simulator::SimulatorDisplay<Rgb888>` through
+//! [`AnyTarget`], the adapter that lets the rasterizer drive any embedded-graphics `DrawTarget`. The
+//! 3D pictures come from [`crate::demo3d`].
 
+use crate::demo3d;
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics::Drawable;
@@ -33,7 +35,7 @@ pub const SCALE: u32 = 3;
 pub type Display = SimulatorDisplay<Rgb888>;
 
 /// The background colour: a dark blue-grey.
-const BACKGROUND: Rgb888 = Rgb888::new(14, 16, 26);
+pub(crate) const BACKGROUND: Rgb888 = Rgb888::new(14, 16, 26);
 
 /// Why the demo failed.
 #[derive(Debug)]
@@ -50,6 +52,13 @@ pub enum DemoError {
         /// The file.
         path: PathBuf,
         /// What the encoder or the operating system said.
+        message: String,
+    },
+    /// A model of the 3D pictures could not be loaded.
+    Model {
+        /// The model file.
+        path: PathBuf,
+        /// What the loader said.
         message: String,
     },
     /// A scene was rejected by the rasterizer (a bug in the scene).
@@ -72,6 +81,9 @@ impl fmt::Display for DemoError {
                 )
             }
             Self::Save { path, message } => write!(f, "cannot write {}: {message}", path.display()),
+            Self::Model { path, message } => {
+                write!(f, "cannot load model {}: {message}", path.display())
+            }
             Self::Scene { name, message } => write!(f, "scene {name} failed: {message}"),
         }
     }
@@ -87,7 +99,7 @@ impl std::error::Error for DemoError {
 }
 
 /// A scene failure, before it is tied to a scene name.
-type SceneResult = Result<(), String>;
+pub(crate) type SceneResult = Result<(), String>;
 
 /// One demo picture: its file name and the function that draws it.
 pub struct Scene {
@@ -129,20 +141,24 @@ pub const SCENES: [Scene; 7] = [
     },
 ];
 
-/// Renders every scene into `out` (created if missing), calling `on_written` after each file.
+/// Renders every scene into `out` (created if missing), the 2D ones first, calling `on_written`
+/// after each file. The 3D scenes load their meshes from `models` (the repository's
+/// `assets/models`).
 ///
 /// # Errors
-/// [`DemoError::CreateDir`] when `out` cannot be created, [`DemoError::Save`] when a file cannot be
-/// written, [`DemoError::Scene`] when the rasterizer rejects a scene's input.
-pub fn run(out: &Path, mut on_written: impl FnMut(&Path)) -> Result<(), DemoError> {
+/// [`DemoError::CreateDir`] when `out` cannot be created, [`DemoError::Model`] when a mesh cannot
+/// be loaded, [`DemoError::Save`] when a file cannot be written, [`DemoError::Scene`] when the
+/// rasterizer rejects a scene's input.
+pub fn run(out: &Path, models: &Path, mut on_written: impl FnMut(&Path)) -> Result<(), DemoError> {
     std::fs::create_dir_all(out).map_err(|source| DemoError::CreateDir {
         path: out.to_path_buf(),
         source,
     })?;
-    let settings = OutputSettingsBuilder::new().scale(SCALE).build();
-    for scene in &SCENES {
-        let display = render(scene)?;
-        let path = out.join(scene.file);
+    let models = demo3d::Models::load(models)
+        .map_err(|(path, message)| DemoError::Model { path, message })?;
+    let save = |display: &Display, file: &str, scale: u32| {
+        let settings = OutputSettingsBuilder::new().scale(scale).build();
+        let path = out.join(file);
         display
             .to_rgb_output_image(&settings)
             .save_png(&path)
@@ -150,7 +166,18 @@ pub fn run(out: &Path, mut on_written: impl FnMut(&Path)) -> Result<(), DemoErro
                 path: path.clone(),
                 message: e.to_string(),
             })?;
-        on_written(&path);
+        Ok(path)
+    };
+    for scene in &SCENES {
+        let display = render(scene)?;
+        on_written(&save(&display, scene.file, SCALE)?);
+    }
+    for scene in &demo3d::SCENES {
+        let display = demo3d::render(scene, &models).map_err(|message| DemoError::Scene {
+            name: scene.file,
+            message,
+        })?;
+        on_written(&save(&display, scene.file, demo3d::SCALE)?);
     }
     Ok(())
 }
@@ -170,7 +197,7 @@ pub fn render(scene: &Scene) -> Result<Display, DemoError> {
 }
 
 /// A colour from hue (turns, 0..1), saturation and value (0..1).
-fn hsv(hue: f64, sat: f64, val: f64) -> Rgb888 {
+pub(crate) fn hsv(hue: f64, sat: f64, val: f64) -> Rgb888 {
     let h = hue.rem_euclid(1.0) * 6.0;
     let sector = h.floor();
     let f = h - sector;

@@ -4,6 +4,7 @@
 #![deny(missing_docs)]
 
 mod demo;
+mod demo3d;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -29,13 +30,19 @@ struct Cli {
 /// The subcommands. Add new tools here as new variants.
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Render the demo pictures (lines, triangles, polygons, clipping) as PNG files.
+    /// Render the demo pictures (lines, triangles, polygons, clipping, 3D meshes) as PNG files.
     #[command(long_about = "Render the demo pictures as PNG files.\n\n\
-        Each picture is drawn by rasterizer-core through `AnyTarget` onto an \
+        The 2D pictures are drawn by rasterizer-core through `AnyTarget` onto an \
         embedded-graphics-simulator display (200x150 pixels) and saved at 3x scale, so \
-        single pixels are easy to see. The file names are fixed (lines_octants.png, \
-        lines_gradient.png, triangle_outlines.png, triangles_flat.png, \
-        triangles_gouraud.png, polygons.png, clipping.png); existing files are overwritten.\n\n\
+        single pixels are easy to see: lines_octants.png, lines_gradient.png, \
+        triangle_outlines.png, triangles_flat.png, triangles_gouraud.png, polygons.png, \
+        clipping.png.\n\n\
+        The 3D pictures are rendered by the 3D pipeline at 320x240 and saved at 2x scale: \
+        suzanne_wireframe.png, suzanne_flat.png, suzanne_gouraud.png, suzanne_phong.png \
+        (into a Framebuffer<Rgb565>, then copied to the display), cube_inside.png and \
+        near_plane_crossing.png (straight onto the display through `AnyTarget`). Their meshes \
+        are read from --models.\n\n\
+        The file names are fixed; existing files are overwritten.\n\n\
         Example: cargo run --release -p host-tools -- demo --out /tmp/pictures")]
     Demo(DemoArgs),
 }
@@ -49,12 +56,20 @@ struct DemoArgs {
     /// refresh the pictures README.md shows.
     #[arg(long, value_name = "DIR", default_value = "docs/images")]
     out: PathBuf,
+
+    /// Directory holding the OBJ models of the 3D pictures (suzanne.obj).
+    ///
+    /// Defaults to the repository's assets/models, wherever the command is run from.
+    #[arg(long, value_name = "DIR", default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models"))]
+    models: PathBuf,
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Demo(args) => demo::run(&args.out, |path| println!("wrote {}", path.display())),
+        Command::Demo(args) => demo::run(&args.out, &args.models, |path| {
+            println!("wrote {}", path.display())
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-/// The PNG files the demo promises (README.md links to them).
-const FILES: [&str; 7] = [
+/// The PNG files the demo promises (README.md links to them): the 2D ones, then the 3D ones.
+const FILES: [&str; 13] = [
     "lines_octants.png",
     "lines_gradient.png",
     "triangle_outlines.png",
@@ -12,6 +12,12 @@ const FILES: [&str; 7] = [
     "triangles_gouraud.png",
     "polygons.png",
     "clipping.png",
+    "suzanne_wireframe.png",
+    "suzanne_flat.png",
+    "suzanne_gouraud.png",
+    "suzanne_phong.png",
+    "cube_inside.png",
+    "near_plane_crossing.png",
 ];
 
 /// A fresh directory under the system temp dir, unique to this test and process.
@@ -49,7 +55,7 @@ fn demo_writes_every_picture() {
             bytes.starts_with(b"\x89PNG\r\n\x1a\n"),
             "{file} is not a PNG"
         );
-        // A blank 600x450 picture compresses to well under a kilobyte; every scene has real content.
+        // A blank 600x450 (or 640x480) picture compresses to well under a kilobyte; every scene has real content.
         assert!(bytes.len() > 2000, "{file} is only {} bytes", bytes.len());
         assert!(stdout.contains(file), "{file} not reported:\n{stdout}");
     }
@@ -72,6 +78,27 @@ fn demo_reports_an_unwritable_output_directory() {
     assert!(
         stderr.lines().any(|l| l.starts_with("error:")),
         "no `error:` line in stderr:\n{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn demo_reports_a_missing_model() {
+    let dir = scratch("demo-no-models");
+    let run = Command::new(env!("CARGO_BIN_EXE_host-tools"))
+        .args(["demo", "--out"])
+        .arg(dir.join("images"))
+        .arg("--models")
+        .arg(dir.join("no-such-dir"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success(), "demo should fail");
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l.starts_with("error: cannot load model") && l.contains("suzanne.obj")),
+        "no model error in stderr:\n{stderr}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
