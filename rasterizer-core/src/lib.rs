@@ -48,3 +48,8 @@ pub mod pipeline;
 pub mod raster;
 pub mod shade;
 pub mod target;
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+struct ReadmeExamples;
