@@ -339,3 +339,33 @@ fn focal_projection_w_is_one_minus_z_over_d() {
     assert!(Mat4::<Fx16>::focal(Fx16::ZERO).is_none());
     let _ = <Fx<16> as Scalar>::ONE;
 }
+
+#[test]
+fn trig_table_size_is_a_compile_time_choice() {
+    // The same rotation from a 16-entry and a 1024-entry table: the small one is coarser, by about
+    // the interpolation bound (pi/2/N)^2/8.
+    let worst = |m: &Mat4<Fx16>, t: f64| {
+        let (s, c) = t.sin_cos();
+        [
+            (m.m[0][0], c),
+            (m.m[0][2], s),
+            (m.m[2][0], -s),
+            (m.m[2][2], c),
+        ]
+        .iter()
+        .map(|(v, w)| (f(*v) - w).abs())
+        .fold(0.0, f64::max)
+    };
+    let (mut small, mut large) = (0.0f64, 0.0f64);
+    for a in (0..65536u32).step_by(331) {
+        let t = a as f64 / 65536.0 * std::f64::consts::TAU;
+        small = small.max(worst(&Mat4::rotation_y_with::<16>(Angle(a as u16)), t));
+        large = large.max(worst(&Mat4::rotation_y_with::<1024>(Angle(a as u16)), t));
+    }
+    assert!(small > 5e-4 && small < 1.3e-3, "16 entries: {small}");
+    assert!(large < 2e-5, "1024 entries: {large}");
+    assert_eq!(
+        Mat4::<Fx16>::rotation_y(Angle(1234)),
+        Mat4::rotation_y_with::<256>(Angle(1234))
+    );
+}

@@ -190,3 +190,80 @@ fn short_cache_is_slower_not_wrong() {
 fn cached_vertex_size_is_as_documented() {
     assert_eq!(core::mem::size_of::<CachedVertex<Fx16, [i32; 3], 4>>(), 40);
 }
+
+#[test]
+fn lit_shading_without_normals_uses_face_normals() {
+    // The sphere with no normals: Gouraud lighting falls back to each face's normal, so every
+    // triangle is evenly lit (no specular term here) and the picture equals flat shading's.
+    let (pos, tris) = sphere();
+    let mesh = Mesh::new(&pos, &tris);
+    let mut plain = lighting();
+    plain.set_material(Material {
+        ambient: Rgb888::new(30, 30, 40),
+        diffuse: Rgb888::new(200, 120, 60),
+        specular: Rgb888::BLACK,
+        shininess: 0,
+    });
+    let draw = |gouraud: bool| {
+        let xf = Transforms {
+            model: Mat4::identity(),
+            view: Mat4::look_at(
+                Vec3::from_ints(0, 0, 3),
+                Vec3::default(),
+                Vec3::from_ints(0, 1, 0),
+            )
+            .unwrap(),
+            projection: Mat4::perspective(
+                Angle::from_degrees(60),
+                Fx16::ONE,
+                Fx16::from_ratio(1, 10),
+                Fx16::from_int(100),
+            )
+            .unwrap(),
+        };
+        let mut buf = vec![0u16; 64 * 64];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 64, 64).unwrap();
+        let mut z = vec![u16::MAX; 64 * 64];
+        let depth = DepthBuffer::new(&mut z, 64, 64, Compare::Less).unwrap();
+        if gouraud {
+            let mut p = Pipeline::<_, _, _, _, 4>::new(
+                &xf,
+                Viewport::new(64, 64),
+                CullClockwise,
+                depth,
+                GouraudLit::<_, Rgb565, 2>::new(plain.clone()),
+            );
+            p.draw(&mut fb, &mesh).unwrap();
+        } else {
+            let mut p = Pipeline::<_, _, _, _, 4>::new(
+                &xf,
+                Viewport::new(64, 64),
+                CullClockwise,
+                depth,
+                FlatLit::<_, Rgb565, 2>::new(plain.clone()),
+            );
+            p.draw(&mut fb, &mesh).unwrap();
+        }
+        buf
+    };
+    let (g, f) = (draw(true), draw(false));
+    let distinct: std::collections::BTreeSet<u16> = g.iter().copied().filter(|&c| c != 0).collect();
+    assert!(
+        distinct.len() > 10,
+        "faces should be lit differently: {} colours",
+        distinct.len()
+    );
+    // Flat shading lights the centroid and Gouraud each corner with the same normal; with no
+    // specular term and a directional light the colour does not depend on the position, so they
+    // agree up to the 8.8 rounding of the interpolated colour: at most one step of a channel.
+    let close = g.iter().zip(&f).all(|(&a, &b)| {
+        let (ca, cb) = (
+            Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(a)),
+            Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(b)),
+        );
+        (i16::from(ca.r()) - i16::from(cb.r())).abs() <= 1
+            && (i16::from(ca.g()) - i16::from(cb.g())).abs() <= 1
+            && (i16::from(ca.b()) - i16::from(cb.b())).abs() <= 1
+    });
+    assert!(close);
+}

@@ -4,6 +4,7 @@
 //! space keeps `-w <= x, y, z <= w`. `a.then(b)` is "a, then b" (`b * a`). Every entry of a product is
 //! one [`Scalar::dot4`], so fixed-point products round once per entry.
 
+use super::trig::DEFAULT_TABLE;
 use super::{Angle, Scalar, Vec3, Vec4};
 
 /// A 4x4 matrix, row-major storage.
@@ -118,21 +119,36 @@ impl<S: Scalar> Mat4<S> {
 
     /// Rotation about x by `a` (counter-clockwise looking from +x towards the origin).
     pub fn rotation_x(a: Angle) -> Self {
-        let (s, c) = S::sin_cos(a);
+        Self::rotation_x_with::<DEFAULT_TABLE>(a)
+    }
+
+    /// [`Mat4::rotation_x`] with sine and cosine from an `N`-entry table.
+    pub fn rotation_x_with<const N: usize>(a: Angle) -> Self {
+        let (s, c) = S::sin_cos_with::<N>(a);
         let (o, l) = (S::ZERO, S::ONE);
         Self::from_rows([[l, o, o, o], [o, c, -s, o], [o, s, c, o], [o, o, o, l]])
     }
 
     /// Rotation about y by `a`.
     pub fn rotation_y(a: Angle) -> Self {
-        let (s, c) = S::sin_cos(a);
+        Self::rotation_y_with::<DEFAULT_TABLE>(a)
+    }
+
+    /// [`Mat4::rotation_y`] with sine and cosine from an `N`-entry table.
+    pub fn rotation_y_with<const N: usize>(a: Angle) -> Self {
+        let (s, c) = S::sin_cos_with::<N>(a);
         let (o, l) = (S::ZERO, S::ONE);
         Self::from_rows([[c, o, s, o], [o, l, o, o], [-s, o, c, o], [o, o, o, l]])
     }
 
     /// Rotation about z by `a`.
     pub fn rotation_z(a: Angle) -> Self {
-        let (s, c) = S::sin_cos(a);
+        Self::rotation_z_with::<DEFAULT_TABLE>(a)
+    }
+
+    /// [`Mat4::rotation_z`] with sine and cosine from an `N`-entry table.
+    pub fn rotation_z_with<const N: usize>(a: Angle) -> Self {
+        let (s, c) = S::sin_cos_with::<N>(a);
         let (o, l) = (S::ZERO, S::ONE);
         Self::from_rows([[c, -s, o, o], [s, c, o, o], [o, o, l, o], [o, o, o, l]])
     }
@@ -177,9 +193,19 @@ impl<S: Scalar> Mat4<S> {
     /// clip planes at `near` and `far` (`0 < near < far`). `None` for a degenerate field of view or
     /// planes.
     pub fn perspective(fov_y: Angle, aspect: S, near: S, far: S) -> Option<Self> {
+        Self::perspective_with::<DEFAULT_TABLE>(fov_y, aspect, near, far)
+    }
+
+    /// [`Mat4::perspective`] with sine and cosine from an `N`-entry table.
+    pub fn perspective_with<const N: usize>(
+        fov_y: Angle,
+        aspect: S,
+        near: S,
+        far: S,
+    ) -> Option<Self> {
         // cot(fov / 2) = (1 + cos fov) / sin fov: the whole angle, so an odd number of angle units
         // is not rounded down by halving it first.
-        let (s, c) = S::sin_cos(fov_y);
+        let (s, c) = S::sin_cos_with::<N>(fov_y);
         if s <= S::ZERO || aspect <= S::ZERO || near <= S::ZERO || far <= near {
             return None;
         }

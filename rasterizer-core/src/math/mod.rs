@@ -71,9 +71,14 @@ pub trait Scalar:
     fn to_fx16_bits(self) -> i32;
     /// The value from 16.16 bits.
     fn from_fx16_bits(bits: i32) -> Self;
-    /// `(sin, cos)` of an angle.
+    /// `(sin, cos)` of an angle, from the default 256-entry table.
     fn sin_cos(a: Angle) -> (Self, Self) {
-        let (s, c) = a.sin_cos_q30();
+        Self::sin_cos_with::<{ trig::DEFAULT_TABLE }>(a)
+    }
+    /// `(sin, cos)` of an angle from an `N`-entry quarter-wave table: the table size is a
+    /// compile-time choice (flash against accuracy, see [`trig`]).
+    fn sin_cos_with<const N: usize>(a: Angle) -> (Self, Self) {
+        let (s, c) = trig::sin_cos_table::<N>(a);
         (Self::from_q30(s), Self::from_q30(c))
     }
 }

@@ -355,6 +355,28 @@ where
         self.shading.vertex(&vin)
     }
 
+    /// The shader values of a triangle's three vertices. A lit shader on a mesh without normals
+    /// gets the face normal (the cross product of the edges in world space) at all three, which
+    /// depends on the face, so those values are never cached.
+    #[inline(always)]
+    fn face_vars<I: VertexIndex>(
+        &mut self,
+        mesh: &Mesh<'_, S, I>,
+        idx: [usize; 3],
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+    ) -> [Sh::Varyings; 3] {
+        if Sh::NEEDS_WORLD && mesh.normals.is_none() {
+            let mut vin = idx.map(|i| self.vertex_in(mesh, i));
+            let e1 = vin[1].position - vin[0].position;
+            let normal = e1.cross(vin[2].position - vin[0].position);
+            for v in &mut vin {
+                v.normal = normal;
+            }
+            return vin.map(|v| self.shading.vertex(&v));
+        }
+        idx.map(|i| self.var_of(mesh, i, cache))
+    }
+
     fn draw_with<T, I>(
         &mut self,
         target: &mut T,
@@ -399,7 +421,7 @@ where
                     let vin = idx.map(|i| self.vertex_in(mesh, i));
                     self.shading.face(&vin);
                 }
-                let var = idx.map(|i| self.var_of(mesh, i, cache));
+                let var = self.face_vars(mesh, idx, cache);
                 let sv = [0, 1, 2].map(|k| ScreenVertex {
                     p: projected[k].0,
                     z: projected[k].1,
@@ -417,7 +439,7 @@ where
                 continue;
             }
             stats.clipped += 1;
-            let var = idx.map(|i| self.var_of(mesh, i, cache));
+            let var = self.face_vars(mesh, idx, cache);
             let tri = [0, 1, 2].map(|k| ClipVertex {
                 pos: clip[k],
                 var: var[k],
