@@ -44,6 +44,7 @@ pub mod clip;
 pub mod color;
 pub mod geom;
 pub mod math;
+pub mod mesh;
 pub mod pipeline;
 pub mod raster;
 pub mod shade;

@@ -78,6 +78,59 @@ impl<'a, S, I> Mesh<'a, S, I> {
     }
 }
 
+/// Where a pipeline reads a mesh from: plain slices ([`Mesh`]) or the packed format read straight
+/// from flash ([`crate::mesh::PackedMesh`]).
+pub trait MeshSource<S> {
+    /// Number of vertices.
+    fn vertex_count(&self) -> usize;
+    /// Number of triangles.
+    fn triangle_count(&self) -> usize;
+    /// Triangle `t`'s vertex indices (`t < triangle_count()`); an index may be out of range, and
+    /// the pipeline then skips the triangle.
+    fn triangle(&self, t: usize) -> [usize; 3];
+    /// Vertex `i`'s position (`i < vertex_count()`).
+    fn position(&self, i: usize) -> Vec3<S>;
+    /// True when the mesh has normals.
+    fn has_normals(&self) -> bool;
+    /// Vertex `i`'s normal, if the mesh has normals.
+    fn normal(&self, i: usize) -> Option<Vec3<S>>;
+    /// Vertex `i`'s colour, if the mesh has colours.
+    fn color(&self, i: usize) -> Option<Rgb888>;
+}
+
+impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
+    #[inline(always)]
+    fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+    #[inline(always)]
+    fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+    #[inline(always)]
+    fn triangle(&self, t: usize) -> [usize; 3] {
+        self.triangles
+            .get(t)
+            .map_or([usize::MAX; 3], |tri| tri.map(VertexIndex::index))
+    }
+    #[inline(always)]
+    fn position(&self, i: usize) -> Vec3<S> {
+        self.positions.get(i).copied().unwrap_or_default()
+    }
+    #[inline(always)]
+    fn has_normals(&self) -> bool {
+        self.normals.is_some()
+    }
+    #[inline(always)]
+    fn normal(&self, i: usize) -> Option<Vec3<S>> {
+        self.normals.and_then(|n| n.get(i).copied())
+    }
+    #[inline(always)]
+    fn color(&self, i: usize) -> Option<Rgb888> {
+        self.colors.and_then(|c| c.get(i).copied())
+    }
+}
+
 /// Where normalised device coordinates land on the target: `x = -1` at the left edge of the
 /// rectangle, `y = +1` at its top (the y flip), in whole pixels. The pipeline also clips to it, so
 /// several viewports can share one target.
@@ -245,11 +298,8 @@ where
 
     /// The world-space data of a vertex the shader may read.
     #[inline(always)]
-    fn vertex_in<I: VertexIndex>(&self, mesh: &Mesh<'_, S, I>, i: usize) -> VertexIn<S> {
-        let color = mesh
-            .colors
-            .and_then(|c| c.get(i).copied())
-            .unwrap_or(Rgb888::WHITE);
+    fn vertex_in<M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
+        let color = mesh.color(i).unwrap_or(Rgb888::WHITE);
         if !Sh::NEEDS_WORLD {
             return VertexIn {
                 position: Vec3::default(),
@@ -257,9 +307,9 @@ where
                 color,
             };
         }
-        let position = self.model.transform_point(mesh.positions[i]).xyz();
-        let normal = match mesh.normals.and_then(|n| n.get(i)) {
-            Some(n) => self.normal_matrix.transform_dir(*n),
+        let position = self.model.transform_point(mesh.position(i)).xyz();
+        let normal = match mesh.normal(i) {
+            Some(n) => self.normal_matrix.transform_dir(n),
             None => Vec3::default(),
         };
         VertexIn {
@@ -273,14 +323,10 @@ where
     ///
     /// Each triangle transforms and shades its three vertices, so a vertex shared by six triangles
     /// is processed six times; [`Pipeline::draw_cached`] trades RAM for that work.
-    pub fn draw<T, I>(
-        &mut self,
-        target: &mut T,
-        mesh: &Mesh<'_, S, I>,
-    ) -> Result<RenderStats, T::Error>
+    pub fn draw<T, M>(&mut self, target: &mut T, mesh: &M) -> Result<RenderStats, T::Error>
     where
         T: Surface<Color = Sh::Color>,
-        I: VertexIndex,
+        M: MeshSource<S>,
     {
         self.draw_with(
             &mut ClipTo::new(target, self.viewport.rectangle()),
@@ -292,15 +338,15 @@ where
     /// Draws a mesh like [`Pipeline::draw`], processing each vertex at most once: `cache` holds
     /// one [`CachedVertex`] per mesh vertex (its contents on entry do not matter). Vertices beyond
     /// the cache's length are processed per triangle, so a short cache is slower, never wrong.
-    pub fn draw_cached<T, I>(
+    pub fn draw_cached<T, M>(
         &mut self,
         target: &mut T,
-        mesh: &Mesh<'_, S, I>,
+        mesh: &M,
         cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
     ) -> Result<RenderStats, T::Error>
     where
         T: Surface<Color = Sh::Color>,
-        I: VertexIndex,
+        M: MeshSource<S>,
     {
         for c in cache.iter_mut() {
             c.state = 0;
@@ -314,15 +360,15 @@ where
 
     /// A vertex's clip-space position and outcode, from the cache when it has them.
     #[inline(always)]
-    fn clip_of<I: VertexIndex>(
+    fn clip_of<M: MeshSource<S>>(
         &self,
-        mesh: &Mesh<'_, S, I>,
+        mesh: &M,
         i: usize,
         cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
     ) -> (Vec4<S>, Outcode) {
         if let Some(c) = cache.get_mut(i) {
             if c.state == 0 {
-                c.clip = self.mvp.transform_point(mesh.positions[i]);
+                c.clip = self.mvp.transform_point(mesh.position(i));
                 c.code = outcode(&c.clip);
                 if c.code == 0 {
                     (c.screen, c.z) = self.project(&c.clip);
@@ -331,15 +377,15 @@ where
             }
             return (c.clip, c.code);
         }
-        let clip = self.mvp.transform_point(mesh.positions[i]);
+        let clip = self.mvp.transform_point(mesh.position(i));
         (clip, outcode(&clip))
     }
 
     /// A vertex's shader values, from the cache when it has them.
     #[inline(always)]
-    fn var_of<I: VertexIndex>(
+    fn var_of<M: MeshSource<S>>(
         &mut self,
-        mesh: &Mesh<'_, S, I>,
+        mesh: &M,
         i: usize,
         cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
     ) -> Sh::Varyings {
@@ -359,13 +405,13 @@ where
     /// gets the face normal (the cross product of the edges in world space) at all three, which
     /// depends on the face, so those values are never cached.
     #[inline(always)]
-    fn face_vars<I: VertexIndex>(
+    fn face_vars<M: MeshSource<S>>(
         &mut self,
-        mesh: &Mesh<'_, S, I>,
+        mesh: &M,
         idx: [usize; 3],
         cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
     ) -> [Sh::Varyings; 3] {
-        if Sh::NEEDS_WORLD && mesh.normals.is_none() {
+        if Sh::NEEDS_WORLD && !mesh.has_normals() {
             let mut vin = idx.map(|i| self.vertex_in(mesh, i));
             let e1 = vin[1].position - vin[0].position;
             let normal = e1.cross(vin[2].position - vin[0].position);
@@ -377,23 +423,23 @@ where
         idx.map(|i| self.var_of(mesh, i, cache))
     }
 
-    fn draw_with<T, I>(
+    fn draw_with<T, M>(
         &mut self,
         target: &mut T,
-        mesh: &Mesh<'_, S, I>,
+        mesh: &M,
         cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
     ) -> Result<RenderStats, T::Error>
     where
         T: Surface<Color = Sh::Color>,
-        I: VertexIndex,
+        M: MeshSource<S>,
     {
         let mut stats = RenderStats {
-            triangles: mesh.triangles.len().min(u32::MAX as usize) as u32,
+            triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
-        let n = mesh.positions.len();
-        for tri in mesh.triangles {
-            let idx = tri.map(VertexIndex::index);
+        let n = mesh.vertex_count();
+        for t in 0..mesh.triangle_count() {
+            let idx = mesh.triangle(t);
             if idx.iter().any(|&i| i >= n) {
                 stats.invalid += 1;
                 continue;
@@ -495,29 +541,29 @@ where
     /// Draws a mesh's edges in one colour, clipped in homogeneous space (nothing behind the camera
     /// is drawn) and then to the target. Culling applies, so a closed mesh shows only its front
     /// edges; there is no depth test.
-    pub fn draw_wireframe<T, I>(
+    pub fn draw_wireframe<T, M>(
         &mut self,
         target: &mut T,
-        mesh: &Mesh<'_, S, I>,
+        mesh: &M,
         color: T::Color,
     ) -> Result<RenderStats, T::Error>
     where
         T: Surface,
-        I: VertexIndex,
+        M: MeshSource<S>,
     {
         let target = &mut ClipTo::new(target, self.viewport.rectangle());
         let mut stats = RenderStats {
-            triangles: mesh.triangles.len().min(u32::MAX as usize) as u32,
+            triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
-        let n = mesh.positions.len();
-        for tri in mesh.triangles {
-            let idx = tri.map(VertexIndex::index);
+        let n = mesh.vertex_count();
+        for t in 0..mesh.triangle_count() {
+            let idx = mesh.triangle(t);
             if idx.iter().any(|&i| i >= n) {
                 stats.invalid += 1;
                 continue;
             }
-            let clip = idx.map(|i| self.mvp.transform_point(mesh.positions[i]));
+            let clip = idx.map(|i| self.mvp.transform_point(mesh.position(i)));
             let codes = clip.map(|p| outcode(&p));
             if trivially_outside(&clip, codes) {
                 stats.outside += 1;

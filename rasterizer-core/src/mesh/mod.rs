@@ -1,0 +1,379 @@
+//! The packed mesh format: what the host converter writes and firmware embeds with
+//! `include_bytes!`, read in place with no copy and no allocation.
+//!
+//! Every field is little-endian. A blob is a 40-byte header followed by sections, each starting at
+//! a multiple of 4 bytes from the start of the blob (zero padding between them):
+//!
+//! | offset | size | field |
+//! |---:|---:|---|
+//! | 0 | 4 | magic `RMSH` |
+//! | 4 | 2 | version, `1` |
+//! | 6 | 2 | flags: bit 0 normals, bit 1 colours, bit 2 32-bit indices (else 16-bit); others 0 |
+//! | 8 | 4 | vertex count `n` (at most 2^24) |
+//! | 12 | 4 | triangle count `t` (at most 2^24) |
+//! | 16 | 12 | offset: the box centre, x y z, 16.16 fixed point (`i32`) |
+//! | 28 | 12 | scale: 16.16 units per quantum, x y z, in 16.16 fixed point (`u32`, not zero) |
+//! | 40 | 6 n | positions: `i16` x y z per vertex, each in `-32767 ..= 32767` |
+//! | | 6 n | normals (flag 0): `i16` x y z per vertex, unit length at 32767 |
+//! | | 3 n | colours (flag 1): r g b bytes per vertex |
+//! | | 6 t or 12 t | triangles: three `u16` (or `u32`, flag 2) vertex indices each |
+//!
+//! A position decodes to `offset + q * scale / 2^16` (16.16, rounded half up): with `i16` quanta
+//! across the mesh's bounding box, the quantisation error is at most half a quantum, 1/65534 of the
+//! box's extent in each axis (1.5e-5 for a unit-sphere mesh, one 16.16 step). A normal decodes to
+//! `q / 32767` in 16.16. Meshes of more than 65,535 vertices use 32-bit indices.
+//!
+//! [`PackedMesh::parse`] checks everything once (magic, version, flags, counts, that the length is
+//! exactly what the counts need, zero padding, scales, quanta and every index), so any byte string
+//! gives a mesh or a [`MeshError`], and the accessors afterwards need no checks that can fail. The
+//! reader decodes with `from_le_bytes`, so the blob itself needs no alignment.
+
+use crate::math::{Scalar, Vec3};
+use crate::pipeline::MeshSource;
+use core::fmt;
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+/// The magic number at the start of a blob.
+pub const MAGIC: [u8; 4] = *b"RMSH";
+/// The format version this reader understands.
+pub const VERSION: u16 = 1;
+/// Header size in bytes.
+pub const HEADER_LEN: usize = 40;
+/// Flag: the mesh has normals.
+pub const FLAG_NORMALS: u16 = 1;
+/// Flag: the mesh has vertex colours.
+pub const FLAG_COLORS: u16 = 2;
+/// Flag: indices are 32-bit.
+pub const FLAG_U32_INDICES: u16 = 4;
+/// The largest vertex or triangle count a blob may declare.
+pub const MAX_COUNT: u32 = 1 << 24;
+/// The largest quantum magnitude.
+pub const QUANTUM_MAX: i16 = 32767;
+
+/// Why a byte string is not a mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshError {
+    /// Shorter than the header.
+    TooShort {
+        /// Bytes given.
+        len: usize,
+    },
+    /// The first four bytes are not `RMSH`.
+    BadMagic,
+    /// A version this reader does not know.
+    UnsupportedVersion(u16),
+    /// Flag bits this version does not define.
+    UnknownFlags(u16),
+    /// A vertex or triangle count above [`MAX_COUNT`], or triangles with no vertices.
+    BadCounts {
+        /// Vertices declared.
+        vertices: u32,
+        /// Triangles declared.
+        triangles: u32,
+    },
+    /// The length is not what the header's counts need.
+    WrongLength {
+        /// Bytes the header implies.
+        expected: usize,
+        /// Bytes given.
+        actual: usize,
+    },
+    /// A padding byte between sections is not zero.
+    BadPadding {
+        /// Its offset in the blob.
+        offset: usize,
+    },
+    /// A scale of zero, or one so large that decoded positions leave the 16.16 range.
+    BadScale,
+    /// A position or normal quantum of -32768.
+    BadQuantum {
+        /// The vertex.
+        vertex: usize,
+    },
+    /// A triangle refers to a vertex that does not exist.
+    IndexOutOfRange {
+        /// The triangle.
+        triangle: usize,
+        /// The index it holds.
+        index: u32,
+    },
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::TooShort { len } => write!(
+                f,
+                "{len} bytes is shorter than the {HEADER_LEN}-byte header"
+            ),
+            Self::BadMagic => write!(f, "not a packed mesh (magic is not RMSH)"),
+            Self::UnsupportedVersion(v) => write!(
+                f,
+                "format version {v} is not supported (expected {VERSION})"
+            ),
+            Self::UnknownFlags(x) => write!(f, "unknown flag bits {x:#06x}"),
+            Self::BadCounts {
+                vertices,
+                triangles,
+            } => {
+                write!(f, "bad counts: {vertices} vertices, {triangles} triangles (at most {MAX_COUNT} each)")
+            }
+            Self::WrongLength { expected, actual } => {
+                write!(
+                    f,
+                    "the header needs {expected} bytes but the blob has {actual}"
+                )
+            }
+            Self::BadPadding { offset } => write!(f, "non-zero padding byte at offset {offset}"),
+            Self::BadScale => write!(f, "a scale is zero or too large for 16.16 positions"),
+            Self::BadQuantum { vertex } => write!(f, "vertex {vertex} has a quantum of -32768"),
+            Self::IndexOutOfRange { triangle, index } => {
+                write!(
+                    f,
+                    "triangle {triangle} refers to vertex {index}, which does not exist"
+                )
+            }
+        }
+    }
+}
+
+impl core::error::Error for MeshError {}
+
+/// A validated packed mesh borrowing its bytes.
+#[derive(Debug, Clone, Copy)]
+pub struct PackedMesh<'a> {
+    vertices: usize,
+    triangles: usize,
+    offset: [i32; 3],
+    scale: [u32; 3],
+    positions: &'a [u8],
+    normals: Option<&'a [u8]>,
+    colors: Option<&'a [u8]>,
+    indices: &'a [u8],
+    wide: bool,
+}
+
+/// `n` rounded up to a multiple of 4.
+const fn pad4(n: usize) -> usize {
+    (n + 3) & !3
+}
+
+/// The section layout of a blob: `(start, len)` of positions, normals, colours, indices, and the
+/// total length.
+fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 4], usize) {
+    let mut at = HEADER_LEN;
+    let mut section = |len: usize| {
+        let s = (at, len);
+        at = pad4(at + len);
+        s
+    };
+    let pos = section(6 * n);
+    let nrm = section(if flags & FLAG_NORMALS != 0 { 6 * n } else { 0 });
+    let col = section(if flags & FLAG_COLORS != 0 { 3 * n } else { 0 });
+    let idx = section(if flags & FLAG_U32_INDICES != 0 {
+        12 * t
+    } else {
+        6 * t
+    });
+    ([pos, nrm, col, idx], at)
+}
+
+#[inline(always)]
+fn u16_at(b: &[u8], i: usize) -> u16 {
+    u16::from_le_bytes([b[i], b[i + 1]])
+}
+
+#[inline(always)]
+fn u32_at(b: &[u8], i: usize) -> u32 {
+    u32::from_le_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]])
+}
+
+impl<'a> PackedMesh<'a> {
+    /// Validates `bytes` and reads the mesh in place.
+    ///
+    /// # Errors
+    /// A [`MeshError`] for anything that is not a well-formed version-1 mesh.
+    pub fn parse(bytes: &'a [u8]) -> Result<Self, MeshError> {
+        if bytes.len() < HEADER_LEN {
+            return Err(MeshError::TooShort { len: bytes.len() });
+        }
+        if bytes[0..4] != MAGIC {
+            return Err(MeshError::BadMagic);
+        }
+        let version = u16_at(bytes, 4);
+        if version != VERSION {
+            return Err(MeshError::UnsupportedVersion(version));
+        }
+        let flags = u16_at(bytes, 6);
+        if flags & !(FLAG_NORMALS | FLAG_COLORS | FLAG_U32_INDICES) != 0 {
+            return Err(MeshError::UnknownFlags(flags));
+        }
+        let (nv, nt) = (u32_at(bytes, 8), u32_at(bytes, 12));
+        if nv > MAX_COUNT || nt > MAX_COUNT || (nv == 0 && nt > 0) {
+            return Err(MeshError::BadCounts {
+                vertices: nv,
+                triangles: nt,
+            });
+        }
+        let (n, t) = (nv as usize, nt as usize);
+        let ([pos, nrm, col, idx], total) = layout(n, t, flags);
+        if bytes.len() != total {
+            return Err(MeshError::WrongLength {
+                expected: total,
+                actual: bytes.len(),
+            });
+        }
+        // Padding: every byte not inside the header or a section is zero.
+        let mut covered = HEADER_LEN;
+        for (start, len) in [pos, nrm, col, idx] {
+            if let Some(o) = (covered..start).find(|&o| bytes[o] != 0) {
+                return Err(MeshError::BadPadding { offset: o });
+            }
+            covered = start + len;
+        }
+        if let Some(o) = (covered..total).find(|&o| bytes[o] != 0) {
+            return Err(MeshError::BadPadding { offset: o });
+        }
+        let offset = [0, 1, 2].map(|k| u32_at(bytes, 16 + 4 * k) as i32);
+        let scale = [0, 1, 2].map(|k| u32_at(bytes, 28 + 4 * k));
+        // The decoded position offset + 32767 scale / 2^16 must stay inside i32.
+        for k in 0..3 {
+            let reach = (i64::from(scale[k]) * i64::from(QUANTUM_MAX)) >> 16;
+            let (lo, hi) = (
+                i64::from(offset[k]) - reach - 1,
+                i64::from(offset[k]) + reach + 1,
+            );
+            if scale[k] == 0 || lo < i64::from(i32::MIN) || hi > i64::from(i32::MAX) {
+                return Err(MeshError::BadScale);
+            }
+        }
+        let sec = |(start, len): (usize, usize)| &bytes[start..start + len];
+        let mesh = Self {
+            vertices: n,
+            triangles: t,
+            offset,
+            scale,
+            positions: sec(pos),
+            normals: (flags & FLAG_NORMALS != 0).then(|| sec(nrm)),
+            colors: (flags & FLAG_COLORS != 0).then(|| sec(col)),
+            indices: sec(idx),
+            wide: flags & FLAG_U32_INDICES != 0,
+        };
+        for v in 0..n {
+            let bad = |b: &[u8]| (0..3).any(|k| u16_at(b, 6 * v + 2 * k) == 0x8000);
+            if bad(mesh.positions) || mesh.normals.is_some_and(bad) {
+                return Err(MeshError::BadQuantum { vertex: v });
+            }
+        }
+        for tri in 0..t {
+            for k in 0..3 {
+                let index = mesh.raw_index(tri, k);
+                if index as usize >= n {
+                    return Err(MeshError::IndexOutOfRange {
+                        triangle: tri,
+                        index,
+                    });
+                }
+            }
+        }
+        Ok(mesh)
+    }
+
+    #[inline(always)]
+    fn raw_index(&self, tri: usize, k: usize) -> u32 {
+        if self.wide {
+            u32_at(self.indices, 12 * tri + 4 * k)
+        } else {
+            u32::from(u16_at(self.indices, 6 * tri + 2 * k))
+        }
+    }
+
+    /// Number of vertices.
+    pub fn vertices(&self) -> usize {
+        self.vertices
+    }
+
+    /// Number of triangles.
+    pub fn triangles(&self) -> usize {
+        self.triangles
+    }
+
+    /// The box centre and the 16.16 units per quantum (16.16 fixed point), per axis.
+    pub fn quantisation(&self) -> ([i32; 3], [u32; 3]) {
+        (self.offset, self.scale)
+    }
+
+    /// Vertex `i`'s position in 16.16 bits, or `None` past the end.
+    #[inline]
+    pub fn position_bits(&self, i: usize) -> Option<[i32; 3]> {
+        if i >= self.vertices {
+            return None;
+        }
+        Some([0, 1, 2].map(|k| {
+            let q = i64::from(u16_at(self.positions, 6 * i + 2 * k) as i16);
+            // Checked at parse time to stay inside i32.
+            (i64::from(self.offset[k]) + ((q * i64::from(self.scale[k]) + (1 << 15)) >> 16)) as i32
+        }))
+    }
+
+    /// Vertex `i`'s normal in 16.16 bits, or `None` without normals or past the end.
+    #[inline]
+    pub fn normal_bits(&self, i: usize) -> Option<[i32; 3]> {
+        let b = self.normals.filter(|_| i < self.vertices)?;
+        Some([0, 1, 2].map(|k| {
+            let q = i32::from(u16_at(b, 6 * i + 2 * k) as i16);
+            // q / 32767 in 16.16, rounded half up.
+            ((i64::from(q) * 65536 + 16383).div_euclid(32767)) as i32
+        }))
+    }
+
+    /// Vertex `i`'s colour, or `None` without colours or past the end.
+    #[inline]
+    pub fn color_of(&self, i: usize) -> Option<Rgb888> {
+        let b = self.colors.filter(|_| i < self.vertices)?;
+        Some(Rgb888::new(b[3 * i], b[3 * i + 1], b[3 * i + 2]))
+    }
+
+    /// Triangle `t`'s vertex indices, or `None` past the end.
+    #[inline]
+    pub fn triangle_indices(&self, t: usize) -> Option<[u32; 3]> {
+        (t < self.triangles).then(|| [0, 1, 2].map(|k| self.raw_index(t, k)))
+    }
+}
+
+impl<S: Scalar> MeshSource<S> for PackedMesh<'_> {
+    #[inline(always)]
+    fn vertex_count(&self) -> usize {
+        self.vertices
+    }
+    #[inline(always)]
+    fn triangle_count(&self) -> usize {
+        self.triangles
+    }
+    #[inline(always)]
+    fn triangle(&self, t: usize) -> [usize; 3] {
+        self.triangle_indices(t)
+            .map_or([usize::MAX; 3], |i| i.map(|v| v as usize))
+    }
+    #[inline(always)]
+    fn position(&self, i: usize) -> Vec3<S> {
+        let p = self
+            .position_bits(i)
+            .unwrap_or_default()
+            .map(S::from_fx16_bits);
+        Vec3::new(p[0], p[1], p[2])
+    }
+    #[inline(always)]
+    fn has_normals(&self) -> bool {
+        self.normals.is_some()
+    }
+    #[inline(always)]
+    fn normal(&self, i: usize) -> Option<Vec3<S>> {
+        let n = self.normal_bits(i)?.map(S::from_fx16_bits);
+        Some(Vec3::new(n[0], n[1], n[2]))
+    }
+    #[inline(always)]
+    fn color(&self, i: usize) -> Option<Rgb888> {
+        self.color_of(i)
+    }
+}
