@@ -1,4 +1,6 @@
 //! Host-side helpers shared by the host tools, benches and examples.
 
+pub mod convert;
 pub mod obj;
+pub mod scenefile;
 pub mod scenes;

@@ -45,6 +45,14 @@ enum Command {
         The file names are fixed; existing files are overwritten.\n\n\
         Example: cargo run --release -p host-tools -- demo --out /tmp/pictures")]
     Demo(DemoArgs),
+    /// Convert an OBJ file into the packed fixed-point mesh firmware embeds (or Rust source).
+    Convert(host_tools::convert::ConvertArgs),
+    /// Render a scene file to a PNG through embedded-graphics-simulator.
+    Render(host_tools::scenefile::RenderArgs),
+    /// Render a turntable of a scene file as an animated GIF or a PNG sequence.
+    Animate(host_tools::scenefile::AnimateArgs),
+    /// Render a scene in fixed point and in floating point and write the difference image.
+    Compare(host_tools::scenefile::CompareArgs),
 }
 
 /// Options of the `demo` command.
@@ -66,10 +74,15 @@ struct DemoArgs {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = match cli.command {
+    let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
         Command::Demo(args) => demo::run(&args.out, &args.models, |path| {
             println!("wrote {}", path.display())
-        }),
+        })
+        .map_err(Into::into),
+        Command::Convert(args) => host_tools::convert::run(&args),
+        Command::Render(args) => host_tools::scenefile::render(&args),
+        Command::Animate(args) => host_tools::scenefile::animate(&args),
+        Command::Compare(args) => host_tools::scenefile::compare(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
