@@ -7,6 +7,7 @@ use embedded_graphics_core::prelude::{PixelColor, PointsIter};
 use embedded_graphics_core::Pixel;
 use rasterizer_core::geom::SubPoint;
 
+pub mod packed;
 pub mod reference3d;
 
 /// A draw target that panics on any out-of-bounds write and on any pixel written twice.

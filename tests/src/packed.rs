@@ -1,0 +1,74 @@
+//! A minimal encoder of the packed mesh format, written from the format's documentation, so the
+//! reader can be tested without the host converter.
+
+/// One vertex: position quanta, optional normal quanta and colour.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Vert {
+    /// Position quanta.
+    pub q: [i16; 3],
+    /// Normal quanta.
+    pub n: [i16; 3],
+    /// Colour.
+    pub c: [u8; 3],
+}
+
+/// Encodes a mesh: `offset` and `scale` per axis as the format defines them.
+pub fn encode(
+    verts: &[Vert],
+    tris: &[[u32; 3]],
+    offset: [i32; 3],
+    scale: [u32; 3],
+    normals: bool,
+    colors: bool,
+    wide: bool,
+) -> Vec<u8> {
+    let mut b = Vec::new();
+    b.extend_from_slice(b"RMSH");
+    b.extend_from_slice(&1u16.to_le_bytes());
+    let flags = u16::from(normals) | u16::from(colors) << 1 | u16::from(wide) << 2;
+    b.extend_from_slice(&flags.to_le_bytes());
+    b.extend_from_slice(&(verts.len() as u32).to_le_bytes());
+    b.extend_from_slice(&(tris.len() as u32).to_le_bytes());
+    for o in offset {
+        b.extend_from_slice(&o.to_le_bytes());
+    }
+    for s in scale {
+        b.extend_from_slice(&s.to_le_bytes());
+    }
+    let pad = |b: &mut Vec<u8>| {
+        while b.len() % 4 != 0 {
+            b.push(0);
+        }
+    };
+    for v in verts {
+        for q in v.q {
+            b.extend_from_slice(&q.to_le_bytes());
+        }
+    }
+    pad(&mut b);
+    if normals {
+        for v in verts {
+            for q in v.n {
+                b.extend_from_slice(&q.to_le_bytes());
+            }
+        }
+        pad(&mut b);
+    }
+    if colors {
+        for v in verts {
+            b.extend_from_slice(&v.c);
+        }
+        pad(&mut b);
+    }
+    for t in tris {
+        for i in t {
+            if wide {
+                b.extend_from_slice(&i.to_le_bytes());
+            } else {
+                b.extend_from_slice(&(*i as u16).to_le_bytes());
+            }
+        }
+    }
+    pad(&mut b);
+    b
+}
