@@ -231,8 +231,13 @@ struct Plane {
     b: i64,
 }
 
-/// `round(f 2^16 / den2)`, halves up, for `den2 > 0`, without overflow: quotient and remainder are
-/// scaled separately (`den2 < 2^46` on the fast path; larger divisors go through `i128`).
+/// The number of planes a triangle can carry: the shader's values and depth (the last slot).
+const PLANES: usize = MAX_VARYINGS + 1;
+/// The depth plane's slot.
+const Z: usize = MAX_VARYINGS;
+
+/// `round(f 2^16 / den2)`, halves up, for `den2 > 0`: quotient and remainder are scaled separately
+/// (`den2 < 2^46` on the fast path; larger divisors go through `i128`).
 #[inline(always)]
 fn scaled_div(f: i128, den2: i64) -> i64 {
     if den2 < 1 << 46 {
@@ -244,6 +249,31 @@ fn scaled_div(f: i128, den2: i64) -> i64 {
     (((f << FRAC) + i128::from(den2 / 2)).div_euclid(i128::from(den2))) as i64
 }
 
+/// `(n div d, n mod d)` of an `i128` numerator, `d > 0`, quotient saturated to `i64`.
+#[inline(always)]
+fn divmod(n: i128, d: i64) -> (i64, i64) {
+    // 64-bit division when the numerator fits (small triangles): a 128-bit one is a library call.
+    if let Ok(n) = i64::try_from(n) {
+        return (n.div_euclid(d), n.rem_euclid(d));
+    }
+    let d = i128::from(d);
+    let q = n
+        .div_euclid(d)
+        .clamp(i128::from(i64::MIN), i128::from(i64::MAX));
+    (q as i64, n.rem_euclid(d) as i64)
+}
+
+/// A plane's value at a span start, exactly: `v0 2^16 + floor(N / den2)` with
+/// `N = (a dx2 + b dy2) 2^16 + den2 / 2`, kept as the quotient `q` and the remainder `r` of `N`, so
+/// that moving to the next span start is additions (and a few subtractions to bring `r` back into
+/// `[0, den2)`) with no rounding: every span starts from the exactly rounded value, wherever the
+/// walk began (a band render and a whole-frame render agree to the bit).
+#[derive(Debug, Clone, Copy, Default)]
+struct Exact {
+    q: i64,
+    r: i64,
+}
+
 struct Interp<'a, S: Surface, D, V, F, const P: bool> {
     surface: &'a mut S,
     depth: &'a mut D,
@@ -251,24 +281,22 @@ struct Interp<'a, S: Surface, D, V, F, const P: bool> {
     s: i64,
     origin: (i64, i64),
     den2: i64,
-    z: Plane,
-    /// The depth plane's step per pixel (16.16).
-    dz: i64,
-    /// Affine: the values' planes. Perspective-correct: `1/w` and the two scaled barycentrics.
-    planes: [Plane; MAX_VARYINGS],
-    /// The planes' steps per pixel (16.16), the same for every span.
-    steps: [i64; MAX_VARYINGS],
-    /// The planes' steps per row (16.16), and the depth plane's.
-    row_steps: [i64; MAX_VARYINGS],
-    dz_row: i64,
-    /// The previous span's first pixel and its values, which the next span starts from: two
-    /// multiplications per plane instead of an exact evaluation (two divisions). Each step adds at
-    /// most half a unit of 2^-16, so after `r` rows and `c` columns of travel a value is within
-    /// `(r + c) 2^-17` units of exact (2e-3 units on a 240-row screen). Off (`None` forever) when
-    /// a step is too large for the products to fit `i64`.
+    /// The values' planes (affine), or `1/w` and the two scaled barycentrics (perspective-correct),
+    /// then depth in slot [`Z`].
+    planes: [Plane; PLANES],
+    /// Which slots are in use: `0..used` and, with a depth test, `Z`.
+    used: usize,
+    /// Per-pixel steps in 16.16, rounded (the same for every span).
+    steps: [i64; PLANES],
+    /// `divmod(a 2s 2^16, den2)` and `divmod(b 2s 2^16, den2)`: the exact moves of `N` per column
+    /// and per row.
+    col: [Exact; PLANES],
+    row: [Exact; PLANES],
+    /// The previous span's start and its exact values.
     prev: Option<(i32, i32)>,
-    prev_z: i64,
-    prev_vals: [i64; MAX_VARYINGS],
+    at: [Exact; PLANES],
+    /// The moves fit `i64` (`den2 < 2^46`, steps below 2^40): otherwise every span start is
+    /// evaluated from scratch.
     incremental: bool,
     count: usize,
     /// Perspective-correct only: the first vertex's values and the differences to the other two.
@@ -281,11 +309,79 @@ struct Interp<'a, S: Surface, D, V, F, const P: bool> {
 impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: bool>
     Interp<'_, S, D, V, F, P>
 {
-    /// The plane's value at an offset, in 16.16.
+    /// Moves every plane's exact value to the span starting at `(x0, row)`.
     #[inline(always)]
-    fn at(&self, p: &Plane, dx2: i64, dy2: i64) -> i64 {
+    fn seek(&mut self, row: i32, x0: i32) {
+        if let (true, Some((pr, px))) = (self.incremental, self.prev) {
+            let (dr, dc) = (i64::from(row - pr), i64::from(x0 - px));
+            for i in 0..self.used {
+                self.advance(i, dr, dc);
+            }
+            if D::ENABLED {
+                self.advance(Z, dr, dc);
+            }
+        } else {
+            let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.origin.0;
+            let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
+            for i in 0..self.used {
+                self.exact(i, dx2, dy2);
+            }
+            if D::ENABLED {
+                self.exact(Z, dx2, dy2);
+            }
+        }
+        self.prev = Some((row, x0));
+    }
+
+    /// Plane `i` evaluated from scratch at doubled offsets `(dx2, dy2)`.
+    #[inline(always)]
+    fn exact(&mut self, i: usize, dx2: i64, dy2: i64) {
+        let p = self.planes[i];
         let f = i128::from(p.a) * i128::from(dx2) + i128::from(p.b) * i128::from(dy2);
-        (p.v0 << FRAC) + scaled_div(f, self.den2)
+        let (q, r) = divmod((f << FRAC) + i128::from(self.den2 / 2), self.den2);
+        self.at[i] = Exact { q, r };
+    }
+
+    /// Plane `i` moved by `dr` rows and `dc` columns, exactly.
+    #[inline(always)]
+    fn advance(&mut self, i: usize, dr: i64, dc: i64) {
+        let den2 = self.den2;
+        let (c, r) = (self.col[i], self.row[i]);
+        let e = &mut self.at[i];
+        e.q += dc * c.q + dr * r.q;
+        e.r += dc * c.r + dr * r.r;
+        // Back into [0, den2): a step or two for neighbouring spans, a division otherwise.
+        if e.r >= den2 {
+            if e.r < 3 * den2 {
+                e.r -= den2;
+                e.q += 1;
+                if e.r >= den2 {
+                    e.r -= den2;
+                    e.q += 1;
+                }
+            } else {
+                e.q += e.r / den2;
+                e.r %= den2;
+            }
+        } else if e.r < 0 {
+            if e.r >= -2 * den2 {
+                e.r += den2;
+                e.q -= 1;
+                if e.r < 0 {
+                    e.r += den2;
+                    e.q -= 1;
+                }
+            } else {
+                e.q += e.r.div_euclid(den2);
+                e.r = e.r.rem_euclid(den2);
+            }
+        }
+    }
+
+    /// Plane `i`'s value at the current span start, in 16.16.
+    #[inline(always)]
+    fn value(&self, i: usize) -> i64 {
+        (self.planes[i].v0 << FRAC).saturating_add(self.at[i].q)
     }
 }
 
@@ -296,38 +392,16 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
 
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
-        let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.origin.0;
-        let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
-        let dz = self.dz;
-        let planes = if P { 3 } else { self.count };
+        self.seek(row, x0);
+        let z0 = if D::ENABLED { self.value(Z) } else { 0 };
+        let dz = self.steps[Z];
+        let planes = self.used;
         let mut start = [0i64; MAX_VARYINGS];
-        let z0;
-        if let Some((pr, px)) = self.prev {
-            let (dr, dc) = (i64::from(row - pr), i64::from(x0 - px));
-            z0 = if D::ENABLED {
-                self.prev_z + dr * self.dz_row + dc * dz
-            } else {
-                0
-            };
-            for (i, s) in start.iter_mut().enumerate().take(planes) {
-                *s = self.prev_vals[i] + dr * self.row_steps[i] + dc * self.steps[i];
-            }
-        } else {
-            z0 = if D::ENABLED {
-                self.at(&self.z, dx2, dy2)
-            } else {
-                0
-            };
-            for (i, s) in start.iter_mut().enumerate().take(planes) {
-                *s = self.at(&self.planes[i], dx2, dy2);
-            }
+        for (i, s) in start.iter_mut().enumerate().take(planes) {
+            *s = self.value(i);
         }
-        if self.incremental {
-            self.prev = Some((row, x0));
-            self.prev_z = z0;
-            self.prev_vals = start;
-        }
-        let step = self.steps;
+        let mut step = [0i64; MAX_VARYINGS];
+        step[..planes].copy_from_slice(&self.steps[..planes]);
         let count = self.count;
         let Self {
             surface,
@@ -374,6 +448,11 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
 /// [`crate::raster::triangle::fill_triangle`]; a zero-area triangle or one outside the guard band
 /// draws nothing.
 ///
+/// Every span starts from the exactly rounded value of each plane (kept as a quotient and a
+/// remainder, so moving between spans needs no division), and steps across the span in 16.16. The
+/// pixels therefore do not depend on which rows are drawn: rendering the screen in bands gives the
+/// whole-frame picture to the bit.
+///
 /// With `PERSPECTIVE` the values are interpolated perspective-correctly from the vertices' `q`
 /// (`1/w`, see [`ScreenVertex::q`]): the barycentrics divided by `w` are planes over the screen and
 /// each pixel divides them by `1/w` (two divisions per pixel). Without it they are affine in screen
@@ -403,8 +482,7 @@ where
         a: sign * ((f1 - f0) * (v2.1 - v0.1) - (f2 - f0) * (v1.1 - v0.1)),
         b: sign * ((f2 - f0) * (v1.0 - v0.0) - (f1 - f0) * (v2.0 - v0.0)),
     };
-    let zs = [vertices[o0].z, vertices[o1].z, vertices[o2].z].map(i64::from);
-    let mut planes = [Plane::default(); MAX_VARYINGS];
+    let mut planes = [Plane::default(); PLANES];
     let values = [vertices[o0].var, vertices[o1].var, vertices[o2].var];
     let count = values[0].as_slice().len().min(MAX_VARYINGS);
     let value = |k: usize, i: usize| i64::from(values[k].as_slice()[i]);
@@ -413,7 +491,7 @@ where
         [0i64; MAX_VARYINGS],
         [0i64; MAX_VARYINGS],
     );
-    if PERSPECTIVE {
+    let used = if PERSPECTIVE {
         let q = [vertices[o0].q, vertices[o1].q, vertices[o2].q].map(|q| q.clamp(1, Q_MAX));
         planes[0] = plane(q[0], q[1], q[2]);
         planes[1] = plane(0, q[1], 0);
@@ -423,39 +501,39 @@ where
             d1[i] = value(1, i) - value(0, i);
             d2[i] = value(2, i) - value(0, i);
         }
+        3
     } else {
         for (i, p) in planes.iter_mut().enumerate().take(count) {
             *p = plane(value(0, i), value(1, i), value(2, i));
         }
+        count
+    };
+    let zs = [vertices[o0].z, vertices[o1].z, vertices[o2].z].map(i64::from);
+    planes[Z] = plane(zs[0], zs[1], zs[2]);
+    let s = 1i64 << BITS;
+    let mut steps = [0i64; PLANES];
+    let mut col = [Exact::default(); PLANES];
+    let mut row = [Exact::default(); PLANES];
+    let mut incremental = den2 < 1 << 46;
+    let mut setup = |i: usize| {
+        let p = planes[i];
+        let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << FRAC, den2);
+        let (rq, rr) = divmod((i128::from(p.b) * i128::from(2 * s)) << FRAC, den2);
+        // The per-pixel step is the column move rounded: round(a 2s 2^16 / den2).
+        steps[i] = cq + i64::from(2 * cr >= den2);
+        col[i] = Exact { q: cq, r: cr };
+        row[i] = Exact { q: rq, r: rr };
+        // Travel between span starts is at most 2^16 rows or columns: moves below 2^40 keep
+        // the products below 2^56.
+        incremental &= cq.unsigned_abs() < 1 << 40 && rq.unsigned_abs() < 1 << 40;
+    };
+    for i in 0..used {
+        setup(i);
+    }
+    if D::ENABLED {
+        setup(Z);
     }
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    let s = 1i64 << BITS;
-    let step = |p: &Plane| scaled_div(i128::from(p.a) * i128::from(2 * s), den2);
-    let row_step = |p: &Plane| scaled_div(i128::from(p.b) * i128::from(2 * s), den2);
-    let z = plane(zs[0], zs[1], zs[2]);
-    let (dz, dz_row) = if D::ENABLED {
-        (step(&z), row_step(&z))
-    } else {
-        (0, 0)
-    };
-    let mut steps = [0i64; MAX_VARYINGS];
-    let mut row_steps = [0i64; MAX_VARYINGS];
-    let used = if PERSPECTIVE { 3 } else { count };
-    for ((st, rs), p) in steps
-        .iter_mut()
-        .zip(row_steps.iter_mut())
-        .zip(&planes)
-        .take(used)
-    {
-        *st = step(p);
-        *rs = row_step(p);
-    }
-    // Travel between span starts is at most 2^16 rows or columns: steps below 2^40 keep the
-    // products below 2^56.
-    let small = |v: &i64| v.unsigned_abs() < 1 << 40;
-    let incremental = [dz, dz_row].iter().all(small)
-        && steps[..used].iter().all(small)
-        && row_steps[..used].iter().all(small);
     let mut sink = Interp::<S, D, V, F, PERSPECTIVE> {
         surface,
         depth,
@@ -463,15 +541,13 @@ where
         s,
         origin: v0,
         den2,
-        z,
-        dz,
         planes,
+        used,
         steps,
-        row_steps,
-        dz_row,
+        col,
+        row,
         prev: None,
-        prev_z: 0,
-        prev_vals: [0; MAX_VARYINGS],
+        at: [Exact::default(); PLANES],
         incremental,
         count,
         base,
@@ -479,7 +555,7 @@ where
         d2,
         _v: core::marker::PhantomData,
     };
-    walk_spans(&t, 1 << BITS, &clip, &mut sink)
+    walk_spans(&t, s, &clip, &mut sink)
 }
 
 /// The largest `q` a vertex may carry: `1/w` for `w = 2^-8` in the scale of [`ScreenVertex::q`].
