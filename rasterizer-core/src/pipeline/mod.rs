@@ -14,10 +14,12 @@ use crate::clip::polygon::{
 };
 use crate::geom::SubPoint;
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
+use crate::raster::edge::row_at_or_below;
 use crate::raster::interp::{fill_triangle_interp, DepthTest, ScreenVertex};
 use crate::raster::line::draw_line;
-use crate::target::{ClipTo, Surface};
+use crate::target::{Band, ClipTo, Framebuffer, Storage, Surface};
 use cull::Cull;
+use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::RgbColor;
@@ -196,6 +198,74 @@ pub struct CachedVertex<S, V, const BITS: u32 = 4> {
     /// 0: nothing yet; 1: transformed (and projected when inside); 2: also shaded.
     state: u8,
     var: V,
+}
+
+/// A visible triangle's place in a banded frame ([`Pipeline::draw_banded`]): 12 bytes a triangle.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BinEntry {
+    triangle: u32,
+    first: u32,
+    last: u32,
+}
+
+/// How a frame is cut into bands ([`Pipeline::draw_banded`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Banding<C> {
+    /// Screen width in pixels.
+    pub width: u32,
+    /// Screen height in pixels.
+    pub height: u32,
+    /// Rows per band (the last band may have fewer).
+    pub rows: u32,
+    /// The colour each band starts from.
+    pub background: C,
+    /// The depth each band's depth buffer starts from (65535 for [`Compare::Less`]).
+    ///
+    /// [`Compare::Less`]: crate::raster::interp::Compare::Less
+    pub clear_depth: u16,
+}
+
+/// Why a banded draw could not start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BandError {
+    /// Zero rows per band, or a zero height.
+    NoRows,
+    /// A screen size the framebuffer cannot have.
+    BadSize {
+        /// Width.
+        width: u32,
+        /// Height.
+        height: u32,
+    },
+    /// The band buffer is shorter than one band.
+    BandBufferTooSmall {
+        /// Words one band needs.
+        needed: usize,
+        /// Words given.
+        actual: usize,
+    },
+    /// More visible triangles than bins.
+    TooFewBins {
+        /// Visible triangles.
+        needed: usize,
+        /// Bins given.
+        actual: usize,
+    },
+}
+
+impl core::fmt::Display for BandError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::NoRows => write!(f, "a band needs at least one row"),
+            Self::BadSize { width, height } => write!(f, "bad screen size {width}x{height}"),
+            Self::BandBufferTooSmall { needed, actual } => {
+                write!(f, "band buffer has {actual} words, a band needs {needed}")
+            }
+            Self::TooFewBins { needed, actual } => {
+                write!(f, "{needed} visible triangles but only {actual} bins")
+            }
+        }
+    }
 }
 
 /// The transforms of a draw call.
@@ -437,103 +507,315 @@ where
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
-        let n = mesh.vertex_count();
         for t in 0..mesh.triangle_count() {
-            let idx = mesh.triangle(t);
-            if idx.iter().any(|&i| i >= n) {
-                stats.invalid += 1;
-                continue;
+            self.draw_triangle(target, mesh, t, cache, &mut stats)?;
+        }
+        Ok(stats)
+    }
+
+    /// The signed doubled area of a convex polygon of screen points.
+    fn polygon_area(points: impl Iterator<Item = SubPoint<BITS>> + Clone) -> i64 {
+        let mut it = points.clone();
+        let Some(a) = it.next() else { return 0 };
+        let mut area = 0i64;
+        let mut prev: Option<SubPoint<BITS>> = None;
+        for c in it {
+            if let Some(b) = prev {
+                area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
+                    - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
             }
-            let vc = idx.map(|i| self.clip_of(mesh, i, cache));
-            let clip = vc.map(|(p, _)| p);
-            let codes = vc.map(|(_, c)| c);
-            if trivially_outside(&clip, codes) {
-                stats.outside += 1;
-                continue;
+            prev = Some(c);
+        }
+        area
+    }
+
+    /// The rows triangle `t` can touch once it is clipped, or why it draws nothing (counted in
+    /// `stats`). Geometry only: no shading.
+    fn triangle_rows<M: MeshSource<S>>(
+        &mut self,
+        mesh: &M,
+        t: usize,
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+        stats: &mut RenderStats,
+    ) -> Option<(i64, i64)> {
+        let idx = mesh.triangle(t);
+        if idx.iter().any(|&i| i >= mesh.vertex_count()) {
+            stats.invalid += 1;
+            return None;
+        }
+        let vc = idx.map(|i| self.clip_of(mesh, i, cache));
+        let clip = vc.map(|(p, _)| p);
+        let codes = vc.map(|(_, c)| c);
+        if trivially_outside(&clip, codes) {
+            stats.outside += 1;
+            return None;
+        }
+        let mut ys: heapless::Vec<SubPoint<BITS>, { crate::clip::polygon::MAX_CLIPPED }> =
+            heapless::Vec::new();
+        if codes.iter().all(|&c| c == 0) {
+            for k in 0..3 {
+                let p = match cache.get(idx[k]) {
+                    Some(c) => c.screen,
+                    None => self.project(&clip[k]).0,
+                };
+                let _ = ys.push(p);
             }
-            if codes.iter().all(|&c| c == 0) {
-                // The common case: project first, so culled triangles are never shaded.
-                let projected = [0, 1, 2].map(|k| match cache.get(idx[k]) {
-                    Some(c) => (c.screen, c.z),
-                    None => self.project(&clip[k]),
-                });
-                let [a, b, c] = projected.map(|(p, _)| (i64::from(p.x), i64::from(p.y)));
-                let area = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
-                if area == 0 || !self.cull.keep(area) {
-                    stats.culled += 1;
-                    continue;
-                }
-                if Sh::NEEDS_FACE {
-                    let vin = idx.map(|i| self.vertex_in(mesh, i));
-                    self.shading.face(&vin);
-                }
-                let var = self.face_vars(mesh, idx, cache);
-                let sv = [0, 1, 2].map(|k| ScreenVertex {
-                    p: projected[k].0,
-                    z: projected[k].1,
-                    var: var[k],
-                    q: Self::q(&clip[k]),
-                });
-                let shading = &self.shading;
-                fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
-                    target,
-                    &mut self.depth,
-                    sv,
-                    |v| shading.pixel(v),
-                )?;
-                stats.drawn += 1;
-                continue;
-            }
+        } else {
             stats.clipped += 1;
-            let var = self.face_vars(mesh, idx, cache);
-            let tri = [0, 1, 2].map(|k| ClipVertex {
-                pos: clip[k],
-                var: var[k],
+            let tri = clip.map(|pos| ClipVertex {
+                pos,
+                var: [0i32; 0],
             });
             let poly = clip_triangle(&tri, codes);
             if poly.len() < 3 {
                 stats.outside += 1;
-                continue;
+                return None;
             }
-            let mut screen: heapless::Vec<
-                ScreenVertex<Sh::Varyings, BITS>,
-                { crate::clip::polygon::MAX_CLIPPED },
-            > = heapless::Vec::new();
-            let mut area = 0i64;
             for v in &poly {
-                let (p, z) = self.project(&v.pos);
-                let _ = screen.push(ScreenVertex {
-                    p,
-                    z,
-                    var: v.var,
-                    q: Self::q(&v.pos),
-                });
+                let _ = ys.push(self.project(&v.pos).0);
             }
-            // The clipped polygon is convex: its total signed area decides its facing.
-            for k in 1..screen.len() - 1 {
-                let (a, b, c) = (screen[0].p, screen[k].p, screen[k + 1].p);
-                area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
-                    - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
-            }
+        }
+        let area = Self::polygon_area(ys.iter().copied());
+        if area == 0 || !self.cull.keep(area) {
+            stats.culled += 1;
+            return None;
+        }
+        stats.drawn += 1;
+        let top = ys.iter().map(|p| p.y).min().unwrap_or(0);
+        let bottom = ys.iter().map(|p| p.y).max().unwrap_or(0);
+        let s = 1i64 << BITS;
+        Some((
+            row_at_or_below(i64::from(top), s),
+            row_at_or_below(i64::from(bottom), s),
+        ))
+    }
+
+    /// Draws triangle `t` of `mesh`, counting what happened in `stats`.
+    fn draw_triangle<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        t: usize,
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+        stats: &mut RenderStats,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        let idx = mesh.triangle(t);
+        if idx.iter().any(|&i| i >= mesh.vertex_count()) {
+            stats.invalid += 1;
+            return Ok(());
+        }
+        let vc = idx.map(|i| self.clip_of(mesh, i, cache));
+        let clip = vc.map(|(p, _)| p);
+        let codes = vc.map(|(_, c)| c);
+        if trivially_outside(&clip, codes) {
+            stats.outside += 1;
+            return Ok(());
+        }
+        if codes.iter().all(|&c| c == 0) {
+            // The common case: project first, so culled triangles are never shaded.
+            let projected = [0, 1, 2].map(|k| match cache.get(idx[k]) {
+                Some(c) => (c.screen, c.z),
+                None => self.project(&clip[k]),
+            });
+            let area = Self::polygon_area(projected.iter().map(|(p, _)| *p));
             if area == 0 || !self.cull.keep(area) {
                 stats.culled += 1;
-                continue;
+                return Ok(());
             }
             if Sh::NEEDS_FACE {
                 let vin = idx.map(|i| self.vertex_in(mesh, i));
                 self.shading.face(&vin);
             }
+            let var = self.face_vars(mesh, idx, cache);
+            let sv = [0, 1, 2].map(|k| ScreenVertex {
+                p: projected[k].0,
+                z: projected[k].1,
+                var: var[k],
+                q: Self::q(&clip[k]),
+            });
             let shading = &self.shading;
-            for k in 1..screen.len() - 1 {
-                let t = [screen[0], screen[k], screen[k + 1]];
-                fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
-                    target,
-                    &mut self.depth,
-                    t,
-                    |v| shading.pixel(v),
-                )?;
-            }
+            fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
+                target,
+                &mut self.depth,
+                sv,
+                |v| shading.pixel(v),
+            )?;
             stats.drawn += 1;
+            return Ok(());
+        }
+        stats.clipped += 1;
+        let var = self.face_vars(mesh, idx, cache);
+        let tri = [0, 1, 2].map(|k| ClipVertex {
+            pos: clip[k],
+            var: var[k],
+        });
+        let poly = clip_triangle(&tri, codes);
+        if poly.len() < 3 {
+            stats.outside += 1;
+            return Ok(());
+        }
+        let mut screen: heapless::Vec<
+            ScreenVertex<Sh::Varyings, BITS>,
+            { crate::clip::polygon::MAX_CLIPPED },
+        > = heapless::Vec::new();
+        for v in &poly {
+            let (p, z) = self.project(&v.pos);
+            let _ = screen.push(ScreenVertex {
+                p,
+                z,
+                var: v.var,
+                q: Self::q(&v.pos),
+            });
+        }
+        // The clipped polygon is convex: its total signed area decides its facing.
+        let area = Self::polygon_area(screen.iter().map(|v| v.p));
+        if area == 0 || !self.cull.keep(area) {
+            stats.culled += 1;
+            return Ok(());
+        }
+        if Sh::NEEDS_FACE {
+            let vin = idx.map(|i| self.vertex_in(mesh, i));
+            self.shading.face(&vin);
+        }
+        let shading = &self.shading;
+        for k in 1..screen.len() - 1 {
+            let t = [screen[0], screen[k], screen[k + 1]];
+            fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
+                target,
+                &mut self.depth,
+                t,
+                |v| shading.pixel(v),
+            )?;
+        }
+        stats.drawn += 1;
+        Ok(())
+    }
+
+    /// Draws a mesh one horizontal band at a time, for a microcontroller that cannot hold a whole
+    /// frame: each band is drawn into `band` (a buffer of `banding.rows` rows) and handed to
+    /// `on_band` (where firmware starts the transfer to the display), then reused for the next.
+    ///
+    /// The pipeline's depth stage must hold `banding.rows` rows too (a [`DepthBuffer`] of
+    /// `width` x `rows`); it is cleared to `banding.clear_depth` before each band. Triangles are
+    /// binned once per frame (`bins` holds one entry per visible triangle), so each band draws
+    /// only the triangles that touch it, in mesh order. `cache` is as in
+    /// [`Pipeline::draw_cached`] (may be empty: vertices shared across bands are then processed
+    /// again). The pixels are exactly those of a whole-frame [`Pipeline::draw`] of the same scene,
+    /// for any band height.
+    ///
+    /// [`DepthBuffer`]: crate::raster::interp::DepthBuffer
+    ///
+    /// # Errors
+    /// [`BandError`] for a band buffer of the wrong size, zero rows, or too few bins (nothing is
+    /// drawn then).
+    pub fn draw_banded<Px, M, F>(
+        &mut self,
+        mesh: &M,
+        banding: &Banding<Px>,
+        band: &mut [Px::Word],
+        bins: &mut [BinEntry],
+        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+        mut on_band: F,
+    ) -> Result<RenderStats, BandError>
+    where
+        Px: Storage,
+        Sh: Shading<S, Color = Px>,
+        M: MeshSource<S>,
+        F: FnMut(&Band<'_, Px>),
+    {
+        let (width, height, rows) = (banding.width, banding.height, banding.rows);
+        if rows == 0 || height == 0 {
+            return Err(BandError::NoRows);
+        }
+        let needed = Framebuffer::<Px>::required_len(width, rows.min(height))
+            .ok_or(BandError::BadSize { width, height })?;
+        if band.len() < needed {
+            return Err(BandError::BandBufferTooSmall {
+                needed,
+                actual: band.len(),
+            });
+        }
+        for c in cache.iter_mut() {
+            c.state = 0;
+        }
+        // Bin: each visible triangle's first and last band.
+        let mut stats = RenderStats {
+            triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
+            ..RenderStats::default()
+        };
+        let mut count = 0usize;
+        let mut wanted = 0usize;
+        for t in 0..mesh.triangle_count() {
+            let Some((top, bottom)) = self.triangle_rows(mesh, t, cache, &mut stats) else {
+                continue;
+            };
+            let (top, bottom) = (top.max(0), bottom.min(i64::from(height)));
+            if top >= bottom {
+                continue;
+            }
+            wanted += 1;
+            if let Some(slot) = bins.get_mut(count) {
+                *slot = BinEntry {
+                    triangle: t as u32,
+                    first: (top / i64::from(rows)) as u32,
+                    last: ((bottom - 1) / i64::from(rows)) as u32,
+                };
+                count += 1;
+            }
+        }
+        if wanted > bins.len() {
+            return Err(BandError::TooFewBins {
+                needed: wanted,
+                actual: bins.len(),
+            });
+        }
+        let bins = &mut bins[..count];
+        bins.sort_unstable_by_key(|b| (b.first, b.triangle));
+        // Sweep the bands: [start, next) holds the triangles that began at or above this band.
+        let (mut start, mut next) = (0usize, 0usize);
+        let mut scratch = RenderStats::default();
+        let bands = height.div_ceil(rows);
+        for b in 0..bands {
+            while next < bins.len() && bins[next].first <= b {
+                next += 1;
+            }
+            // Retire the triangles that ended above this band to the front of the window.
+            let mut i = start;
+            while i < next {
+                if bins[i].last < b {
+                    bins.swap(i, start);
+                    start += 1;
+                }
+                i += 1;
+            }
+            // Mesh order within the band, as a whole-frame draw has it.
+            bins[start..next].sort_unstable_by_key(|e| e.triangle);
+            let y0 = b * rows;
+            let h = rows.min(height - y0);
+            let len = Framebuffer::<Px>::required_len(width, h).unwrap_or(0);
+            let Ok(mut fb) = Framebuffer::<Px>::new(&mut band[..len], width, h) else {
+                return Err(BandError::BadSize { width, height });
+            };
+            let _ = DrawTarget::clear(&mut fb, banding.background);
+            self.depth.start_band(y0 as i32, banding.clear_depth);
+            let mut strip = Band::new(fb, y0 as i32);
+            {
+                let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
+                for e in &bins[start..next] {
+                    let Ok(()) = self.draw_triangle(
+                        &mut target,
+                        mesh,
+                        e.triangle as usize,
+                        cache,
+                        &mut scratch,
+                    );
+                }
+            }
+            on_band(&strip);
         }
         Ok(stats)
     }

@@ -53,6 +53,9 @@ impl Compare {
 pub trait DepthTest {
     /// The test reads depths: when false the rasterizer computes none.
     const ENABLED: bool = true;
+    /// Band rendering: the buffer now holds the rows from `y0` on; every entry is reset to
+    /// `clear`. Does nothing for a test without a buffer.
+    fn start_band(&mut self, _y0: i32, _clear: u16) {}
     /// Calls `run(offset, len)` for each run of pixels of row `y`, columns `x .. x + len`, that
     /// passes, storing their depths first. The depth of pixel `i` is `(z + i dz) >> 16`, clamped
     /// to `0 ..= 65535`.
@@ -107,6 +110,8 @@ pub struct DepthBuffer<'a> {
     buf: &'a mut [u16],
     width: u32,
     height: u32,
+    /// The screen row the buffer's first row stands for (band rendering).
+    origin_y: i32,
     compare: Compare,
 }
 
@@ -132,6 +137,7 @@ impl<'a> DepthBuffer<'a> {
             buf,
             width,
             height,
+            origin_y: 0,
             compare,
         })
     }
@@ -153,6 +159,11 @@ impl<'a> DepthBuffer<'a> {
 }
 
 impl DepthTest for DepthBuffer<'_> {
+    fn start_band(&mut self, y0: i32, clear: u16) {
+        self.origin_y = y0;
+        self.buf.fill(clear);
+    }
+
     #[inline(always)]
     fn test_span<E, F>(
         &mut self,
@@ -167,6 +178,7 @@ impl DepthTest for DepthBuffer<'_> {
         F: FnMut(u32, u32) -> Result<(), E>,
     {
         // Pixels outside the buffer are never drawn (a buffer smaller than the target clips).
+        let y = y.wrapping_sub(self.origin_y);
         if y < 0 || y as u32 >= self.height || x < 0 {
             return Ok(());
         }
@@ -235,19 +247,6 @@ struct Plane {
 const PLANES: usize = MAX_VARYINGS + 1;
 /// The depth plane's slot.
 const Z: usize = MAX_VARYINGS;
-
-/// `round(f 2^16 / den2)`, halves up, for `den2 > 0`: quotient and remainder are scaled separately
-/// (`den2 < 2^46` on the fast path; larger divisors go through `i128`).
-#[inline(always)]
-fn scaled_div(f: i128, den2: i64) -> i64 {
-    if den2 < 1 << 46 {
-        if let Ok(f) = i64::try_from(f) {
-            let (q, r) = (f.div_euclid(den2), f.rem_euclid(den2));
-            return (q << FRAC) + (((r << FRAC) + den2 / 2) / den2);
-        }
-    }
-    (((f << FRAC) + i128::from(den2 / 2)).div_euclid(i128::from(den2))) as i64
-}
 
 /// `(n div d, n mod d)` of an `i128` numerator, `d > 0`, quotient saturated to `i64`.
 #[inline(always)]

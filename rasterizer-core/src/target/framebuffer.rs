@@ -64,7 +64,7 @@ impl core::fmt::Display for FramebufferError {
 /// monochrome OLED and e-paper firmware stores it).
 pub trait Storage: PixelColor {
     /// The element type of the slice.
-    type Word: Copy;
+    type Word: Copy + core::fmt::Debug;
     /// Words one row of `width` pixels takes.
     fn row_words(width: usize) -> usize;
     /// Sets pixel `x` of a row.
@@ -486,5 +486,98 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     fn draw_line_points(&mut self, points: LinePoints, color: C) -> Result<(), Self::Error> {
         C::walk(self.buf, self.stride, points, color);
         Ok(())
+    }
+}
+
+/// One horizontal strip of a screen rendered into a small buffer: a [`Framebuffer`] of `rows`
+/// rows that stands for screen rows `y0 .. y0 + rows`. Drawing uses screen coordinates; the clip
+/// area is the strip, so everything outside it is dropped.
+#[derive(Debug)]
+pub struct Band<'a, C: Storage> {
+    fb: Framebuffer<'a, C>,
+    y0: i32,
+}
+
+impl<'a, C: Storage> Band<'a, C> {
+    /// A band over `fb` standing for the screen rows from `y0` on.
+    pub fn new(fb: Framebuffer<'a, C>, y0: i32) -> Self {
+        Self { fb, y0 }
+    }
+
+    /// The first screen row of the band.
+    pub fn y0(&self) -> i32 {
+        self.y0
+    }
+
+    /// The band's pixels.
+    pub fn framebuffer(&self) -> &Framebuffer<'a, C> {
+        &self.fb
+    }
+}
+
+impl<C: Storage> embedded_graphics_core::geometry::Dimensions for Band<'_, C> {
+    fn bounding_box(&self) -> Rectangle {
+        Rectangle::new(
+            embedded_graphics_core::geometry::Point::new(0, self.y0),
+            Size::new(self.fb.width, self.fb.height),
+        )
+    }
+}
+
+impl<C: Storage> DrawTarget for Band<'_, C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        let y0 = self.y0;
+        self.fb.draw_iter(
+            pixels.into_iter().map(|Pixel(p, c)| {
+                Pixel(p - embedded_graphics_core::geometry::Point::new(0, y0), c)
+            }),
+        )
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
+        let shifted = Rectangle::new(
+            area.top_left - embedded_graphics_core::geometry::Point::new(0, self.y0),
+            area.size,
+        );
+        self.fb.fill_solid(&shifted, color)
+    }
+
+    fn clear(&mut self, color: C) -> Result<(), Self::Error> {
+        self.fb.clear(color)
+    }
+}
+
+impl<C: Storage> Surface for Band<'_, C> {
+    #[inline(always)]
+    fn fill_span(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
+        self.fb.fill_span(x, y - self.y0, len, color)
+    }
+
+    #[inline(always)]
+    fn shade_span<F: FnMut() -> C>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        shade: F,
+    ) -> Result<(), Self::Error> {
+        self.fb.shade_span(x, y - self.y0, len, shade)
+    }
+
+    fn draw_line_points(&mut self, points: LinePoints, color: C) -> Result<(), Self::Error> {
+        // A line walk carries screen rows; shift each point (lines are not the band fast path).
+        let y0 = self.y0;
+        self.fb.draw_iter(points.map(|p| {
+            Pixel(
+                p - embedded_graphics_core::geometry::Point::new(0, y0),
+                color,
+            )
+        }))
     }
 }

@@ -8,7 +8,7 @@
 
 mod framebuffer;
 
-pub use framebuffer::{Framebuffer, FramebufferError, Storage, MAX_DIMENSION};
+pub use framebuffer::{Band, Framebuffer, FramebufferError, Storage, MAX_DIMENSION};
 
 use crate::raster::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
