@@ -36,7 +36,7 @@ pub fn encode(
         b.extend_from_slice(&s.to_le_bytes());
     }
     let pad = |b: &mut Vec<u8>| {
-        while b.len() % 4 != 0 {
+        while !b.len().is_multiple_of(4) {
             b.push(0);
         }
     };
