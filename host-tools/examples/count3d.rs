@@ -43,7 +43,9 @@ use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
-use rasterizer_core::pipeline::{CachedVertex, Mesh, Pipeline, RenderStats, Transforms, Viewport};
+use rasterizer_core::pipeline::{
+    Banding, BinEntry, CachedVertex, Mesh, Pipeline, RenderStats, Transforms, Viewport,
+};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::Framebuffer;
@@ -52,7 +54,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Every combination, in the order the script reports them.
-const COMBINATIONS: [&str; 11] = [
+const COMBINATIONS: [&str; 16] = [
     "m1",
     "m1_nodepth",
     "m1_nocull",
@@ -64,6 +66,11 @@ const COMBINATIONS: [&str; 11] = [
     "m1_cached",
     "m1_depth_always",
     "m1_cull_keepall",
+    "m1_band8",
+    "m1_band16",
+    "m1_band32",
+    "m1_band240",
+    "m1_band16_cached",
 ];
 
 /// A culling stage that keeps every triangle, but only finds that out at run time: the "culling
@@ -231,6 +238,60 @@ fn frame_m1_cached(
     let Ok(stats) = p.draw_cached(fb, mesh, cache);
     stats
 }
+
+type BandPipeline<'a> =
+    Pipeline<Fx16, CullClockwise, DepthBuffer<'a>, GouraudLit<Fx16, Rgb565, 1>, 4>;
+
+/// One banded M1 frame: each finished band is copied into `fb` (where firmware would start the
+/// display's DMA); the copy is a few thousand instructions of the count.
+#[inline(always)]
+fn banded(
+    p: &mut BandPipeline<'_>,
+    rows: u32,
+    fb: &mut Fb<'_>,
+    mesh: &Mesh3<'_>,
+    band: &mut [u16],
+    bins: &mut [BinEntry],
+    cache: &mut [CachedVertex<Fx16, [i32; 3], 4>],
+) -> RenderStats {
+    let banding = Banding {
+        width: WIDTH,
+        height: HEIGHT,
+        rows,
+        background: Rgb565::BLACK,
+        clear_depth: u16::MAX,
+    };
+    let out = fb.as_mut_slice();
+    let result = p.draw_banded(mesh, &banding, band, bins, cache, |b| {
+        let y0 = b.y0() as usize * WIDTH as usize;
+        let data = b.framebuffer().as_slice();
+        out[y0..y0 + data.len()].copy_from_slice(data);
+    });
+    result.unwrap_or_default()
+}
+
+macro_rules! band_frame {
+    ($name:ident, $rows:expr) => {
+        #[inline(never)]
+        fn $name(
+            p: &mut BandPipeline<'_>,
+            fb: &mut Fb<'_>,
+            mesh: &Mesh3<'_>,
+            band: &mut [u16],
+            bins: &mut [BinEntry],
+            cache: &mut [CachedVertex<Fx16, [i32; 3], 4>],
+        ) -> RenderStats {
+            black_box(stringify!($name));
+            banded(p, $rows, fb, mesh, band, bins, cache)
+        }
+    };
+}
+
+band_frame!(frame_m1_band8, 8);
+band_frame!(frame_m1_band16, 16);
+band_frame!(frame_m1_band32, 32);
+band_frame!(frame_m1_band240, 240);
+band_frame!(frame_m1_band16_cached, 16);
 
 #[inline(never)]
 fn frame_m1_depth_always(
@@ -449,6 +510,53 @@ fn main() -> ExitCode {
             clear_z,
             frame_m1_cull_keepall,
         ),
+        band if band.starts_with("m1_band") => {
+            let cached = band.ends_with("_cached");
+            let rows: u32 = band
+                .trim_start_matches("m1_band")
+                .trim_end_matches("_cached")
+                .parse()
+                .unwrap_or(16);
+            // The band's colour and depth rows, the bins and (for _cached) the vertex cache are
+            // the caller's RAM, allocated outside the counted frame.
+            let mut band_buf = vec![0u16; (WIDTH * rows) as usize];
+            let mut band_z = vec![u16::MAX; (WIDTH * rows) as usize];
+            let mut bins = vec![BinEntry::default(); mesh.triangles.len()];
+            let mut cache =
+                vec![CachedVertex::default(); if cached { mesh.positions.len() } else { 0 }];
+            let mut p = Pipeline::new(
+                &xf,
+                vp,
+                CullClockwise,
+                DepthBuffer::new(&mut band_z, WIDTH, rows, Compare::Less).expect("band depth"),
+                gouraud(),
+            );
+            let frame = match (rows, cached) {
+                (8, _) => frame_m1_band8,
+                (32, _) => frame_m1_band32,
+                (240, _) => frame_m1_band240,
+                (_, true) => frame_m1_band16_cached,
+                _ => frame_m1_band16,
+            };
+            let _ = banded(
+                &mut p,
+                rows,
+                &mut fb,
+                &mesh,
+                &mut band_buf,
+                &mut bins,
+                &mut cache,
+            );
+            let Ok(()) = fb.clear(Rgb565::BLACK);
+            frame(
+                &mut p,
+                black_box(&mut fb),
+                black_box(&mesh),
+                &mut band_buf,
+                &mut bins,
+                &mut cache,
+            )
+        }
         _ => return usage(),
     };
 
