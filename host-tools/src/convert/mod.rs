@@ -1,0 +1,1003 @@
+//! The `convert` command: OBJ -> packed mesh (or Rust source).
+//!
+//! The OBJ text is read twice. A line scanner (module `scan`) checks everything that needs a line
+//! number (tobj gives none, and lets broken files through silently: NaN coordinates, index 0, a
+//! BOM that eats the first vertex, bare-CR files with no triangles, `l` polylines that become
+//! filled polygons), and hands tobj a cleaned-up copy of the text. tobj (with `triangulate: false`)
+//! then supplies the numbers. Polygons are triangulated here by ear clipping
+//! ([`triangulate_polygon`]), so concave faces come out right. Then: optional welding, dropping
+//! triangles with a repeated vertex or no area after quantisation, dropping unused vertices,
+//! optional centring, normals, per-axis quantisation over the bounding box, and [`encode()`].
+//! Every blob is checked with `PackedMesh::parse` before it is written, and the position error
+//! reported is measured on the decoded blob.
+//!
+//! Exit codes of the command: 0 success, 1 conversion error (bad input, unreadable input,
+//! unwritable output), 2 usage error. Errors are one line on stderr, `error: <file>:<line>:
+//! <message>` (or `error: <file>: <message>` when no single line is to blame), and no output file
+//! is written then: the output goes to a temporary file in the same directory, renamed into place
+//! on success. Odd but usable input gives `warning: <file>:<line>: <message>` lines and the
+//! conversion goes on.
+
+mod encode;
+mod rust_source;
+mod scan;
+mod triangulate;
+
+pub use encode::{decode_normal, encode, quantise_normal, MeshData, Quantiser};
+pub use rust_source::{bytes_from_rust_source, is_rust_identifier, rust_source, static_name_for};
+pub use triangulate::{newell_normal, triangulate_polygon};
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rasterizer_core::mesh::{PackedMesh, MAX_COUNT};
+use std::collections::HashMap;
+use std::fmt;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Where vertex normals come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum NormalMode {
+    /// No normals in the output.
+    None,
+    /// The file's normals (normalised; a zero one is replaced by the smooth normal).
+    Keep,
+    /// One normal per triangle; vertices are split so each triangle has its own.
+    Flat,
+    /// Angle-weighted average of the adjacent triangles' normals, per position.
+    Smooth,
+}
+
+impl fmt::Display for NormalMode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::None => "no",
+            Self::Keep => "kept",
+            Self::Flat => "flat",
+            Self::Smooth => "smooth",
+        })
+    }
+}
+
+/// Checks a `--name` value: an identifier that is not a keyword.
+fn parse_static_name(s: &str) -> Result<String, String> {
+    if is_rust_identifier(s) {
+        Ok(s.to_owned())
+    } else {
+        Err(format!("`{s}` is not a Rust identifier"))
+    }
+}
+
+/// Options of the `convert` command.
+#[derive(Debug, clap::Args)]
+pub struct ConvertArgs {
+    /// The OBJ file to convert.
+    pub input: PathBuf,
+    /// The output file (replaced only when the conversion succeeds).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// Centre the mesh on its bounding-box centre and scale it to fit the unit sphere.
+    #[arg(long)]
+    pub center_unit_sphere: bool,
+    /// Vertex normals: none, keep (the file's), flat (per face) or smooth (angle-weighted).
+    /// Default: keep when every face corner has a normal, else smooth.
+    #[arg(long, value_enum, value_name = "MODE")]
+    pub normals: Option<NormalMode>,
+    /// Merge vertices with identical positions and colours (and equal normals after
+    /// conversion).
+    #[arg(long)]
+    pub weld: bool,
+    /// Write Rust source instead of the binary: `pub static NAME: [u8; N] = [...];` with a doc
+    /// comment; read it with `PackedMesh::parse(&NAME)`.
+    #[arg(long)]
+    pub rust: bool,
+    /// The static's name for --rust (default: the output file's stem in upper case).
+    #[arg(long, requires = "rust", value_parser = parse_static_name)]
+    pub name: Option<String>,
+}
+
+/// What [`convert_obj`] does, apart from the input.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Options {
+    /// Centre on the bounding-box centre and scale to fit the unit sphere.
+    pub center_unit_sphere: bool,
+    /// Where normals come from; `None` for the default (keep if present, else smooth).
+    pub normals: Option<NormalMode>,
+    /// Merge vertices with identical positions (and colours, and normals after conversion).
+    pub weld: bool,
+    /// Show a progress bar on stderr.
+    pub progress: bool,
+}
+
+/// Why a file could not be converted.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ConvertError {
+    /// The file, as named on the command line.
+    pub file: String,
+    /// The 1-based line to blame, if any.
+    pub line: Option<usize>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for ConvertError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "{}:{line}: {}", self.file, self.message),
+            None => write!(f, "{}: {}", self.file, self.message),
+        }
+    }
+}
+
+impl std::error::Error for ConvertError {}
+
+/// Something odd but usable in the input.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Warning {
+    /// The 1-based line it concerns, if any.
+    pub line: Option<usize>,
+    /// What was found and what was done about it.
+    pub message: String,
+}
+
+impl Warning {
+    /// The warning as `file:line: message` (without the `warning: ` prefix).
+    pub fn display(&self, file: &str) -> String {
+        match self.line {
+            Some(line) => format!("{file}:{line}: {}", self.message),
+            None => format!("{file}: {}", self.message),
+        }
+    }
+}
+
+/// The figures of one conversion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// Triangles in the file after triangulation (a face of n corners counts n - 2).
+    pub triangles_in: usize,
+    /// Triangles written.
+    pub triangles_out: usize,
+    /// `v` lines in the file.
+    pub vertices_in: usize,
+    /// Vertices written (can exceed `vertices_in` when normals split vertices).
+    pub vertices_out: usize,
+    /// Triangles dropped for using one vertex twice.
+    pub repeated_index: usize,
+    /// Triangles dropped for having no area after quantisation.
+    pub zero_area: usize,
+    /// File positions no written triangle uses (never referenced, or only by dropped triangles).
+    pub unused_vertices: usize,
+    /// File positions merged into an identical earlier one by `--weld`.
+    pub welded_vertices: usize,
+    /// Where the normals came from.
+    pub normals: NormalMode,
+    /// `(centre, factor)` of `--center-unit-sphere`: output = (input - centre) * factor.
+    pub transform: Option<([f64; 3], f64)>,
+    /// The box the positions were quantised over (output units).
+    pub bounds: ([f64; 3], [f64; 3]),
+    /// Largest difference between a decoded position component and the input (output units).
+    pub max_error: f64,
+    /// `max_error` per axis divided by that axis's extent, the largest over the axes.
+    pub max_error_fraction: f64,
+    /// Largest difference between a decoded normal component and the unit normal computed.
+    pub max_normal_error: Option<f64>,
+    /// Size of the blob in bytes.
+    pub bytes: usize,
+}
+
+/// A finished conversion.
+#[derive(Debug, Clone)]
+pub struct Conversion {
+    /// The mesh as written.
+    pub mesh: MeshData,
+    /// The encoded blob (it passed `PackedMesh::parse`).
+    pub blob: Vec<u8>,
+    /// The figures.
+    pub report: Report,
+}
+
+/// A progress bar on stderr, or nothing.
+struct Progress(Option<ProgressBar>);
+
+impl Progress {
+    fn new(enabled: bool) -> Self {
+        Self(enabled.then(|| {
+            let bar = ProgressBar::new(0);
+            bar.set_style(
+                ProgressStyle::with_template("{msg:>14} [{bar:40}] {percent:>3}%")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar())
+                    .progress_chars("=> "),
+            );
+            bar
+        }))
+    }
+
+    fn stage(&self, message: &'static str, len: u64) {
+        if let Some(bar) = &self.0 {
+            bar.set_message(message);
+            bar.set_length(len.max(1));
+            bar.set_position(0);
+        }
+    }
+
+    fn set(&self, pos: u64) {
+        if let Some(bar) = &self.0 {
+            bar.set_position(pos);
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.0 {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+type P3 = [f64; 3];
+
+fn sub(a: P3, b: P3) -> P3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: P3, b: P3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: P3, b: P3) -> P3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// A normal's quanta packed into a key, tagged so it never equals a small index.
+fn normal_key(q: [i16; 3]) -> u64 {
+    (1 << 63)
+        | (u64::from(q[0] as u16) << 32)
+        | (u64::from(q[1] as u16) << 16)
+        | u64::from(q[2] as u16)
+}
+
+/// Converts the OBJ text `bytes`. `file` names it in messages; `mtl_dir` is where its `mtllib`
+/// files are looked for (to warn about missing ones). Warnings are pushed onto `warnings`, also
+/// when the conversion then fails.
+///
+/// # Errors
+/// A [`ConvertError`] for input that cannot be converted, with the line to blame when there is
+/// one.
+pub fn convert_obj(
+    file: &str,
+    bytes: &[u8],
+    mtl_dir: Option<&Path>,
+    opts: &Options,
+    warnings: &mut Vec<Warning>,
+) -> Result<Conversion, ConvertError> {
+    let progress = Progress::new(opts.progress);
+    let result = convert_inner(file, bytes, mtl_dir, opts, warnings, &progress);
+    progress.finish();
+    result
+}
+
+fn convert_inner(
+    file: &str,
+    bytes: &[u8],
+    mtl_dir: Option<&Path>,
+    opts: &Options,
+    warnings: &mut Vec<Warning>,
+    progress: &Progress,
+) -> Result<Conversion, ConvertError> {
+    let fail = |message: String| ConvertError {
+        file: file.to_owned(),
+        line: None,
+        message,
+    };
+    let warn = |warnings: &mut Vec<Warning>, line: Option<usize>, message: String| {
+        warnings.push(Warning { line, message });
+    };
+
+    progress.stage("scanning", bytes.len() as u64);
+    let scan = scan::scan(
+        file,
+        bytes,
+        mtl_dir,
+        opts.center_unit_sphere,
+        warnings,
+        &|p| progress.set(p),
+    )?;
+
+    progress.stage("parsing", 1);
+    let load = tobj::LoadOptions {
+        triangulate: false,
+        single_index: false,
+        ..Default::default()
+    };
+    let (models, _materials) =
+        tobj::load_obj_buf(&mut scan.text.as_bytes(), &load, |_| Ok(Default::default()))
+            .map_err(|e| fail(format!("tobj rejected the file after checking: {e}")))?;
+
+    // tobj renumbers vertices per model; the scanner's corners give the file's numbering back.
+    let mismatch = || fail("internal error: tobj's faces differ from the scanner's".into());
+    let nv = scan.v_count;
+    let keep_possible = scan.all_normals && !scan.vn_lines.is_empty();
+    let mut pos = vec![[f64::NAN; 3]; nv];
+    let mut col = vec![[0u8; 3]; if scan.colours { nv } else { 0 }];
+    let mut file_normals = vec![
+        [0f64; 3];
+        if keep_possible {
+            scan.vn_lines.len()
+        } else {
+            0
+        }
+    ];
+    let mut face_no = 0usize;
+    for model in &models {
+        let m = &model.mesh;
+        let faces = if m.face_arities.is_empty() {
+            m.indices.len() / 3
+        } else {
+            m.face_arities.len()
+        };
+        let mut k = 0usize;
+        for fi in 0..faces {
+            let arity = m.face_arities.get(fi).map_or(3, |&a| a as usize);
+            let face = scan.faces.get(face_no).ok_or_else(mismatch)?;
+            if face.len as usize != arity {
+                return Err(mismatch());
+            }
+            for c in 0..arity {
+                let corner = scan.corners[face.first as usize + c];
+                let local = *m.indices.get(k).ok_or_else(mismatch)? as usize;
+                let p = m
+                    .positions
+                    .get(3 * local..3 * local + 3)
+                    .ok_or_else(mismatch)?;
+                pos[corner.v as usize] = [0, 1, 2].map(|i| f64::from(p[i]));
+                if scan.colours {
+                    let c3 = m
+                        .vertex_color
+                        .get(3 * local..3 * local + 3)
+                        .ok_or_else(mismatch)?;
+                    col[corner.v as usize] =
+                        [0, 1, 2].map(|i| (f64::from(c3[i]).clamp(0.0, 1.0) * 255.0).round() as u8);
+                }
+                if keep_possible {
+                    let nl = *m.normal_indices.get(k).ok_or_else(mismatch)? as usize;
+                    let n = m.normals.get(3 * nl..3 * nl + 3).ok_or_else(mismatch)?;
+                    file_normals[corner.vn as usize] = [0, 1, 2].map(|i| f64::from(n[i]));
+                }
+                k += 1;
+            }
+            face_no += 1;
+        }
+    }
+    if face_no != scan.faces.len() {
+        return Err(mismatch());
+    }
+    drop(models);
+
+    // Triangulate. A triangle is three corner indices (into scan.corners).
+    progress.stage("triangulating", scan.faces.len() as u64);
+    let mut tris: Vec<[u32; 3]> = Vec::with_capacity(scan.corners.len());
+    let mut triangles_in = 0usize;
+    let mut polygon = Vec::new();
+    for (i, face) in scan.faces.iter().enumerate() {
+        let f = face.first;
+        triangles_in += face.len as usize - 2;
+        if face.len == 3 {
+            tris.push([f, f + 1, f + 2]);
+        } else {
+            polygon.clear();
+            polygon.extend((f..f + face.len).map(|c| pos[scan.corners[c as usize].v as usize]));
+            for t in triangulate_polygon(&polygon) {
+                tris.push(t.map(|c| f + c as u32));
+            }
+        }
+        if i % 16384 == 0 {
+            progress.set(i as u64);
+        }
+    }
+    let pos_of = |c: u32| scan.corners[c as usize].v;
+
+    // Weld: every position id maps to the first identical one (same position and colour).
+    let mut canon: Vec<u32> = (0..nv as u32).collect();
+    let mut welded_vertices = 0;
+    if opts.weld {
+        let mut seen: HashMap<([u64; 3], [u8; 3]), u32> = HashMap::new();
+        for v in 0..nv {
+            let p = pos[v];
+            if p[0].is_nan() {
+                continue; // never referenced
+            }
+            // + 0.0 makes -0.0 equal to 0.0.
+            let key = (
+                p.map(|c| (c + 0.0).to_bits()),
+                col.get(v).copied().unwrap_or_default(),
+            );
+            let first = *seen.entry(key).or_insert(v as u32);
+            if first != v as u32 {
+                canon[v] = first;
+                welded_vertices += 1;
+            }
+        }
+    }
+    let vid = |c: u32| canon[pos_of(c) as usize];
+
+    let before = tris.len();
+    tris.retain(|t| {
+        let [a, b, c] = t.map(vid);
+        a != b && b != c && a != c
+    });
+    let repeated_index = before - tris.len();
+
+    // Quantise over the box of the used positions; dropping zero-area triangles can shrink that
+    // box, so repeat until nothing more is dropped.
+    progress.stage("quantising", 1);
+    let mut zero_area = 0;
+    let mut tpos = vec![[0f64; 3]; nv];
+    let mut quanta = vec![[0i16; 3]; nv];
+    let mut used = vec![false; nv];
+    let (quant, transform, bounds) = loop {
+        if tris.is_empty() {
+            return Err(fail(format!(
+                "no triangles left: all {triangles_in} are degenerate (repeated vertex or no area)"
+            )));
+        }
+        used.iter_mut().for_each(|u| *u = false);
+        for t in &tris {
+            for &c in t {
+                used[vid(c) as usize] = true;
+            }
+        }
+        let ids = || (0..nv).filter(|&v| used[v]);
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for v in ids() {
+            for k in 0..3 {
+                lo[k] = lo[k].min(pos[v][k]);
+                hi[k] = hi[k].max(pos[v][k]);
+            }
+        }
+        let transform = opts.center_unit_sphere.then(|| {
+            let c = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+            let r = ids()
+                .map(|v| dot(sub(pos[v], c), sub(pos[v], c)).sqrt())
+                .fold(0.0, f64::max);
+            (c, if r > 0.0 { 1.0 / r } else { 1.0 })
+        });
+        let (mut tlo, mut thi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for v in ids() {
+            tpos[v] = match transform {
+                Some((c, s)) => [0, 1, 2].map(|k| (pos[v][k] - c[k]) * s),
+                None => pos[v],
+            };
+            for k in 0..3 {
+                tlo[k] = tlo[k].min(tpos[v][k]);
+                thi[k] = thi[k].max(tpos[v][k]);
+            }
+        }
+        let quant = Quantiser::for_box(tlo, thi)
+            .ok_or_else(|| fail("positions are outside the 16.16 range".into()))?;
+        for v in ids() {
+            quanta[v] = quant.quantise(tpos[v]);
+        }
+        let before = tris.len();
+        tris.retain(|t| {
+            let [a, b, c] = t.map(|c| quanta[vid(c) as usize].map(i64::from));
+            let (e, f) = (
+                [0, 1, 2].map(|k| b[k] - a[k]),
+                [0, 1, 2].map(|k| c[k] - a[k]),
+            );
+            e[1] * f[2] - e[2] * f[1] != 0
+                || e[2] * f[0] - e[0] * f[2] != 0
+                || e[0] * f[1] - e[1] * f[0] != 0
+        });
+        zero_area += before - tris.len();
+        if tris.len() == before {
+            break (quant, transform, (tlo, thi));
+        }
+    };
+    let used_positions = used.iter().filter(|&&u| u).count();
+    let unused_vertices = nv - welded_vertices - used_positions;
+
+    // Normals.
+    progress.stage("normals", 1);
+    let mut mode = opts.normals.unwrap_or(if keep_possible {
+        NormalMode::Keep
+    } else {
+        NormalMode::Smooth
+    });
+    if mode == NormalMode::Keep && !keep_possible {
+        let why = if scan.vn_lines.is_empty() {
+            "the file has no normals"
+        } else {
+            "not every face corner has a normal"
+        };
+        warn(
+            warnings,
+            None,
+            format!("--normals keep: {why}; computing smooth normals instead"),
+        );
+        mode = NormalMode::Smooth;
+    }
+    let face_normal = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|c| tpos[vid(c) as usize]);
+        triangulate::normalize(cross(sub(b, a), sub(c, a)))
+    };
+    let mut smooth = vec![[0f64; 3]; if mode == NormalMode::None { 0 } else { nv }];
+    if mode != NormalMode::None {
+        for t in &tris {
+            let Some(n) = face_normal(t) else { continue };
+            let p = t.map(|c| tpos[vid(c) as usize]);
+            for i in 0..3 {
+                let (e1, e2) = (sub(p[(i + 1) % 3], p[i]), sub(p[(i + 2) % 3], p[i]));
+                let angle = dot(cross(e1, e2), cross(e1, e2)).sqrt().atan2(dot(e1, e2));
+                let s = &mut smooth[vid(t[i]) as usize];
+                for k in 0..3 {
+                    s[k] += angle * n[k];
+                }
+            }
+        }
+        for s in &mut smooth {
+            *s = triangulate::normalize(*s).unwrap_or([0.0, 0.0, 1.0]);
+        }
+    }
+    let mut bad_normals: Vec<usize> = Vec::new();
+    let mut non_unit: Vec<usize> = Vec::new();
+    let unit_file_normals: Vec<Option<P3>> = if mode == NormalMode::Keep {
+        let mut referenced = vec![false; file_normals.len()];
+        for t in &tris {
+            for &c in t {
+                referenced[scan.corners[c as usize].vn as usize] = true;
+            }
+        }
+        file_normals
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| {
+                let unit = triangulate::normalize(n);
+                if referenced[i] {
+                    match unit {
+                        None => bad_normals.push(i),
+                        Some(_) if (dot(n, n).sqrt() - 1.0).abs() > 1e-3 => non_unit.push(i),
+                        Some(_) => {}
+                    }
+                }
+                unit
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if let Some(&first) = bad_normals.first() {
+        warn(
+            warnings,
+            Some(scan.vn_lines[first] as usize),
+            format!(
+                "normal of zero length: vertices using it get smooth normals ({} such normal{})",
+                bad_normals.len(),
+                if bad_normals.len() == 1 { "" } else { "s" }
+            ),
+        );
+    }
+    if let Some(&first) = non_unit.first() {
+        warn(
+            warnings,
+            Some(scan.vn_lines[first] as usize),
+            format!(
+                "normal not of unit length: normalised ({} such normal{})",
+                non_unit.len(),
+                if non_unit.len() == 1 { "" } else { "s" }
+            ),
+        );
+    }
+
+    // Output vertices: one per distinct (position, normal source), in order of first use.
+    progress.stage("writing", tris.len() as u64);
+    let mut index: HashMap<(u32, u64), u32> = HashMap::with_capacity(used_positions * 2);
+    let mut out_pos: Vec<u32> = Vec::with_capacity(used_positions);
+    let mut out_nrm: Vec<P3> = Vec::new();
+    let mut out_tris: Vec<[u32; 3]> = Vec::with_capacity(tris.len());
+    for (ti, t) in tris.iter().enumerate() {
+        let flat = if mode == NormalMode::Flat {
+            face_normal(t)
+        } else {
+            None
+        };
+        let mut tri = [0u32; 3];
+        for (slot, &c) in tri.iter_mut().zip(t) {
+            let v = vid(c);
+            let (normal, key) = match mode {
+                NormalMode::None => (None, 0),
+                NormalMode::Smooth => (Some(smooth[v as usize]), 0),
+                NormalMode::Keep => {
+                    let vn = scan.corners[c as usize].vn;
+                    let n = unit_file_normals[vn as usize].unwrap_or(smooth[v as usize]);
+                    let key = if opts.weld {
+                        normal_key(quantise_normal(n))
+                    } else {
+                        u64::from(vn) + 1
+                    };
+                    (Some(n), key)
+                }
+                NormalMode::Flat => {
+                    let n = flat.unwrap_or(smooth[v as usize]);
+                    let key = if opts.weld {
+                        normal_key(quantise_normal(n))
+                    } else {
+                        ti as u64 + 1
+                    };
+                    (Some(n), key)
+                }
+            };
+            *slot = *index.entry((v, key)).or_insert_with(|| {
+                out_pos.push(v);
+                if let Some(n) = normal {
+                    out_nrm.push(n);
+                }
+                (out_pos.len() - 1) as u32
+            });
+        }
+        out_tris.push(tri);
+        if ti % 65536 == 0 {
+            progress.set(ti as u64);
+        }
+    }
+    if out_pos.len() > MAX_COUNT as usize || out_tris.len() > MAX_COUNT as usize {
+        return Err(fail(format!(
+            "{} vertices and {} triangles: the format allows at most {MAX_COUNT} of each",
+            out_pos.len(),
+            out_tris.len()
+        )));
+    }
+
+    let mesh = MeshData {
+        offset: quant.offset,
+        scale: quant.scale,
+        positions: out_pos.iter().map(|&v| quanta[v as usize]).collect(),
+        normals: (mode != NormalMode::None)
+            .then(|| out_nrm.iter().map(|&n| quantise_normal(n)).collect()),
+        colors: scan
+            .colours
+            .then(|| out_pos.iter().map(|&v| col[v as usize]).collect()),
+        triangles: out_tris,
+    };
+    let blob = encode(&mesh);
+    let packed = PackedMesh::parse(&blob).map_err(|e| {
+        fail(format!(
+            "internal error: the encoded mesh does not parse: {e}"
+        ))
+    })?;
+
+    // Measure the errors on the decoded blob.
+    let mut err = [0f64; 3];
+    let mut nerr = 0f64;
+    for (i, &v) in out_pos.iter().enumerate() {
+        let bits = packed.position_bits(i).unwrap_or_default();
+        for k in 0..3 {
+            err[k] = err[k].max((f64::from(bits[k]) / 65536.0 - tpos[v as usize][k]).abs());
+        }
+        if let (Some(nb), Some(n)) = (packed.normal_bits(i), out_nrm.get(i)) {
+            for k in 0..3 {
+                nerr = nerr.max((f64::from(nb[k]) / 65536.0 - n[k]).abs());
+            }
+        }
+    }
+    let max_error = err.iter().copied().fold(0.0, f64::max);
+    let max_error_fraction = (0..3)
+        .filter(|&k| bounds.1[k] > bounds.0[k])
+        .map(|k| err[k] / (bounds.1[k] - bounds.0[k]))
+        .fold(0.0, f64::max);
+    if max_error_fraction > 1e-3 {
+        warn(
+            warnings,
+            None,
+            format!(
+                "the model is small for 16.16 fixed point: positions are off by up to \
+                 {max_error_fraction:.1e} of its size; --center-unit-sphere rescales it"
+            ),
+        );
+    }
+    let report = Report {
+        triangles_in,
+        triangles_out: mesh.triangles.len(),
+        vertices_in: nv,
+        vertices_out: mesh.positions.len(),
+        repeated_index,
+        zero_area,
+        unused_vertices,
+        welded_vertices,
+        normals: mode,
+        transform,
+        bounds,
+        max_error,
+        max_error_fraction,
+        max_normal_error: mesh.normals.is_some().then_some(nerr),
+        bytes: blob.len(),
+    };
+    Ok(Conversion { mesh, blob, report })
+}
+
+impl Report {
+    /// The one-line summary the command prints on stdout (without the file names).
+    pub fn summary(&self) -> String {
+        let mut s = format!(
+            "{} -> {} triangles, {} -> {} vertices; dropped {} degenerate triangles ({} repeated \
+             vertex, {} zero area) and {} unused vertices; {} welded; {} normals; {} bytes; max \
+             quantisation error {:.3e} ({:.3e} of the extent)",
+            self.triangles_in,
+            self.triangles_out,
+            self.vertices_in,
+            self.vertices_out,
+            self.repeated_index + self.zero_area,
+            self.repeated_index,
+            self.zero_area,
+            self.unused_vertices,
+            self.welded_vertices,
+            self.normals,
+            self.bytes,
+            self.max_error,
+            self.max_error_fraction,
+        );
+        if let Some(e) = self.max_normal_error {
+            s += &format!(", normals {e:.3e}");
+        }
+        if let Some((c, f)) = self.transform {
+            s += &format!(
+                "; centred on ({:.6}, {:.6}, {:.6}) and scaled by {f:.6}",
+                c[0], c[1], c[2]
+            );
+        }
+        s
+    }
+}
+
+/// Writes `data` to a temporary file beside `path`, then renames it into place, so `path` is
+/// either untouched or complete.
+fn write_atomically(path: &Path, data: &[u8]) -> std::io::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::other("the output path names no file"))?;
+    let tmp = dir.join(format!(
+        ".{}.{}.tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = std::fs::write(&tmp, data).and_then(|()| std::fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Runs the command: converts, prints warnings on stderr and the summary on stdout, and writes
+/// the output only on success.
+///
+/// # Errors
+/// A [`ConvertError`] (boxed) for the `error:` line.
+pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let started = Instant::now();
+    let file = args.input.display().to_string();
+    let bytes = std::fs::read(&args.input).map_err(|e| ConvertError {
+        file: file.clone(),
+        line: None,
+        message: format!("cannot read: {e}"),
+    })?;
+    let opts = Options {
+        center_unit_sphere: args.center_unit_sphere,
+        normals: args.normals,
+        weld: args.weld,
+        progress: bytes.len() > (1 << 20) && std::io::stderr().is_terminal(),
+    };
+    let mut warnings = Vec::new();
+    let result = convert_obj(&file, &bytes, args.input.parent(), &opts, &mut warnings);
+    for w in &warnings {
+        eprintln!("warning: {}", w.display(&file));
+    }
+    let conv = result?;
+    let out = if args.rust {
+        let name = args.name.clone().unwrap_or_else(|| {
+            static_name_for(
+                &args
+                    .output
+                    .file_stem()
+                    .map(|s| s.to_string_lossy())
+                    .unwrap_or_default(),
+            )
+        });
+        let r = &conv.report;
+        let source_name = args
+            .input
+            .file_name()
+            .map(|s| s.to_string_lossy())
+            .unwrap_or_default();
+        let doc =
+            format!(
+            "Packed mesh (format v1) converted from `{source_name}` by `host-tools convert`.\n\n\
+             {} triangles, {} vertices, {} normals, {}{}-bit indices; max quantisation error \
+             {:.3e}.\n\
+             Read it in place with `rasterizer_core::mesh::PackedMesh::parse(&{name})`.",
+            r.triangles_out,
+            r.vertices_out,
+            r.normals,
+            if conv.mesh.colors.is_some() { "colours, " } else { "" },
+            if conv.mesh.wide_indices() { 32 } else { 16 },
+            r.max_error,
+        );
+        rust_source(&name, &conv.blob, &doc).into_bytes()
+    } else {
+        conv.blob.clone()
+    };
+    write_atomically(&args.output, &out).map_err(|e| ConvertError {
+        file: args.output.display().to_string(),
+        line: None,
+        message: format!("cannot write: {e}"),
+    })?;
+    println!(
+        "{file} -> {}: {}; {:.2} s",
+        args.output.display(),
+        conv.report.summary(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn convert(text: &str, opts: Options) -> (Result<Conversion, ConvertError>, Vec<Warning>) {
+        let mut w = Vec::new();
+        let r = convert_obj("t.obj", text.as_bytes(), None, &opts, &mut w);
+        (r, w)
+    }
+
+    #[test]
+    fn quad_with_normals_keeps_them() {
+        let (r, w) = convert(
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 2\nf 1//1 2//1 3//1 4//1\n",
+            Options::default(),
+        );
+        let c = r.unwrap();
+        assert_eq!(c.report.normals, NormalMode::Keep);
+        assert_eq!(c.report.triangles_out, 2);
+        assert_eq!(c.mesh.normals.as_ref().unwrap()[0], [0, 0, 32767]);
+        assert_eq!(w.len(), 1, "non-unit normal: {w:?}");
+    }
+
+    #[test]
+    fn degenerate_and_unused_are_counted() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 5 5 5\n\
+                    f 1 2 3\nf 1 1 2\nf 1 2 4\n";
+        let (r, _) = convert(text, Options::default());
+        let r = r.unwrap().report;
+        assert_eq!((r.triangles_in, r.triangles_out), (3, 1));
+        assert_eq!((r.repeated_index, r.zero_area), (1, 1));
+        // Vertex 4 only in a zero-area triangle, vertex 5 never used.
+        assert_eq!(r.unused_vertices, 2);
+        assert_eq!(r.vertices_out, 3);
+    }
+
+    #[test]
+    fn weld_merges_identical_positions() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 4 6 5\n";
+        let plain = convert(text, Options::default()).0.unwrap().report;
+        assert_eq!(plain.vertices_out, 6);
+        let opts = Options {
+            weld: true,
+            ..Options::default()
+        };
+        let welded = convert(text, opts).0.unwrap().report;
+        assert_eq!((welded.vertices_out, welded.welded_vertices), (4, 2));
+    }
+
+    #[test]
+    fn flat_normals_split_vertices() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n";
+        let opts = |weld| Options {
+            normals: Some(NormalMode::Flat),
+            weld,
+            ..Options::default()
+        };
+        let c = convert(text, opts(false)).0.unwrap();
+        assert_eq!(c.report.vertices_out, 6);
+        let n = c.mesh.normals.unwrap();
+        assert_eq!(n[0], [0, 0, -32767]);
+        assert_eq!(n[3], [0, -32767, 0]);
+        assert_eq!(convert(text, opts(true)).0.unwrap().report.vertices_out, 6);
+    }
+
+    #[test]
+    fn colours_are_written() {
+        let text = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+        let c = convert(text, Options::default()).0.unwrap();
+        assert_eq!(
+            c.mesh.colors.unwrap(),
+            vec![[255, 0, 0], [0, 255, 0], [0, 0, 255]]
+        );
+        let (r, w) = convert(
+            "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+            Options::default(),
+        );
+        assert!(r.unwrap().mesh.colors.is_none());
+        assert_eq!(w.len(), 1);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let e = convert("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", Options::default())
+            .0
+            .unwrap_err();
+        assert_eq!(e.to_string().split(": ").next(), Some("t.obj:4"));
+        let all_degenerate = convert("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", Options::default());
+        assert_eq!(all_degenerate.0.unwrap_err().line, None);
+    }
+
+    #[test]
+    fn random_text_never_panics() {
+        const NUMS: &[&str] = &["0", "1", "-1", "0.5", "2", "1e-9", "3", "-0"];
+        const CORNERS: &[&str] = &["1", "2", "3", "4", "5", "-1", "-2", "1//1", "2//1", "1/1"];
+        const ODD: &[&str] = &["nan", "1e7", "0", "x", "1/", "-9", "40000", "\u{feff}v"];
+        const BREAKS: &[&str] = &["\n", "\n", "\r\n", "\r"];
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move |n: usize| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as usize
+        };
+        let mut converted = 0;
+        for _ in 0..2000 {
+            let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nvn 0 0 1\n");
+            for _ in 0..next(12) {
+                let (key, pool, n) = match next(6) {
+                    0 => ("v", NUMS, 3),
+                    1 => ("vn", NUMS, 3),
+                    2 => ("l", CORNERS, 4),
+                    3 => ("o", NUMS, 1),
+                    _ => ("f", CORNERS, 3 + next(4)),
+                };
+                text += key;
+                for _ in 0..n {
+                    text.push(' ');
+                    text += if next(40) == 0 {
+                        ODD[next(ODD.len())]
+                    } else {
+                        pool[next(pool.len())]
+                    };
+                }
+                text += BREAKS[next(BREAKS.len())];
+            }
+            for normals in [None, Some(NormalMode::Flat), Some(NormalMode::Keep)] {
+                let opts = Options {
+                    normals,
+                    weld: next(2) == 0,
+                    center_unit_sphere: next(2) == 0,
+                    progress: false,
+                };
+                if let Ok(c) = convert(&text, opts).0 {
+                    PackedMesh::parse(&c.blob).unwrap();
+                    converted += 1;
+                }
+            }
+        }
+        assert!(converted > 500, "{converted}");
+    }
+
+    #[test]
+    fn centring_fits_the_unit_sphere() {
+        let text = "v 10 10 10\nv 14 10 10\nv 10 13 10\nf 1 2 3\n";
+        let opts = Options {
+            center_unit_sphere: true,
+            ..Options::default()
+        };
+        let c = convert(text, opts).0.unwrap();
+        let (centre, s) = c.report.transform.unwrap();
+        assert_eq!(centre, [12.0, 11.5, 10.0]);
+        assert!((s - 1.0 / 2.5).abs() < 1e-12);
+        assert!(c.report.max_error <= 1.6e-5, "{}", c.report.max_error);
+    }
+}
