@@ -1,0 +1,508 @@
+//! Drawing a loaded scene: the meshes through the 3D pipeline, then the 2D shapes.
+
+use super::format::{CullMode, FillRuleDef, LightDef, PixelFormat, ShadingModel, Shape};
+use super::load::{MeshData, OwnedMesh, Scene, SceneMesh};
+use super::reference::Real;
+use super::{MAX_LIGHTS, MAX_POLYGON};
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, PixelColor, Rgb565, Rgb888};
+use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::Pixel;
+use embedded_graphics_simulator::{OutputImage, OutputSettingsBuilder, SimulatorDisplay};
+use rasterizer_core::color::Channels;
+use rasterizer_core::geom::SubPoint;
+use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::mesh::PackedMesh;
+use rasterizer_core::pipeline::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
+use rasterizer_core::pipeline::shading::{
+    FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
+};
+use rasterizer_core::pipeline::{Mesh, MeshSource, Pipeline, RenderStats, Transforms, Viewport};
+use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
+use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
+use rasterizer_core::raster::point::draw_point;
+use rasterizer_core::raster::polygon::{FillRule, Polygon};
+use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
+use rasterizer_core::shade::{Light, Lighting};
+use rasterizer_core::target::{AnyTarget, ClipTo, Framebuffer, Surface};
+use std::convert::Infallible;
+
+/// Renders the whole scene (meshes in 16.16, then shapes) in its pixel format and returns the
+/// simulator's RGB output image at `scale`. `turn` rotates every mesh about the world's Y axis.
+///
+/// # Errors
+/// A message for the `error:` line (a pipeline that could not be set up).
+pub fn render_image(scene: &Scene, turn: Angle, scale: u32) -> Result<OutputImage<Rgb888>, String> {
+    let settings = OutputSettingsBuilder::new().scale(scale).build();
+    Ok(match scene.format {
+        PixelFormat::Rgb565 => {
+            render_display::<Rgb565>(scene, turn)?.to_rgb_output_image(&settings)
+        }
+        PixelFormat::Rgb888 => {
+            render_display::<Rgb888>(scene, turn)?.to_rgb_output_image(&settings)
+        }
+        PixelFormat::Gray8 => render_display::<Gray8>(scene, turn)?.to_rgb_output_image(&settings),
+        PixelFormat::Binary => {
+            render_display::<BinaryColor>(scene, turn)?.to_rgb_output_image(&settings)
+        }
+    })
+}
+
+/// The scene drawn onto a simulator display of colour `C`: the meshes into a
+/// `Framebuffer<Rgb888>` (the shaders produce `Rgb888` and convert each pixel to the target's
+/// colour in any case, so this gives the pixels a pipeline of colour `C` would), copied onto the
+/// display converted to `C`; then the shapes straight onto the display through `AnyTarget`.
+fn render_display<C>(scene: &Scene, turn: Angle) -> Result<SimulatorDisplay<C>, String>
+where
+    C: PixelColor + From<Rgb888> + Channels,
+{
+    let size = Size::new(scene.width, scene.height);
+    let mut display = SimulatorDisplay::with_default_color(size, C::from(scene.background));
+    if !scene.meshes.is_empty() {
+        let rgb = render_3d_pixels::<Fx16>(scene, turn)?;
+        let w = scene.width as usize;
+        let Ok(()) = display.draw_iter(
+            rgb.into_iter()
+                .enumerate()
+                .map(|(i, c)| Pixel(Point::new((i % w) as i32, (i / w) as i32), C::from(c))),
+        );
+    }
+    draw_shapes(scene, &mut display);
+    Ok(display)
+}
+
+/// Only the meshes, in the scalar `S`, onto an `Rgb888` display cleared to the background.
+///
+/// # Errors
+/// A message for the `error:` line.
+pub fn render_3d<S: Real>(scene: &Scene) -> Result<SimulatorDisplay<Rgb888>, String> {
+    let size = Size::new(scene.width, scene.height);
+    let mut display = SimulatorDisplay::with_default_color(size, scene.background);
+    let rgb = render_3d_pixels::<S>(scene, Angle(0))?;
+    let w = scene.width as usize;
+    let Ok(()) = display.draw_iter(
+        rgb.into_iter()
+            .enumerate()
+            .map(|(i, c)| Pixel(Point::new((i % w) as i32, (i / w) as i32), c)),
+    );
+    Ok(display)
+}
+
+/// The meshes rendered in `S` into a framebuffer cleared to the background, row by row.
+fn render_3d_pixels<S: Real>(scene: &Scene, turn: Angle) -> Result<Vec<Rgb888>, String> {
+    let (w, h) = (scene.width, scene.height);
+    let len = Framebuffer::<Rgb888>::required_len(w, h).ok_or("the output is too large")?;
+    let mut bytes = vec![0u8; len];
+    let mut fb = Framebuffer::<Rgb888>::new(&mut bytes, w, h).map_err(|e| e.to_string())?;
+    let Ok(()) = fb.clear(scene.background);
+    draw_meshes::<S>(scene, &mut fb, turn)?;
+    Ok((0..h as i32)
+        .flat_map(|y| (0..w as i32).map(move |x| Point::new(x, y)))
+        .map(|p| fb.pixel(p).unwrap_or(scene.background))
+        .collect())
+}
+
+/// Any mesh source behind one type, so the pipelines are compiled once for all mesh kinds.
+struct DynMesh<'a, S>(&'a dyn MeshSource<S>);
+
+impl<S> MeshSource<S> for DynMesh<'_, S> {
+    fn vertex_count(&self) -> usize {
+        self.0.vertex_count()
+    }
+    fn triangle_count(&self) -> usize {
+        self.0.triangle_count()
+    }
+    fn triangle(&self, t: usize) -> [usize; 3] {
+        self.0.triangle(t)
+    }
+    fn position(&self, i: usize) -> Vec3<S> {
+        self.0.position(i)
+    }
+    fn has_normals(&self) -> bool {
+        self.0.has_normals()
+    }
+    fn normal(&self, i: usize) -> Option<Vec3<S>> {
+        self.0.normal(i)
+    }
+    fn color(&self, i: usize) -> Option<Rgb888> {
+        self.0.color(i)
+    }
+}
+
+/// The target every pipeline draws into.
+type Target<'a> = Framebuffer<'a, Rgb888>;
+
+/// A vector of `f64`s in `S`.
+fn v3<S: Real>(v: [f64; 3]) -> Vec3<S> {
+    Vec3::new(S::from_f64(v[0]), S::from_f64(v[1]), S::from_f64(v[2]))
+}
+
+/// An angle in degrees, to 1/3600 degree.
+fn degrees(d: f64) -> Angle {
+    Angle::from_degrees_ratio((d * 3600.0).round() as i64, 3600)
+}
+
+/// A mesh's model matrix (scale, rotate x, y, z, translate, then the turntable's turn about Y)
+/// and, for a non-uniform scale, the matrix for its normals.
+fn model_of<S: Real>(m: &SceneMesh, turn: Angle) -> (Mat4<S>, Option<Mat4<S>>) {
+    let [sx, sy, sz] = m.scale;
+    let rotation = Mat4::rotation_x(degrees(m.rotate[0]))
+        .then(&Mat4::rotation_y(degrees(m.rotate[1])))
+        .then(&Mat4::rotation_z(degrees(m.rotate[2])));
+    let model = Mat4::scale(S::from_f64(sx), S::from_f64(sy), S::from_f64(sz))
+        .then(&rotation)
+        .then(&Mat4::translation(v3(m.translate)))
+        .then(&Mat4::rotation_y(turn));
+    let normal = (sx != sy || sy != sz).then(|| {
+        // The inverse transpose of scale-then-rotate is the inverse scale, then the rotation.
+        Mat4::scale(
+            S::from_f64(1.0 / sx),
+            S::from_f64(1.0 / sy),
+            S::from_f64(1.0 / sz),
+        )
+        .then(&rotation)
+        .then(&Mat4::rotation_y(turn))
+    });
+    (model, normal)
+}
+
+/// Everything one mesh's draw call needs besides the mesh.
+struct Job<'a, S: Real> {
+    mesh: &'a SceneMesh,
+    transforms: Transforms<S>,
+    normal_matrix: Option<Mat4<S>>,
+    viewport: Viewport,
+    lighting: Lighting<S, MAX_LIGHTS>,
+}
+
+/// The meshes, in order, sharing one depth buffer.
+fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, turn: Angle) -> Result<(), String> {
+    let cam = &scene.camera;
+    let (w, h) = (scene.width, scene.height);
+    let view = Mat4::look_at(v3::<S>(cam.eye), v3(cam.target), v3(cam.up))
+        .ok_or("the camera's view matrix is degenerate in this number format")?;
+    let projection = Mat4::perspective(
+        degrees(cam.fov),
+        S::from_ratio(i64::from(w), i64::from(h)),
+        S::from_f64(cam.near),
+        S::from_f64(cam.far),
+    )
+    .ok_or("the camera's projection is degenerate in this number format")?;
+    let mut zbuf = vec![u16::MAX; w as usize * h as usize];
+    for mesh in &scene.meshes {
+        let (model, normal_matrix) = model_of::<S>(mesh, turn);
+        let mut lighting = Lighting::new(mesh.material, scene.ambient, scene.specular, v3(cam.eye));
+        for light in &scene.lights {
+            let light = match light {
+                LightDef::Directional { direction, color } => Light::Directional {
+                    direction: v3(*direction),
+                    color: Rgb888::new(color.0[0], color.0[1], color.0[2]),
+                },
+                LightDef::Point { position, color } => Light::Point {
+                    position: v3(*position),
+                    color: Rgb888::new(color.0[0], color.0[1], color.0[2]),
+                },
+            };
+            lighting
+                .add_light(light)
+                .map_err(|_| "a light's direction is zero in this number format")?;
+        }
+        let job = Job {
+            mesh,
+            transforms: Transforms {
+                model,
+                view,
+                projection,
+            },
+            normal_matrix,
+            viewport: Viewport::new(w, h),
+            lighting,
+        };
+        match &mesh.data {
+            MeshData::Packed(bytes) => {
+                let packed = PackedMesh::parse(bytes).map_err(|e| e.to_string())?;
+                by_cull(target, &DynMesh(&packed), &job, &mut zbuf);
+            }
+            MeshData::Owned(owned) => {
+                let data = Converted::<S>::new(owned);
+                by_cull(target, &DynMesh(&data.mesh()), &job, &mut zbuf);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// An [`OwnedMesh`] in the scalar `S`.
+struct Converted<S> {
+    positions: Vec<Vec3<S>>,
+    normals: Option<Vec<Vec3<S>>>,
+    colors: Option<Vec<Rgb888>>,
+    triangles: Vec<[u32; 3]>,
+}
+
+impl<S: Real> Converted<S> {
+    fn new(m: &OwnedMesh) -> Self {
+        Self {
+            positions: m.positions.iter().map(|&p| v3(p)).collect(),
+            normals: m
+                .normals
+                .as_ref()
+                .map(|n| n.iter().map(|&v| v3(v)).collect()),
+            colors: m.colors.clone(),
+            triangles: m.triangles.clone(),
+        }
+    }
+
+    fn mesh(&self) -> Mesh<'_, S, u32> {
+        Mesh {
+            positions: &self.positions,
+            normals: self.normals.as_deref(),
+            colors: self.colors.as_deref(),
+            triangles: &self.triangles,
+        }
+    }
+}
+
+/// Picks the culling stage.
+fn by_cull<S: Real, M>(target: &mut Target<'_>, mesh: &M, job: &Job<'_, S>, zbuf: &mut [u16])
+where
+    M: MeshSource<S>,
+{
+    match job.mesh.cull {
+        CullMode::None => by_depth(target, mesh, job, zbuf, NoCull),
+        CullMode::Cw => by_depth(target, mesh, job, zbuf, CullClockwise),
+        CullMode::Ccw => by_depth(target, mesh, job, zbuf, CullCounterClockwise),
+    }
+}
+
+/// Wireframe, or picks the depth stage.
+fn by_depth<S: Real, M, C: Cull>(
+    target: &mut Target<'_>,
+    mesh: &M,
+    job: &Job<'_, S>,
+    zbuf: &mut [u16],
+    cull: C,
+) where
+    M: MeshSource<S>,
+{
+    if job.mesh.wireframe {
+        let color = job.mesh.color;
+        let mut p = Pipeline::<S, C, NoDepth, Unlit<Rgb888>>::new(
+            &job.transforms,
+            job.viewport,
+            cull,
+            NoDepth,
+            Unlit { color },
+        );
+        let Ok(_) = p.draw_wireframe(target, mesh, color);
+        return;
+    }
+    if job.mesh.depth {
+        let (w, h) = (job.viewport.width, job.viewport.height);
+        // The buffer has exactly w * h entries, so this cannot fail.
+        if let Ok(depth) = DepthBuffer::new(zbuf, w, h, Compare::Less) {
+            by_shading(target, mesh, job, cull, depth);
+        }
+    } else {
+        by_shading(target, mesh, job, cull, NoDepth);
+    }
+}
+
+/// Picks the shading stage.
+fn by_shading<S: Real, M, C: Cull, D: DepthTest>(
+    target: &mut Target<'_>,
+    mesh: &M,
+    job: &Job<'_, S>,
+    cull: C,
+    depth: D,
+) -> RenderStats
+where
+    M: MeshSource<S>,
+{
+    let lighting = job.lighting.clone();
+    match job.mesh.shading {
+        ShadingModel::None => by_perspective(
+            target,
+            mesh,
+            job,
+            cull,
+            depth,
+            Unlit {
+                color: job.mesh.color,
+            },
+        ),
+        ShadingModel::VertexColors => by_perspective(
+            target,
+            mesh,
+            job,
+            cull,
+            depth,
+            VertexColors::<Rgb888>::new(),
+        ),
+        ShadingModel::Flat => by_perspective(
+            target,
+            mesh,
+            job,
+            cull,
+            depth,
+            FlatLit::<S, Rgb888, MAX_LIGHTS>::new(lighting),
+        ),
+        ShadingModel::Gouraud => by_perspective(
+            target,
+            mesh,
+            job,
+            cull,
+            depth,
+            GouraudLit::<S, Rgb888, MAX_LIGHTS>::new(lighting),
+        ),
+        ShadingModel::Phong => by_perspective(
+            target,
+            mesh,
+            job,
+            cull,
+            depth,
+            PhongLit::<S, Rgb888, MAX_LIGHTS>::new(lighting),
+        ),
+    }
+}
+
+/// Picks affine or perspective-correct interpolation.
+fn by_perspective<S: Real, M, C: Cull, D: DepthTest, Sh: Shading<S, Color = Rgb888>>(
+    target: &mut Target<'_>,
+    mesh: &M,
+    job: &Job<'_, S>,
+    cull: C,
+    depth: D,
+    shading: Sh,
+) -> RenderStats
+where
+    M: MeshSource<S>,
+{
+    if job.mesh.perspective_correct {
+        draw_with::<S, M, C, D, Sh, true>(target, mesh, job, cull, depth, shading)
+    } else {
+        draw_with::<S, M, C, D, Sh, false>(target, mesh, job, cull, depth, shading)
+    }
+}
+
+/// The draw call of one monomorphised pipeline.
+fn draw_with<S, M, C, D, Sh, const P: bool>(
+    target: &mut Target<'_>,
+    mesh: &M,
+    job: &Job<'_, S>,
+    cull: C,
+    depth: D,
+    shading: Sh,
+) -> RenderStats
+where
+    S: Real,
+    M: MeshSource<S>,
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<S, Color = Rgb888>,
+{
+    let mut p =
+        Pipeline::<S, C, D, Sh, 4, P>::new(&job.transforms, job.viewport, cull, depth, shading);
+    if let Some(n) = job.normal_matrix {
+        p.set_normal_matrix(n);
+    }
+    let Ok(stats) = p.draw(target, mesh);
+    stats
+}
+
+/// A colour of the scene file in the display's format.
+fn color<C: From<Rgb888>>(c: super::format::Color) -> C {
+    C::from(Rgb888::new(c.0[0], c.0[1], c.0[2]))
+}
+
+/// The pixel containing a point.
+fn pixel(p: [f64; 2]) -> Point {
+    // `as` saturates, so far-away points stay far away.
+    Point::new(p[0].floor() as i32, p[1].floor() as i32)
+}
+
+/// A vertex in 28.4 sub-pixel fixed point, rounded to 1/16 pixel.
+fn sub(p: [f64; 2]) -> SubPoint {
+    let one = f64::from(SubPoint::<4>::ONE);
+    SubPoint::new((p[0] * one).round() as i32, (p[1] * one).round() as i32)
+}
+
+/// The 2D shapes, in order, straight onto the display through `AnyTarget`.
+fn draw_shapes<C>(scene: &Scene, display: &mut SimulatorDisplay<C>)
+where
+    C: PixelColor + From<Rgb888> + Channels,
+{
+    let mut any = AnyTarget::new(display);
+    for shape in &scene.shapes {
+        let clip = match shape {
+            Shape::Point { clip, .. }
+            | Shape::Line { clip, .. }
+            | Shape::Triangle { clip, .. }
+            | Shape::Outline { clip, .. }
+            | Shape::Polygon { clip, .. } => *clip,
+        };
+        let area = match clip {
+            Some([x, y, w, h]) => Rectangle::new(Point::new(x, y), Size::new(w as u32, h as u32)),
+            None => any.clip_area(),
+        };
+        draw_shape(&mut ClipTo::new(&mut any, area), shape);
+    }
+}
+
+/// One shape (already checked by the loader).
+fn draw_shape<T>(t: &mut T, shape: &Shape)
+where
+    T: Surface<Error = Infallible>,
+    T::Color: From<Rgb888> + Channels,
+{
+    let Ok(()) = match shape {
+        Shape::Point { at, color: c, .. } => draw_point(t, pixel(*at), color(*c)),
+        Shape::Line {
+            from,
+            to,
+            color: c,
+            colors,
+            ..
+        } => match (c, colors) {
+            (_, Some([a, b])) => {
+                draw_line_gradient(t, pixel(*from), pixel(*to), color(*a), color(*b))
+            }
+            (Some(c), None) => draw_line(t, pixel(*from), pixel(*to), color(*c)),
+            (None, None) => Ok(()),
+        },
+        Shape::Triangle {
+            vertices,
+            color: c,
+            colors,
+            ..
+        } => {
+            let v = vertices.map(sub);
+            match (c, colors) {
+                (_, Some(cs)) => fill_triangle_gouraud(t, v, cs.map(color)),
+                (Some(c), None) => fill_triangle(t, v, color(*c)),
+                (None, None) => Ok(()),
+            }
+        }
+        Shape::Outline {
+            vertices, color: c, ..
+        } => draw_triangle(t, vertices.map(pixel), color(*c)),
+        Shape::Polygon {
+            vertices,
+            fill_rule,
+            color: c,
+            ..
+        } => {
+            let pts: Vec<SubPoint> = vertices.iter().map(|&p| sub(p)).collect();
+            let rule = match fill_rule {
+                FillRuleDef::EvenOdd => FillRule::EvenOdd,
+                FillRuleDef::NonZero => FillRule::NonZero,
+            };
+            match Polygon::<MAX_POLYGON, 4>::new(&pts) {
+                Ok(poly) => poly.fill(t, rule, color(*c)),
+                // The loader checked the vertex count.
+                Err(_) => Ok(()),
+            }
+        }
+    };
+}

@@ -1,0 +1,452 @@
+//! The scene file's structure, as serde reads it. Every table rejects unknown keys.
+
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::Deserialize;
+use std::fmt;
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Size, pixel format and background.
+    pub output: Output,
+    /// The camera of the 3D part.
+    #[serde(default)]
+    pub camera: Camera,
+    /// The 3D stages every mesh uses unless it says otherwise.
+    #[serde(default)]
+    pub render: RenderOptions,
+    /// The lights (at most [`super::MAX_LIGHTS`]).
+    #[serde(default)]
+    pub lights: Vec<Spanned<LightDef>>,
+    /// The meshes, drawn in order before the shapes.
+    #[serde(default)]
+    pub meshes: Vec<Spanned<MeshDef>>,
+    /// The 2D shapes, drawn in order after the meshes.
+    #[serde(default)]
+    pub shapes: Vec<Spanned<Shape>>,
+}
+
+/// The `[output]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Output {
+    /// Width in pixels (1 ..= 4096).
+    pub width: u32,
+    /// Height in pixels (1 ..= 4096).
+    pub height: u32,
+    /// The display's pixel format.
+    #[serde(default)]
+    pub format: PixelFormat,
+    /// The colour the display is cleared to.
+    #[serde(default = "black")]
+    pub background: Color,
+    /// How many PNG pixels one display pixel becomes, unless `--scale` says otherwise.
+    #[serde(default = "one")]
+    pub scale: u32,
+}
+
+/// A display pixel format.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PixelFormat {
+    /// 16-bit colour, 5-6-5.
+    Rgb565,
+    /// 24-bit colour.
+    #[default]
+    Rgb888,
+    /// 8-bit grey.
+    Gray8,
+    /// One bit: on or off.
+    Binary,
+}
+
+/// The `[camera]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camera {
+    /// Where the camera is.
+    #[serde(default = "default_eye")]
+    pub eye: [f64; 3],
+    /// The point it looks at.
+    #[serde(default)]
+    pub target: [f64; 3],
+    /// Roughly up.
+    #[serde(default = "default_up")]
+    pub up: [f64; 3],
+    /// Vertical field of view in degrees.
+    #[serde(default = "default_fov")]
+    pub fov: f64,
+    /// Near clip plane distance.
+    #[serde(default = "default_near")]
+    pub near: f64,
+    /// Far clip plane distance.
+    #[serde(default = "default_far")]
+    pub far: f64,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Self {
+            eye: default_eye(),
+            target: [0.0; 3],
+            up: default_up(),
+            fov: default_fov(),
+            near: default_near(),
+            far: default_far(),
+        }
+    }
+}
+
+/// The `[render]` table: the 3D stages.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderOptions {
+    /// Edges only (`Pipeline::draw_wireframe`) instead of filled triangles.
+    #[serde(default)]
+    pub wireframe: bool,
+    /// The shading model of filled meshes.
+    #[serde(default)]
+    pub shading: ShadingModel,
+    /// A depth buffer (filled meshes only).
+    #[serde(default = "yes")]
+    pub depth: bool,
+    /// Which triangles to drop by their winding on screen.
+    #[serde(default)]
+    pub cull: CullMode,
+    /// Interpolate shader values perspective-correctly.
+    #[serde(default)]
+    pub perspective_correct: bool,
+    /// The specular term of lit shading.
+    #[serde(default)]
+    pub specular: SpecularModel,
+    /// The colour of the ambient light.
+    #[serde(default = "white")]
+    pub ambient: Color,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self {
+            wireframe: false,
+            shading: ShadingModel::default(),
+            depth: true,
+            cull: CullMode::default(),
+            perspective_correct: false,
+            specular: SpecularModel::default(),
+            ambient: white(),
+        }
+    }
+}
+
+/// A shading model.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShadingModel {
+    /// The mesh's `color`, unlit (`Unlit`).
+    None,
+    /// The mesh's vertex colours interpolated, unlit (`VertexColors`).
+    VertexColors,
+    /// Lit once per triangle (`FlatLit`).
+    Flat,
+    /// Lit per vertex, colours interpolated (`GouraudLit`).
+    #[default]
+    Gouraud,
+    /// Lit per pixel (`PhongLit`).
+    Phong,
+}
+
+/// Back-face culling.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CullMode {
+    /// Keep every triangle (`NoCull`).
+    None,
+    /// Drop triangles that appear clockwise: the back faces of a counter-clockwise mesh
+    /// (`CullClockwise`).
+    #[default]
+    Cw,
+    /// Drop triangles that appear counter-clockwise (`CullCounterClockwise`).
+    Ccw,
+}
+
+/// The specular term of lit shading.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpecularModel {
+    /// No highlight.
+    None,
+    /// Phong's reflected vector.
+    Phong,
+    /// Blinn-Phong's half vector.
+    #[default]
+    BlinnPhong,
+}
+
+/// One `[[lights]]` entry.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum LightDef {
+    /// Infinitely far away.
+    Directional {
+        /// From the surface towards the light.
+        direction: [f64; 3],
+        /// Its colour.
+        #[serde(default = "white")]
+        color: Color,
+    },
+    /// At a point, not attenuated.
+    Point {
+        /// Where it is, in world space.
+        position: [f64; 3],
+        /// Its colour.
+        #[serde(default = "white")]
+        color: Color,
+    },
+}
+
+/// One `[[meshes]]` entry.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshDef {
+    /// An OBJ file or a packed `.rmsh` blob, relative to the scene file.
+    pub path: String,
+    /// Centre the bounding box on the origin and scale the mesh into the unit sphere.
+    #[serde(default)]
+    pub fit_unit_sphere: bool,
+    /// Where the vertex normals come from.
+    #[serde(default)]
+    pub normals: NormalsMode,
+    /// Vertex colours to generate for `shading = "vertex_colors"`.
+    #[serde(default)]
+    pub vertex_colors: VertexColorMode,
+    /// Scale factor: one number, or `[x, y, z]`.
+    #[serde(default)]
+    pub scale: ScaleDef,
+    /// Rotations about x, then y, then z, in degrees.
+    #[serde(default)]
+    pub rotate: [f64; 3],
+    /// Translation, applied last.
+    #[serde(default)]
+    pub translate: [f64; 3],
+    /// Base colour: the unlit and wireframe colour, and the lit material's default colour.
+    #[serde(default = "clay")]
+    pub color: Color,
+    /// The lit material; missing entries derive from `color`.
+    #[serde(default)]
+    pub material: Option<MaterialDef>,
+    /// Overrides `render.wireframe`.
+    pub wireframe: Option<bool>,
+    /// Overrides `render.shading`.
+    pub shading: Option<ShadingModel>,
+    /// Overrides `render.depth`.
+    pub depth: Option<bool>,
+    /// Overrides `render.cull`.
+    pub cull: Option<CullMode>,
+    /// Overrides `render.perspective_correct`.
+    pub perspective_correct: Option<bool>,
+}
+
+/// Where a mesh's normals come from.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalsMode {
+    /// The file's normals when it has usable ones (all non-zero), else `smooth`.
+    #[default]
+    Auto,
+    /// The file's normals; an error when it has none.
+    File,
+    /// Area-weighted averages of the adjacent faces, vertices at the same position welded.
+    Smooth,
+    /// None: lit shading uses each triangle's face normal.
+    Face,
+}
+
+/// Generated vertex colours.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VertexColorMode {
+    /// The file's colours (packed meshes), else white.
+    #[default]
+    File,
+    /// The position in the bounding box as red, green, blue.
+    Position,
+    /// The normal's direction as red, green, blue.
+    Normal,
+}
+
+/// A uniform or per-axis scale.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum ScaleDef {
+    /// The same on every axis.
+    Uniform(f64),
+    /// Per axis.
+    Axes([f64; 3]),
+}
+
+impl Default for ScaleDef {
+    fn default() -> Self {
+        Self::Uniform(1.0)
+    }
+}
+
+/// A mesh's `material` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialDef {
+    /// Reflected ambient light; default a fifth of `color`.
+    pub ambient: Option<Color>,
+    /// Reflected diffuse light; default `color`.
+    pub diffuse: Option<Color>,
+    /// Reflected highlight; default white.
+    pub specular: Option<Color>,
+    /// Specular exponent; default 16.
+    pub shininess: Option<u16>,
+}
+
+/// One `[[shapes]]` entry: a 2D primitive in pixel coordinates (x right, y down; pixel `(x, y)`
+/// covers `[x, x + 1) x [y, y + 1)`).
+#[derive(Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Shape {
+    /// One pixel: the one containing `at`.
+    Point {
+        /// The position.
+        at: [f64; 2],
+        /// Its colour.
+        color: Color,
+        /// Optional clip rectangle `[x, y, width, height]`.
+        clip: Option<[i32; 4]>,
+    },
+    /// A line between the pixels containing `from` and `to`, in one colour or (`colors`) a
+    /// gradient.
+    Line {
+        /// Start.
+        from: [f64; 2],
+        /// End.
+        to: [f64; 2],
+        /// One colour (give this or `colors`).
+        color: Option<Color>,
+        /// Start and end colours (give this or `color`).
+        colors: Option<[Color; 2]>,
+        /// Optional clip rectangle.
+        clip: Option<[i32; 4]>,
+    },
+    /// A filled triangle with sub-pixel vertices (rounded to 1/16 pixel), flat (`color`) or
+    /// Gouraud (`colors`).
+    Triangle {
+        /// The corners.
+        vertices: [[f64; 2]; 3],
+        /// One colour (give this or `colors`).
+        color: Option<Color>,
+        /// One colour per corner (give this or `color`).
+        colors: Option<[Color; 3]>,
+        /// Optional clip rectangle.
+        clip: Option<[i32; 4]>,
+    },
+    /// A triangle's outline: three lines between the pixels containing the corners.
+    Outline {
+        /// The corners.
+        vertices: [[f64; 2]; 3],
+        /// Its colour.
+        color: Color,
+        /// Optional clip rectangle.
+        clip: Option<[i32; 4]>,
+    },
+    /// A filled polygon, concave or self-intersecting, sub-pixel vertices.
+    Polygon {
+        /// The corners, in order (at most [`super::MAX_POLYGON`]).
+        vertices: Vec<[f64; 2]>,
+        /// How overlapping parts are filled.
+        #[serde(default)]
+        fill_rule: FillRuleDef,
+        /// Its colour.
+        color: Color,
+        /// Optional clip rectangle.
+        clip: Option<[i32; 4]>,
+    },
+}
+
+/// A polygon fill rule.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FillRuleDef {
+    /// Filled where the crossing count is odd.
+    #[default]
+    EvenOdd,
+    /// Filled where the winding number is not zero.
+    NonZero,
+}
+
+/// A colour: `[r, g, b]` (0 ..= 255 each) or `"#rrggbb"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Color(pub [u8; 3]);
+
+impl<'de> Deserialize<'de> for Color {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = Color;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a colour: [r, g, b] with 0..=255 each, or \"#rrggbb\"")
+            }
+            fn visit_str<E: de::Error>(self, s: &str) -> Result<Color, E> {
+                let hex = s
+                    .strip_prefix('#')
+                    .filter(|h| h.len() == 6 && h.bytes().all(|b| b.is_ascii_hexdigit()))
+                    .ok_or_else(|| E::invalid_value(de::Unexpected::Str(s), &self))?;
+                let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).unwrap_or(0);
+                Ok(Color([byte(0), byte(2), byte(4)]))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Color, A::Error> {
+                let mut c = [0u8; 3];
+                for (i, slot) in c.iter_mut().enumerate() {
+                    let v: i64 = seq
+                        .next_element()?
+                        .ok_or_else(|| de::Error::invalid_length(i, &self))?;
+                    *slot = u8::try_from(v).map_err(|_| {
+                        de::Error::invalid_value(de::Unexpected::Signed(v), &"0..=255")
+                    })?;
+                }
+                if seq.next_element::<de::IgnoredAny>()?.is_some() {
+                    return Err(de::Error::invalid_length(4, &self));
+                }
+                Ok(Color(c))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+fn black() -> Color {
+    Color([0, 0, 0])
+}
+fn white() -> Color {
+    Color([255, 255, 255])
+}
+fn clay() -> Color {
+    Color([220, 140, 80])
+}
+fn one() -> u32 {
+    1
+}
+fn yes() -> bool {
+    true
+}
+fn default_eye() -> [f64; 3] {
+    [0.0, 0.0, 3.0]
+}
+fn default_up() -> [f64; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov() -> f64 {
+    60.0
+}
+fn default_near() -> f64 {
+    0.1
+}
+fn default_far() -> f64 {
+    100.0
+}

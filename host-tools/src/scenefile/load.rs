@@ -1,0 +1,533 @@
+//! Reading a scene file: parsing, checking every value, loading the meshes.
+
+use super::format::{
+    Camera, Color, CullMode, LightDef, MeshDef, NormalsMode, PixelFormat, ScaleDef, SceneFile,
+    ShadingModel, Shape, SpecularModel, VertexColorMode,
+};
+use super::{MAX_LIGHTS, MAX_POLYGON};
+use crate::obj::LoadedMesh;
+use embedded_graphics_core::pixelcolor::Rgb888;
+use rasterizer_core::mesh::{PackedMesh, MAGIC};
+use rasterizer_core::shade::{Material, Specular};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// A scene, checked and with its meshes loaded.
+#[derive(Debug)]
+pub struct Scene {
+    /// The file it came from.
+    pub path: PathBuf,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// The display's pixel format.
+    pub format: PixelFormat,
+    /// Background colour.
+    pub background: Rgb888,
+    /// Default PNG scale.
+    pub scale: u32,
+    /// The camera.
+    pub camera: Camera,
+    /// Ambient light colour.
+    pub ambient: Rgb888,
+    /// The specular model.
+    pub specular: Specular,
+    /// The lights.
+    pub lights: Vec<LightDef>,
+    /// The meshes.
+    pub meshes: Vec<SceneMesh>,
+    /// The 2D shapes.
+    pub shapes: Vec<Shape>,
+}
+
+/// A mesh with its transform and stages.
+#[derive(Debug)]
+pub struct SceneMesh {
+    /// The path as the scene file wrote it.
+    pub name: String,
+    /// The vertex data.
+    pub data: MeshData,
+    /// Per-axis scale.
+    pub scale: [f64; 3],
+    /// Rotations about x, y, z in degrees.
+    pub rotate: [f64; 3],
+    /// Translation.
+    pub translate: [f64; 3],
+    /// Unlit and wireframe colour.
+    pub color: Rgb888,
+    /// Lit material.
+    pub material: Material,
+    /// Edges only.
+    pub wireframe: bool,
+    /// Shading model.
+    pub shading: ShadingModel,
+    /// Depth test.
+    pub depth: bool,
+    /// Culling.
+    pub cull: CullMode,
+    /// Perspective-correct interpolation.
+    pub perspective_correct: bool,
+}
+
+/// Vertex data: a packed blob drawn in place, or a mesh in memory.
+#[derive(Debug)]
+pub enum MeshData {
+    /// A valid packed mesh (checked when loaded), drawn straight through `PackedMesh`.
+    Packed(Vec<u8>),
+    /// Positions, normals and colours in `f64`, converted to the scalar of each render.
+    Owned(OwnedMesh),
+}
+
+/// A mesh in host memory.
+#[derive(Debug, Clone, Default)]
+pub struct OwnedMesh {
+    /// Positions.
+    pub positions: Vec<[f64; 3]>,
+    /// One normal per position, if any.
+    pub normals: Option<Vec<[f64; 3]>>,
+    /// One colour per position, if any.
+    pub colors: Option<Vec<Rgb888>>,
+    /// Triangles.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// The 1-based line of a byte offset.
+fn line_of(src: &str, offset: usize) -> usize {
+    src.as_bytes()[..offset.min(src.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+fn rgb(c: Color) -> Rgb888 {
+    Rgb888::new(c.0[0], c.0[1], c.0[2])
+}
+
+fn finite(v: &[f64]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Reads and checks a scene file and loads its meshes.
+///
+/// # Errors
+/// A message starting with the file's path: TOML errors carry the parser's line and column,
+/// other problems the line of the table they are in.
+pub fn load(path: &Path) -> Result<Scene, String> {
+    let shown = path.display();
+    let src =
+        std::fs::read_to_string(path).map_err(|e| format!("{shown}: cannot read scene: {e}"))?;
+    let file: SceneFile =
+        toml::from_str(&src).map_err(|e| format!("{shown}: {}", e.to_string().trim_end()))?;
+    let at = |span: std::ops::Range<usize>| format!("{shown}: line {}", line_of(&src, span.start));
+
+    let out = &file.output;
+    if !(1..=4096).contains(&out.width) || !(1..=4096).contains(&out.height) {
+        return Err(format!(
+            "{shown}: [output] width and height must be 1 ..= 4096, got {} x {}",
+            out.width, out.height
+        ));
+    }
+    if !(1..=16).contains(&out.scale) {
+        return Err(format!(
+            "{shown}: [output] scale must be 1 ..= 16, got {}",
+            out.scale
+        ));
+    }
+    check_camera(&file.camera).map_err(|e| format!("{shown}: [camera] {e}"))?;
+
+    if file.lights.len() > MAX_LIGHTS {
+        return Err(format!(
+            "{shown}: {} lights, at most {MAX_LIGHTS} are supported",
+            file.lights.len()
+        ));
+    }
+    let mut lights = Vec::new();
+    for l in file.lights {
+        let span = l.span();
+        let light = l.into_inner();
+        let ok = match &light {
+            LightDef::Directional { direction, .. } => finite(direction) && norm(*direction) > 0.0,
+            LightDef::Point { position, .. } => finite(position),
+        };
+        if !ok {
+            return Err(format!(
+                "{}: light needs a finite, non-zero direction or a finite position",
+                at(span)
+            ));
+        }
+        lights.push(light);
+    }
+
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mut meshes = Vec::new();
+    for m in file.meshes {
+        let span = m.span();
+        let def = m.into_inner();
+        let mesh = load_mesh(dir, def, &file.render).map_err(|e| format!("{}: {e}", at(span)))?;
+        meshes.push(mesh);
+    }
+
+    let mut shapes = Vec::new();
+    for s in file.shapes {
+        let span = s.span();
+        let shape = s.into_inner();
+        check_shape(&shape).map_err(|e| format!("{}: {e}", at(span)))?;
+        shapes.push(shape);
+    }
+
+    Ok(Scene {
+        path: path.to_path_buf(),
+        width: out.width,
+        height: out.height,
+        format: out.format,
+        background: rgb(out.background),
+        scale: out.scale,
+        camera: file.camera,
+        ambient: rgb(file.render.ambient),
+        specular: match file.render.specular {
+            SpecularModel::None => Specular::None,
+            SpecularModel::Phong => Specular::Phong,
+            SpecularModel::BlinnPhong => Specular::BlinnPhong,
+        },
+        lights,
+        meshes,
+        shapes,
+    })
+}
+
+fn check_camera(c: &Camera) -> Result<(), String> {
+    if !finite(&c.eye) || !finite(&c.target) || !finite(&c.up) {
+        return Err("eye, target and up must be finite".into());
+    }
+    if !(c.fov > 0.0 && c.fov < 180.0) {
+        return Err(format!(
+            "fov must be between 0 and 180 degrees, got {}",
+            c.fov
+        ));
+    }
+    if !(c.near > 0.0 && c.far > c.near && c.far.is_finite()) {
+        return Err(format!(
+            "need 0 < near < far, got near {} far {}",
+            c.near, c.far
+        ));
+    }
+    let f = sub3(c.target, c.eye);
+    if norm(f) == 0.0 || norm(cross(f, c.up)) <= 1e-9 * norm(f) * norm(c.up) {
+        return Err("eye equals target, or up is parallel to the view direction".into());
+    }
+    Ok(())
+}
+
+fn check_shape(shape: &Shape) -> Result<(), String> {
+    let (pts, clip): (Vec<[f64; 2]>, _) = match shape {
+        Shape::Point { at, clip, .. } => (vec![*at], clip),
+        Shape::Line {
+            from,
+            to,
+            color,
+            colors,
+            clip,
+        } => {
+            if color.is_some() == colors.is_some() {
+                return Err("a line needs exactly one of `color` and `colors`".into());
+            }
+            (vec![*from, *to], clip)
+        }
+        Shape::Triangle {
+            vertices,
+            color,
+            colors,
+            clip,
+        } => {
+            if color.is_some() == colors.is_some() {
+                return Err("a triangle needs exactly one of `color` and `colors`".into());
+            }
+            (vertices.to_vec(), clip)
+        }
+        Shape::Outline { vertices, clip, .. } => (vertices.to_vec(), clip),
+        Shape::Polygon { vertices, clip, .. } => {
+            if vertices.len() < 3 || vertices.len() > MAX_POLYGON {
+                return Err(format!(
+                    "a polygon needs 3 ..= {MAX_POLYGON} vertices, got {}",
+                    vertices.len()
+                ));
+            }
+            (vertices.clone(), clip)
+        }
+    };
+    if !pts.iter().all(|p| finite(p)) {
+        return Err("coordinates must be finite".into());
+    }
+    if let Some([_, _, w, h]) = clip {
+        if *w < 0 || *h < 0 {
+            return Err("clip = [x, y, width, height] needs width, height >= 0".into());
+        }
+    }
+    Ok(())
+}
+
+fn load_mesh(
+    dir: &Path,
+    def: MeshDef,
+    render: &super::format::RenderOptions,
+) -> Result<SceneMesh, String> {
+    let file = dir.join(&def.path);
+    let name = def.path.clone();
+    let bytes = std::fs::read(&file)
+        .map_err(|e| format!("cannot read mesh file {}: {e}", file.display()))?;
+    let scale = match def.scale {
+        ScaleDef::Uniform(s) => [s; 3],
+        ScaleDef::Axes(a) => a,
+    };
+    if !finite(&scale) || scale.contains(&0.0) || !finite(&def.rotate) || !finite(&def.translate) {
+        return Err(format!(
+            "mesh {name}: scale must be finite and non-zero, rotate and translate finite"
+        ));
+    }
+    let needs_edit = def.fit_unit_sphere
+        || matches!(def.normals, NormalsMode::Smooth | NormalsMode::Face)
+        || def.vertex_colors != VertexColorMode::File;
+    let data = if bytes.starts_with(&MAGIC) {
+        let packed =
+            PackedMesh::parse(&bytes).map_err(|e| format!("mesh {}: {e}", file.display()))?;
+        let has_normals = MeshSourceExt::has_normals(&packed);
+        if def.normals == NormalsMode::File && !has_normals {
+            return Err(format!(
+                "mesh {}: normals = \"file\" but it has none",
+                file.display()
+            ));
+        }
+        if needs_edit || (def.normals == NormalsMode::Auto && !has_normals) {
+            MeshData::Owned(edit(unpack(&packed), &def))
+        } else {
+            MeshData::Packed(bytes)
+        }
+    } else {
+        let loaded =
+            LoadedMesh::load(&file).map_err(|e| format!("mesh {}: {e}", file.display()))?;
+        if def.normals == NormalsMode::File && loaded.normals.is_none() {
+            return Err(format!(
+                "mesh {}: normals = \"file\" but it has none",
+                file.display()
+            ));
+        }
+        MeshData::Owned(edit(from_loaded(&loaded), &def))
+    };
+    let c = def.color.0;
+    let m = def.material.as_ref();
+    let material = Material {
+        ambient: m
+            .and_then(|m| m.ambient)
+            .map_or(Rgb888::new(c[0] / 5, c[1] / 5, c[2] / 5), rgb),
+        diffuse: m.and_then(|m| m.diffuse).map_or(rgb(def.color), rgb),
+        specular: m
+            .and_then(|m| m.specular)
+            .map_or(Rgb888::new(255, 255, 255), rgb),
+        shininess: m.and_then(|m| m.shininess).unwrap_or(16),
+    };
+    Ok(SceneMesh {
+        name,
+        data,
+        scale,
+        rotate: def.rotate,
+        translate: def.translate,
+        color: rgb(def.color),
+        material,
+        wireframe: def.wireframe.unwrap_or(render.wireframe),
+        shading: def.shading.unwrap_or(render.shading),
+        depth: def.depth.unwrap_or(render.depth),
+        cull: def.cull.unwrap_or(render.cull),
+        perspective_correct: def
+            .perspective_correct
+            .unwrap_or(render.perspective_correct),
+    })
+}
+
+/// `MeshSource::has_normals` without naming a scalar at the call site.
+trait MeshSourceExt {
+    fn has_normals(&self) -> bool;
+}
+
+impl MeshSourceExt for PackedMesh<'_> {
+    fn has_normals(&self) -> bool {
+        rasterizer_core::pipeline::MeshSource::<rasterizer_core::math::Fx16>::has_normals(self)
+    }
+}
+
+fn fx_to_f64(bits: i32) -> f64 {
+    f64::from(bits) / 65536.0
+}
+
+/// A packed mesh in memory (positions and normals are exact: 16.16 values).
+fn unpack(p: &PackedMesh<'_>) -> OwnedMesh {
+    let n = p.vertices();
+    let positions = (0..n)
+        .map(|i| p.position_bits(i).unwrap_or_default().map(fx_to_f64))
+        .collect();
+    let normals = (0..n)
+        .map(|i| p.normal_bits(i).map(|b| b.map(fx_to_f64)))
+        .collect::<Option<Vec<_>>>();
+    let colors = (0..n).map(|i| p.color_of(i)).collect::<Option<Vec<_>>>();
+    let triangles = (0..p.triangles())
+        .filter_map(|t| p.triangle_indices(t))
+        .collect();
+    OwnedMesh {
+        positions,
+        normals,
+        colors,
+        triangles,
+    }
+}
+
+/// An OBJ mesh in memory (its 16.16 values are exact in `f64`).
+fn from_loaded(m: &LoadedMesh) -> OwnedMesh {
+    let v = |p: &rasterizer_core::math::Vec3<rasterizer_core::math::Fx16>| {
+        [p.x, p.y, p.z].map(|c| fx_to_f64(c.to_bits()))
+    };
+    OwnedMesh {
+        positions: m.positions.iter().map(v).collect(),
+        normals: m.normals.as_ref().map(|n| n.iter().map(v).collect()),
+        colors: None,
+        triangles: m.triangles.clone(),
+    }
+}
+
+/// Applies the mesh options that change its data.
+fn edit(mut m: OwnedMesh, def: &MeshDef) -> OwnedMesh {
+    if def.fit_unit_sphere {
+        fit_unit_sphere(&mut m);
+    }
+    match def.normals {
+        NormalsMode::File => {}
+        NormalsMode::Auto => {
+            let usable = m
+                .normals
+                .as_ref()
+                .is_some_and(|n| n.iter().all(|v| finite(v) && norm(*v) > 1e-6));
+            if !usable {
+                m.normals = Some(smooth_normals(&m));
+            }
+        }
+        NormalsMode::Smooth => m.normals = Some(smooth_normals(&m)),
+        NormalsMode::Face => m.normals = None,
+    }
+    match def.vertex_colors {
+        VertexColorMode::File => {}
+        VertexColorMode::Position => {
+            let (lo, hi) = bounds(&m.positions);
+            let colors = m
+                .positions
+                .iter()
+                .map(|p| {
+                    let c = |k: usize| {
+                        let span = (hi[k] - lo[k]).max(1e-12);
+                        (40.0 + 215.0 * (p[k] - lo[k]) / span).round() as u8
+                    };
+                    Rgb888::new(c(0), c(1), c(2))
+                })
+                .collect();
+            m.colors = Some(colors);
+        }
+        VertexColorMode::Normal => {
+            let normals = m.normals.clone().unwrap_or_else(|| smooth_normals(&m));
+            let colors = normals
+                .iter()
+                .map(|n| {
+                    let len = norm(*n).max(1e-12);
+                    let c = |k: usize| (127.5 + 127.5 * n[k] / len).round().clamp(0.0, 255.0) as u8;
+                    Rgb888::new(c(0), c(1), c(2))
+                })
+                .collect();
+            m.colors = Some(colors);
+        }
+    }
+    m
+}
+
+fn bounds(p: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::MAX; 3];
+    let mut hi = [f64::MIN; 3];
+    for v in p {
+        for k in 0..3 {
+            lo[k] = lo[k].min(v[k]);
+            hi[k] = hi[k].max(v[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Moves the bounding box's centre to the origin and scales the farthest vertex to distance 1.
+fn fit_unit_sphere(m: &mut OwnedMesh) {
+    let (lo, hi) = bounds(&m.positions);
+    let c = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+    let r = m
+        .positions
+        .iter()
+        .map(|p| norm(sub3(*p, c)))
+        .fold(0.0, f64::max)
+        .max(1e-12);
+    for p in &mut m.positions {
+        *p = [0, 1, 2].map(|k| (p[k] - c[k]) / r);
+    }
+}
+
+/// Area-weighted vertex normals, vertices at the same position sharing one (so unwelded seams,
+/// as in the teapot, and texture seams, as in Spot, do not show).
+fn smooth_normals(m: &OwnedMesh) -> Vec<[f64; 3]> {
+    let key = |p: &[f64; 3]| p.map(|v| (v * 65536.0).round() as i64);
+    let mut slot = HashMap::new();
+    let ids: Vec<usize> = m
+        .positions
+        .iter()
+        .map(|p| {
+            let n = slot.len();
+            *slot.entry(key(p)).or_insert(n)
+        })
+        .collect();
+    let mut acc = vec![[0.0f64; 3]; slot.len()];
+    for t in &m.triangles {
+        let Some(p) = t
+            .iter()
+            .map(|&i| m.positions.get(i as usize).copied())
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let n = cross(sub3(p[1], p[0]), sub3(p[2], p[0]));
+        for &i in t {
+            let a = &mut acc[ids[i as usize]];
+            for k in 0..3 {
+                a[k] += n[k];
+            }
+        }
+    }
+    ids.iter()
+        .map(|&s| {
+            let n = acc[s];
+            let len = norm(n);
+            if len > 0.0 {
+                n.map(|v| v / len)
+            } else {
+                [0.0; 3]
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,400 @@
+//! Scene files and the `render`, `animate` and `compare` commands.
+//!
+//! A scene file is TOML. It names the output, an optional camera, lights and meshes for the 3D
+//! part, and 2D shapes drawn on top. Unknown keys and bad values are errors that name the file
+//! and the line. Every table but `[output]` is optional. The meshes are drawn first, in order,
+//! sharing one depth buffer; then the shapes, in order.
+//!
+//! ```toml
+//! [output]
+//! width = 320                # 1 ..= 4096 display pixels
+//! height = 240
+//! format = "rgb565"          # rgb565 | rgb888 (default) | gray8 | binary
+//! background = [14, 16, 26]  # [r, g, b] or "#0e101a"; default black
+//! scale = 2                  # PNG pixels per display pixel (1 ..= 16), `--scale` overrides
+//!
+//! [camera]                   # these are the defaults
+//! eye = [0.0, 0.0, 3.0]
+//! target = [0.0, 0.0, 0.0]
+//! up = [0.0, 1.0, 0.0]
+//! fov = 60.0                 # vertical, degrees
+//! near = 0.1
+//! far = 100.0
+//!
+//! [render]                   # the 3D stages; a mesh may override the first five
+//! wireframe = false          # true: Pipeline::draw_wireframe in the mesh's colour (no depth test)
+//! shading = "gouraud"        # none | vertex_colors | flat | gouraud | phong
+//! depth = true               # a 16-bit depth buffer (Compare::Less)
+//! cull = "cw"                # none | cw (drop clockwise = back faces of CCW meshes) | ccw
+//! perspective_correct = false
+//! specular = "blinn_phong"   # none | phong | blinn_phong
+//! ambient = [255, 255, 255]  # ambient light colour
+//!
+//! [[lights]]                 # at most 4
+//! kind = "directional"       # directional: `direction` towards the light
+//! direction = [1.0, 1.0, 1.0]
+//! color = [255, 255, 255]
+//!
+//! [[lights]]
+//! kind = "point"             # point: `position` in world space, no attenuation
+//! position = [0.0, 2.0, 2.0]
+//! color = "#406080"
+//!
+//! [[meshes]]
+//! path = "../models/suzanne.obj"  # relative to this file: OBJ, or a packed .rmsh blob
+//! fit_unit_sphere = false    # centre the bounding box, scale into the unit sphere
+//! normals = "auto"           # auto (file's if usable, else smooth) | file | smooth | face
+//! vertex_colors = "file"     # file | position | normal (generated, for vertex_colors shading)
+//! scale = 1.0                # or [x, y, z]
+//! rotate = [0.0, 30.0, 0.0]  # degrees about x, then y, then z
+//! translate = [0.0, 0.0, 0.0]
+//! color = [220, 140, 80]     # unlit/wireframe colour and the material's default
+//! material = { ambient = [44, 28, 16], diffuse = [220, 140, 80], specular = [255, 255, 255], shininess = 16 }
+//! shading = "phong"          # overrides [render]; also wireframe, depth, cull, perspective_correct
+//!
+//! [[shapes]]                 # 2D, pixel coordinates, x right, y down
+//! kind = "line"              # point | line | triangle | outline | polygon
+//! from = [10.0, 10.0]
+//! to = [100.5, 40.25]
+//! colors = [[255, 0, 0], [0, 0, 255]]  # a gradient; or `color = ...` for one colour
+//! clip = [0, 0, 160, 120]    # optional: draw only inside [x, y, width, height]
+//!
+//! [[shapes]]
+//! kind = "polygon"
+//! vertices = [[20.0, 200.0], [60.0, 150.5], [100.0, 200.0], [60.0, 180.0]]
+//! fill_rule = "non_zero"     # even_odd (default) | non_zero
+//! color = [80, 200, 120]
+//! ```
+//!
+//! Points, lines and outlines light the pixel containing each coordinate (pixel `(x, y)` covers
+//! `[x, x + 1) x [y, y + 1)`); filled triangles and polygons take sub-pixel vertices, rounded to
+//! 1/16 pixel (28.4 fixed point), and sample pixel centres. A triangle takes `color` (flat) or
+//! `colors` (three, Gouraud); an outline `color`; a point `at` and `color`.
+//!
+//! Meshes are drawn through `rasterizer_core::pipeline::Pipeline`, whose type is chosen from the
+//! stages asked for (culling × depth × shading × perspective), so a stage that is off is not in
+//! the code that runs. Lit shading uses the mesh's material, the lights, the ambient light and the
+//! camera's eye. Everything before the pipeline (parsing, mesh preparation) uses `f64` on the host;
+//! the geometry runs in 16.16 (`compare` also runs it in `f32` and `f64`).
+
+mod draw;
+mod format;
+mod load;
+mod reference;
+
+pub use draw::{render_3d, render_image};
+pub use format::{
+    Camera, Color, CullMode, FillRuleDef, LightDef, MaterialDef, MeshDef, NormalsMode, Output,
+    PixelFormat, RenderOptions, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel,
+    VertexColorMode,
+};
+pub use load::{load, MeshData, OwnedMesh, Scene, SceneMesh};
+pub use reference::{Real, F64};
+
+use embedded_graphics_core::geometry::Point;
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics_simulator::SimulatorDisplay;
+use image::codecs::gif::{GifEncoder, Repeat};
+use image::{Delay, Frame, RgbImage, RgbaImage};
+use rasterizer_core::math::{Angle, Fx16};
+use std::path::{Path, PathBuf};
+
+/// The most lights a scene may have.
+pub const MAX_LIGHTS: usize = 4;
+/// The most vertices a polygon shape may have.
+pub const MAX_POLYGON: usize = 256;
+
+/// Options of the `render` command.
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    /// The scene file.
+    pub scene: PathBuf,
+    /// The PNG to write.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// PNG pixels per display pixel (default: the scene's `output.scale`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub scale: Option<u32>,
+}
+
+/// Options of the `animate` command.
+#[derive(Debug, clap::Args)]
+pub struct AnimateArgs {
+    /// The scene file.
+    pub scene: PathBuf,
+    /// The output: an animated GIF, or with `--png-sequence` the name the numbered PNGs are
+    /// derived from (`out.gif` gives `out_000.png`, `out_001.png`, ...).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// Frames in one full turn.
+    #[arg(long, value_name = "N", default_value_t = 36, value_parser = clap::value_parser!(u32).range(1..=720))]
+    pub frames: u32,
+    /// Write numbered PNG files instead of a GIF.
+    #[arg(long)]
+    pub png_sequence: bool,
+    /// PNG pixels per display pixel (default: the scene's `output.scale`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub scale: Option<u32>,
+    /// Time per GIF frame in milliseconds (default: one turn in 3 s, at least 20 ms per frame).
+    #[arg(long, value_name = "MS")]
+    pub delay_ms: Option<u32>,
+}
+
+/// The format the difference image compares fixed point against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Reference {
+    /// The core's `f32` backend.
+    F32,
+    /// The `f64` reference scalar of this tool.
+    F64,
+}
+
+/// Options of the `compare` command.
+#[derive(Debug, clap::Args)]
+pub struct CompareArgs {
+    /// The scene file.
+    pub scene: PathBuf,
+    /// The difference image to write (PNG): fixed point | reference | differences.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// What the difference image compares 16.16 with (all pairs are printed either way).
+    #[arg(long, value_enum, default_value = "f32")]
+    pub reference: Reference,
+    /// PNG pixels per display pixel (default: the scene's `output.scale`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub scale: Option<u32>,
+}
+
+type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
+
+/// Writes a file from bytes made in memory, so a failure leaves no output behind.
+fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    std::fs::write(path, bytes).map_err(|e| {
+        let _ = std::fs::remove_file(path);
+        format!("cannot write {}: {e}", path.display()).into()
+    })
+}
+
+/// PNG bytes of an RGB image.
+fn png_bytes(img: &RgbImage) -> Result<Vec<u8>> {
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png)?;
+    Ok(out.into_inner())
+}
+
+/// The simulator's output image as an owned RGB image.
+fn to_rgb_image(img: &embedded_graphics_simulator::OutputImage<Rgb888>) -> Result<RgbImage> {
+    let buf = img.as_image_buffer();
+    RgbImage::from_raw(buf.width(), buf.height(), buf.into_raw().to_vec())
+        .ok_or_else(|| "bad image buffer".into())
+}
+
+/// Runs `render`: draws the scene through embedded-graphics-simulator and saves the PNG.
+///
+/// # Errors
+/// Any failure, as a message for the `error:` line; no file is written then.
+pub fn render(args: &RenderArgs) -> Result<()> {
+    let scene = load(&args.scene)?;
+    let image = render_image(&scene, Angle(0), args.scale.unwrap_or(scene.scale))?;
+    image.save_png(&args.output).map_err(|e| {
+        let _ = std::fs::remove_file(&args.output);
+        format!("cannot write {}: {e}", args.output.display())
+    })?;
+    println!("wrote {}", args.output.display());
+    Ok(())
+}
+
+/// Runs `animate`: a turntable of the scene's meshes about the world's Y axis, one full turn in
+/// `--frames` frames, as an animated GIF or numbered PNGs.
+///
+/// # Errors
+/// Any failure, as a message for the `error:` line; nothing is written unless every frame
+/// rendered and encoded.
+pub fn animate(args: &AnimateArgs) -> Result<()> {
+    let scene = load(&args.scene)?;
+    let scale = args.scale.unwrap_or(scene.scale);
+    let n = args.frames;
+    let mut frames = Vec::with_capacity(n as usize);
+    for k in 0..n {
+        let turn = Angle((u64::from(k) * 65536 / u64::from(n)) as u16);
+        frames.push(to_rgb_image(&render_image(&scene, turn, scale)?)?);
+    }
+    if args.png_sequence {
+        let stem = args
+            .output
+            .file_stem()
+            .ok_or("the output needs a file name")?
+            .to_string_lossy()
+            .into_owned();
+        let dir = args.output.parent().unwrap_or(Path::new(""));
+        let encoded = frames.iter().map(png_bytes).collect::<Result<Vec<_>>>()?;
+        for (k, bytes) in encoded.iter().enumerate() {
+            write_file(&dir.join(format!("{stem}_{k:03}.png")), bytes)?;
+        }
+        println!(
+            "wrote {n} frames to {}",
+            dir.join(format!("{stem}_NNN.png")).display()
+        );
+        return Ok(());
+    }
+    let delay = args.delay_ms.unwrap_or((3000 / n).max(20));
+    let mut gif = Vec::new();
+    {
+        let mut encoder = GifEncoder::new_with_speed(&mut gif, 10);
+        encoder.set_repeat(Repeat::Infinite)?;
+        encoder.encode_frames(frames.into_iter().map(|f| {
+            let rgba: RgbaImage = image::DynamicImage::ImageRgb8(f).into_rgba8();
+            Frame::from_parts(rgba, 0, 0, Delay::from_numer_denom_ms(delay, 1))
+        }))?;
+    }
+    write_file(&args.output, &gif)?;
+    println!("wrote {} ({n} frames)", args.output.display());
+    Ok(())
+}
+
+/// How two renders differ.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Difference {
+    /// Pixels whose colours differ.
+    pub pixels: u64,
+    /// All pixels.
+    pub total: u64,
+    /// The largest difference of one channel, in 8-bit steps.
+    pub max_channel: u8,
+}
+
+impl Difference {
+    /// The share of differing pixels, in percent.
+    pub fn percent(&self) -> f64 {
+        100.0 * self.pixels as f64 / self.total.max(1) as f64
+    }
+}
+
+/// The largest channel difference of two colours.
+fn channel_diff(a: Rgb888, b: Rgb888) -> u8 {
+    a.r()
+        .abs_diff(b.r())
+        .max(a.g().abs_diff(b.g()))
+        .max(a.b().abs_diff(b.b()))
+}
+
+/// Compares two displays of the same size pixel by pixel.
+pub fn difference(
+    a: &SimulatorDisplay<Rgb888>,
+    b: &SimulatorDisplay<Rgb888>,
+    w: u32,
+    h: u32,
+) -> Difference {
+    let mut d = Difference {
+        pixels: 0,
+        total: u64::from(w) * u64::from(h),
+        max_channel: 0,
+    };
+    for y in 0..h as i32 {
+        for x in 0..w as i32 {
+            let p = Point::new(x, y);
+            let c = channel_diff(a.get_pixel(p), b.get_pixel(p));
+            if c > 0 {
+                d.pixels += 1;
+                d.max_channel = d.max_channel.max(c);
+            }
+        }
+    }
+    d
+}
+
+/// Runs `compare`: renders the scene's meshes (not its shapes) in 16.16, `f32` and `f64` into
+/// `Rgb888` displays, prints how each pair differs, and writes fixed point, the reference and
+/// the differing pixels side by side.
+///
+/// # Errors
+/// Any failure, as a message for the `error:` line.
+pub fn compare(args: &CompareArgs) -> Result<()> {
+    let scene = load(&args.scene)?;
+    if scene.meshes.is_empty() {
+        return Err(format!(
+            "{}: the scene has no meshes to compare",
+            scene.path.display()
+        )
+        .into());
+    }
+    let (w, h) = (scene.width, scene.height);
+    let fixed = render_3d::<Fx16>(&scene)?;
+    let single = render_3d::<f32>(&scene)?;
+    let double = render_3d::<F64>(&scene)?;
+    println!(
+        "{}: 3D part, {w}x{h} = {} pixels, compared in Rgb888",
+        scene.path.display(),
+        u64::from(w) * u64::from(h)
+    );
+    for (name, a, b) in [
+        ("16.16 vs f32", &fixed, &single),
+        ("16.16 vs f64", &fixed, &double),
+        ("f32   vs f64", &single, &double),
+    ] {
+        let d = difference(a, b, w, h);
+        println!(
+            "  {name}: {} differing pixels ({:.3} %), max channel difference {}",
+            d.pixels,
+            d.percent(),
+            d.max_channel
+        );
+    }
+    let reference = match args.reference {
+        Reference::F32 => &single,
+        Reference::F64 => &double,
+    };
+    let image = diff_image(&fixed, reference, w, h, args.scale.unwrap_or(scene.scale));
+    write_file(&args.output, &png_bytes(&image)?)?;
+    println!(
+        "wrote {} (16.16 | {} | differences: yellow 1 step .. red 8 or more)",
+        args.output.display(),
+        match args.reference {
+            Reference::F32 => "f32",
+            Reference::F64 => "f64",
+        }
+    );
+    Ok(())
+}
+
+/// Three panels: `a`, `b`, and `a` in dim grey with the differing pixels coloured by how much
+/// they differ (yellow: one step, red: eight or more).
+fn diff_image(
+    a: &SimulatorDisplay<Rgb888>,
+    b: &SimulatorDisplay<Rgb888>,
+    w: u32,
+    h: u32,
+    scale: u32,
+) -> RgbImage {
+    const GAP: u32 = 4;
+    let panel = |x: u32, y: u32, k: u32| -> [u8; 3] {
+        let p = Point::new(x as i32, y as i32);
+        let (ca, cb) = (a.get_pixel(p), b.get_pixel(p));
+        match k {
+            0 => [ca.r(), ca.g(), ca.b()],
+            1 => [cb.r(), cb.g(), cb.b()],
+            _ => {
+                let d = channel_diff(ca, cb);
+                if d == 0 {
+                    let luma =
+                        (u32::from(ca.r()) * 3 + u32::from(ca.g()) * 6 + u32::from(ca.b())) / 10;
+                    let g = (20 + luma / 4) as u8;
+                    [g, g, g]
+                } else {
+                    [255, (230 - 230 * u32::from(d.min(8)) / 8) as u8, 0]
+                }
+            }
+        }
+    };
+    let width = (3 * w + 2 * GAP) * scale;
+    RgbImage::from_fn(width, h * scale, |px, py| {
+        let (x, y) = (px / scale, py / scale);
+        let k = x / (w + GAP);
+        let xi = x % (w + GAP);
+        if xi >= w {
+            image::Rgb([255, 255, 255])
+        } else {
+            image::Rgb(panel(xi, y, k))
+        }
+    })
+}
