@@ -56,6 +56,105 @@ where
     Ok(())
 }
 
+/// The 3D entry points: packed mesh, pipeline draws (filled, cached, wireframe, banded) with the
+/// float-free default stages.
+fn draw_3d(buf: &mut [u16]) -> u32 {
+    use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+    use rasterizer_core::mesh::PackedMesh;
+    use rasterizer_core::pipeline::cull::{CullClockwise, NoCull};
+    use rasterizer_core::pipeline::shading::{FlatLit, PhongLit, Unlit};
+    use rasterizer_core::pipeline::{
+        Banding, BinEntry, CachedVertex, Pipeline, Transforms, Viewport,
+    };
+    use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
+    use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+
+    let Ok(mesh) = PackedMesh::parse(black_box(MESH)) else {
+        return 0;
+    };
+    let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
+    let xf = Transforms {
+        model: Mat4::rotation_y(black_box(Angle::from_degrees(30))),
+        view: Mat4::look_at(p(0, 0, 3), p(0, 0, 0), p(0, 1, 0)).unwrap_or_default(),
+        projection: Mat4::perspective(
+            Angle::from_degrees(60),
+            Fx16::from_ratio(4, 3),
+            Fx16::from_ratio(1, 10),
+            Fx16::from_int(100),
+        )
+        .unwrap_or_default(),
+    };
+    let mut lighting = Lighting::<Fx16, 2>::new(
+        Material {
+            ambient: Rgb888::new(9, 9, 9),
+            diffuse: Rgb888::WHITE,
+            specular: Rgb888::WHITE,
+            shininess: 8,
+        },
+        Rgb888::WHITE,
+        Specular::Phong,
+        p(0, 0, 3),
+    );
+    let _ = lighting.add_light(Light::Point {
+        position: p(2, 2, 2),
+        color: Rgb888::WHITE,
+    });
+    let vp = Viewport::new(64, 48);
+    let mut drawn = 0;
+    let Ok(mut fb) = Framebuffer::<Rgb565>::new(buf, 64, 48) else {
+        return 0;
+    };
+    let mut z = [u16::MAX; 64 * 48];
+    if let Ok(depth) = DepthBuffer::new(&mut z, 64, 48, Compare::Less) {
+        let mut pl = Pipeline::<_, _, _, _>::new(
+            &xf,
+            vp,
+            CullClockwise,
+            depth,
+            PhongLit::<Fx16, Rgb565, 2>::new(lighting.clone()),
+        );
+        let mut cache = [CachedVertex::default(); 16];
+        drawn += pl
+            .draw_cached(&mut fb, &mesh, &mut cache)
+            .map_or(0, |s| s.drawn);
+    }
+    let mut pl =
+        Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, NoDepth, Unlit { color: Rgb565::RED });
+    drawn += pl.draw(&mut fb, &mesh).map_or(0, |s| s.drawn);
+    drawn += pl
+        .draw_wireframe(&mut fb, &mesh, Rgb565::WHITE)
+        .map_or(0, |s| s.drawn);
+    // Bands of 8 rows.
+    let mut band_z = [u16::MAX; 64 * 8];
+    if let Ok(depth) = DepthBuffer::new(&mut band_z, 64, 8, Compare::Less) {
+        let mut pl = Pipeline::<_, _, _, _>::new(
+            &xf,
+            vp,
+            CullClockwise,
+            depth,
+            FlatLit::<Fx16, Rgb565, 2>::new(lighting),
+        );
+        let mut band = [0u16; 64 * 8];
+        let mut bins = [BinEntry::ZERO; 1024];
+        let banding = Banding {
+            width: 64,
+            height: 48,
+            rows: 8,
+            background: Rgb565::BLACK,
+            clear_depth: u16::MAX,
+        };
+        drawn += pl
+            .draw_banded(&mesh, &banding, &mut band, &mut bins, &mut [], |b| {
+                black_box(b.framebuffer().as_slice());
+            })
+            .map_or(0, |s| s.drawn);
+    }
+    drawn
+}
+
+/// A mesh converted on the host.
+static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
+
 #[unsafe(no_mangle)]
 pub extern "C" fn main() -> i32 {
     // Rgb565 through the framebuffer's own fast paths, in a static buffer as firmware would.
@@ -86,5 +185,7 @@ pub extern "C" fn main() -> i32 {
         let _ = draw_all(&mut fb, BinaryColor::On, BinaryColor::Off, BinaryColor::On);
     }
     black_box((&rgb, &gray, &mono));
+    let mut small = [0u16; 64 * 48];
+    black_box(draw_3d(&mut small));
     0
 }

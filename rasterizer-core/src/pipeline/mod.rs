@@ -208,6 +208,15 @@ pub struct BinEntry {
     last: u32,
 }
 
+impl BinEntry {
+    /// An empty entry, for initialising a `static` array of bins.
+    pub const ZERO: BinEntry = BinEntry {
+        triangle: 0,
+        first: 0,
+        last: 0,
+    };
+}
+
 /// How a frame is cut into bands ([`Pipeline::draw_banded`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Banding<C> {
