@@ -194,3 +194,45 @@ fn pixel_read_back() {
     let _ = Gray8::new(1).luma();
     let _ = Rgb888::RED.r();
 }
+
+#[test]
+fn surface_methods_called_directly_clip_instead_of_panicking() {
+    use rasterizer_core::raster::line::Line;
+    let mut buf = [0u16; 8 * 4];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 8, 4).unwrap();
+    // An unclipped line walk from far outside (drawn first: the spans below go over it).
+    let far = Line::new(Point::new(-100, -50), Point::new(100, 52)).points();
+    fb.draw_line_points(far, Rgb565::BLUE).unwrap();
+    assert!((0..8).any(|x| fb.pixel(Point::new(x, 1)) == Some(Rgb565::BLUE)));
+    // Spans partly or wholly outside, and lengths that overflow.
+    fb.fill_span(-3, 1, 5, Rgb565::RED).unwrap();
+    fb.fill_span(6, 2, u32::MAX, Rgb565::RED).unwrap();
+    fb.fill_span(0, 9, 4, Rgb565::RED).unwrap();
+    fb.fill_span(i32::MIN, i32::MAX, 3, Rgb565::RED).unwrap();
+    let mut n = 0;
+    fb.shade_span(-2, 3, 4, || {
+        n += 1;
+        Rgb565::GREEN
+    })
+    .unwrap();
+    assert_eq!(n, 4, "every colour is taken, in order");
+    let extreme = Line::new(Point::new(i32::MIN, 0), Point::new(i32::MAX, 3)).points();
+    assert!(extreme.last_pixel().is_some());
+    let red: Vec<(i32, i32)> = (0..4)
+        .flat_map(|y| (0..8).map(move |x| (x, y)))
+        .filter(|&(x, y)| fb.pixel(Point::new(x, y)) == Some(Rgb565::RED))
+        .collect();
+    assert_eq!(red, vec![(0, 1), (1, 1), (6, 2), (7, 2)]);
+    assert_eq!(fb.pixel(Point::new(0, 3)), Some(Rgb565::GREEN));
+    assert_eq!(fb.pixel(Point::new(1, 3)), Some(Rgb565::GREEN));
+}
+
+#[test]
+fn fill_contiguous_with_a_huge_area_and_endless_colours_ends() {
+    let mut buf = [0u8; 4 * 4];
+    let mut fb = Framebuffer::<Gray8>::new(&mut buf, 4, 4).unwrap();
+    let area = Rectangle::new(Point::new(0, 0), Size::new(4, u32::MAX));
+    fb.fill_contiguous(&area, core::iter::repeat(Gray8::WHITE))
+        .unwrap();
+    assert!(fb.as_slice().iter().all(|&v| v == 255));
+}

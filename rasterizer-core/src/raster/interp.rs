@@ -416,7 +416,7 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
             for i in 0..planes {
                 acc[i] += step[i] * i64::from(offset);
             }
-            surface.shade_span(x0 + offset as i32, row, len, || {
+            surface.shade_span_in_clip(x0 + offset as i32, row, len, || {
                 let mut v = V::default();
                 if P {
                     // The barycentrics divided by w, over 1/w: one division each per pixel.

@@ -414,7 +414,9 @@ impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
     {
         let area_px = crate::geom::PixelRect::from_rectangle(area);
         let mut colors = colors.into_iter();
-        for y in area_px.y0..area_px.y1 {
+        // Rows below the buffer can hold no visible pixel: stop there, so a huge area with an
+        // endless colour iterator still ends.
+        for y in area_px.y0..area_px.y1.min(i64::from(self.height)) {
             for x in area_px.x0..area_px.x1 {
                 let Some(color) = colors.next() else {
                     return Ok(());
@@ -456,9 +458,78 @@ impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
     }
 }
 
+impl<C: Storage> Framebuffer<'_, C> {
+    /// True when the span lies inside the buffer (one unsigned compare each).
+    #[inline(always)]
+    fn span_inside(&self, x: i32, y: i32, len: u32) -> bool {
+        (y as u32) < self.height && (x as u32) <= self.width && len <= self.width - x as u32
+    }
+
+    /// A span that is not wholly inside: clipped. Kept out of line so the fast path stays small.
+    #[cold]
+    #[inline(never)]
+    fn fill_span_clipped(&mut self, x: i32, y: i32, len: u32, color: C) {
+        let area = Rectangle::new(
+            embedded_graphics_core::geometry::Point::new(x, y),
+            Size::new(len, 1),
+        );
+        let Ok(()) = self.fill_solid(&area, color);
+    }
+
+    /// A line walk that is not wholly inside: pixel by pixel with the bounds check.
+    #[cold]
+    #[inline(never)]
+    fn walk_clipped(&mut self, points: LinePoints, color: C) {
+        let Ok(()) = self.draw_iter(points.map(|p| Pixel(p, color)));
+    }
+}
+
+/// The checked methods clip what lies outside (pixels outside are dropped, as the `DrawTarget`
+/// contract says); the rasterizers call the in-clip ones, which skip the checks.
 impl<C: Storage> Surface for Framebuffer<'_, C> {
     #[inline(always)]
     fn fill_span(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
+        if self.span_inside(x, y, len) {
+            C::fill_span(
+                self.buf,
+                self.stride,
+                x as usize,
+                y as usize,
+                len as usize,
+                color,
+            );
+        } else {
+            self.fill_span_clipped(x, y, len, color);
+        }
+        Ok(())
+    }
+
+    #[inline]
+    fn shade_span<F: FnMut() -> C>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        mut shade: F,
+    ) -> Result<(), Self::Error> {
+        if self.span_inside(x, y, len) {
+            C::shade(self.row_mut(y as usize), x as usize, len as usize, shade);
+            Ok(())
+        } else {
+            // Every colour is still taken, in order; only the pixels inside are stored.
+            let area = Rectangle::new(
+                embedded_graphics_core::geometry::Point::new(x, y),
+                Size::new(len, 1),
+            );
+            self.fill_contiguous(
+                &area,
+                core::iter::repeat_with(&mut shade).take(len as usize),
+            )
+        }
+    }
+
+    #[inline(always)]
+    fn fill_span_in_clip(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
         C::fill_span(
             self.buf,
             self.stride,
@@ -470,8 +541,8 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         Ok(())
     }
 
-    #[inline]
-    fn shade_span<F: FnMut() -> C>(
+    #[inline(always)]
+    fn shade_span_in_clip<F: FnMut() -> C>(
         &mut self,
         x: i32,
         y: i32,
@@ -482,9 +553,28 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         Ok(())
     }
 
+    #[inline(always)]
+    fn draw_line_points_in_clip(
+        &mut self,
+        points: LinePoints,
+        color: C,
+    ) -> Result<(), Self::Error> {
+        C::walk(self.buf, self.stride, points, color);
+        Ok(())
+    }
+
     #[inline]
     fn draw_line_points(&mut self, points: LinePoints, color: C) -> Result<(), Self::Error> {
-        C::walk(self.buf, self.stride, points, color);
+        // A line's pixels lie between its first and last, so checking those two is enough.
+        let first = (points.x, points.y);
+        let last = points.last_pixel();
+        let (w, h) = (self.width, self.height);
+        let inside = |p: (i32, i32)| (p.0 as u32) < w && (p.1 as u32) < h;
+        if points.remaining() == 0 || (inside(first) && last.is_some_and(inside)) {
+            C::walk(self.buf, self.stride, points, color);
+        } else {
+            self.walk_clipped(points, color);
+        }
         Ok(())
     }
 }
@@ -556,7 +646,23 @@ impl<C: Storage> DrawTarget for Band<'_, C> {
 impl<C: Storage> Surface for Band<'_, C> {
     #[inline(always)]
     fn fill_span(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
-        self.fb.fill_span(x, y - self.y0, len, color)
+        self.fb.fill_span(x, y.wrapping_sub(self.y0), len, color)
+    }
+
+    #[inline(always)]
+    fn fill_span_in_clip(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
+        self.fb.fill_span_in_clip(x, y - self.y0, len, color)
+    }
+
+    #[inline(always)]
+    fn shade_span_in_clip<F: FnMut() -> C>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        shade: F,
+    ) -> Result<(), Self::Error> {
+        self.fb.shade_span_in_clip(x, y - self.y0, len, shade)
     }
 
     #[inline(always)]

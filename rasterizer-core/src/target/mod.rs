@@ -55,6 +55,51 @@ pub trait Surface: DrawTarget {
         )
     }
 
+    /// [`Surface::fill_span`] for a span known to lie inside [`Surface::clip_area`]: the
+    /// rasterizers' fast path, free to skip bounds checks.
+    ///
+    /// # Panics
+    /// May panic (it never writes out of bounds) when the span is not inside the clip area;
+    /// [`Framebuffer`]'s does. The default forwards to the checked [`Surface::fill_span`].
+    #[inline(always)]
+    fn fill_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        self.fill_span(x, y, len, color)
+    }
+
+    /// [`Surface::shade_span`] for a span known to lie inside [`Surface::clip_area`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn shade_span_in_clip<F: FnMut() -> Self::Color>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        shade: F,
+    ) -> Result<(), Self::Error> {
+        self.shade_span(x, y, len, shade)
+    }
+
+    /// [`Surface::draw_line_points`] for a walk known to lie inside [`Surface::clip_area`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn draw_line_points_in_clip(
+        &mut self,
+        points: LinePoints,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        self.draw_line_points(points, color)
+    }
+
     /// Draws every pixel of a line walk in one colour.
     fn draw_line_points(
         &mut self,
@@ -182,35 +227,38 @@ impl<T: Surface> DrawTarget for ClipTo<'_, T> {
     }
 }
 
+/// The checked methods clip to the narrowed area through the `DrawTarget` methods; the in-clip
+/// ones, which the rasterizers call only inside that area, forward to the wrapped surface's fast
+/// paths.
 impl<T: Surface> Surface for ClipTo<'_, T> {
-    #[inline]
-    fn fill_span(
+    #[inline(always)]
+    fn fill_span_in_clip(
         &mut self,
         x: i32,
         y: i32,
         len: u32,
         color: Self::Color,
     ) -> Result<(), Self::Error> {
-        self.inner.fill_span(x, y, len, color)
+        self.inner.fill_span_in_clip(x, y, len, color)
     }
 
-    #[inline]
-    fn shade_span<F: FnMut() -> Self::Color>(
+    #[inline(always)]
+    fn shade_span_in_clip<F: FnMut() -> Self::Color>(
         &mut self,
         x: i32,
         y: i32,
         len: u32,
         shade: F,
     ) -> Result<(), Self::Error> {
-        self.inner.shade_span(x, y, len, shade)
+        self.inner.shade_span_in_clip(x, y, len, shade)
     }
 
-    #[inline]
-    fn draw_line_points(
+    #[inline(always)]
+    fn draw_line_points_in_clip(
         &mut self,
         points: LinePoints,
         color: Self::Color,
     ) -> Result<(), Self::Error> {
-        self.inner.draw_line_points(points, color)
+        self.inner.draw_line_points_in_clip(points, color)
     }
 }

@@ -156,7 +156,15 @@ impl Line {
         } else {
             (self.minor_step, 1)
         };
+        // The last pixel: the endpoint itself unless the walk was clipped short.
+        let end = if k1 == self.a {
+            Some((self.end.x, self.end.y))
+        } else {
+            let (ex, ey) = self.point_at(k1);
+            i32::try_from(ex).ok().zip(i32::try_from(ey).ok())
+        };
         LinePoints {
+            end,
             x: x as i32,
             y: y as i32,
             remaining: (k1 - k0 + 1) as u64,
@@ -185,12 +193,20 @@ pub struct LinePoints {
     pub(crate) err: i64,
     pub(crate) two_minor: i64,
     pub(crate) two_major: i64,
+    /// The last pixel, when it is in the `i32` range.
+    pub(crate) end: Option<(i32, i32)>,
 }
 
 impl LinePoints {
     /// Pixels left to yield.
     pub fn remaining(&self) -> u64 {
         self.remaining
+    }
+
+    /// The last pixel the walk will yield, or `None` when it is empty (or ends beyond the `i32`
+    /// range, which an unclipped walk between extreme endpoints can).
+    pub fn last_pixel(&self) -> Option<(i32, i32)> {
+        (self.remaining > 0).then_some(self.end)?
     }
 }
 
@@ -241,7 +257,7 @@ pub fn draw_line<S: Surface>(
     color: S::Color,
 ) -> Result<(), S::Error> {
     match Line::new(a, b).clipped(&surface.clip_area()) {
-        Some(points) => surface.draw_line_points(points, color),
+        Some(points) => surface.draw_line_points_in_clip(points, color),
         None => Ok(()),
     }
 }

@@ -301,8 +301,9 @@ fn emit_row<S: Surface>(
     color: S::Color,
 ) -> Result<(), S::Error> {
     // Inside the clip area and the guard band, so every value below fits i32.
-    let mut emit =
-        |x0: i64, x1: i64| surface.fill_span(x0 as i32, row as i32, (x1 - x0) as u32, color);
+    let mut emit = |x0: i64, x1: i64| {
+        surface.fill_span_in_clip(x0 as i32, row as i32, (x1 - x0) as u32, color)
+    };
     let mut winding = 0i32;
     let mut pending: Option<(i64, i64)> = None;
     for pair in aet.windows(2) {

@@ -57,7 +57,7 @@ impl<S: Surface> SpanSink for Flat<'_, S> {
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         self.surface
-            .fill_span(x0, row, (x1 - x0) as u32, self.color)
+            .fill_span_in_clip(x0, row, (x1 - x0) as u32, self.color)
     }
 }
 
@@ -196,13 +196,14 @@ where
         let step = self.step;
         // Within a span the value stays inside the triangle's colour range up to the stepping error
         // (at most 2^-17 per pixel, under 1/2 for any span), so no clamping is needed per pixel.
-        self.surface.shade_span(x0, row, (x1 - x0) as u32, || {
-            let color = S::Color::from_fixed16(&acc);
-            for (a, st) in acc.iter_mut().zip(step).take(S::Color::COUNT) {
-                *a = a.wrapping_add(st);
-            }
-            color
-        })
+        self.surface
+            .shade_span_in_clip(x0, row, (x1 - x0) as u32, || {
+                let color = S::Color::from_fixed16(&acc);
+                for (a, st) in acc.iter_mut().zip(step).take(S::Color::COUNT) {
+                    *a = a.wrapping_add(st);
+                }
+                color
+            })
     }
 }
 
