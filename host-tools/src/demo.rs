@@ -9,17 +9,16 @@ use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::text::{Alignment, Text};
 use embedded_graphics::Drawable;
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Dimensions, Point, Size};
+use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
-use embedded_graphics_core::Pixel;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::target::{AnyTarget, Surface};
+use rasterizer_core::target::{AnyTarget, ClipTo};
 use std::f64::consts::TAU;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -515,56 +514,6 @@ fn polygons(display: &mut Display) -> SceneResult {
     Ok(())
 }
 
-/// A [`Surface`] that draws onto `inner` but clips every primitive to `viewport`.
-///
-/// The rasterizers ask [`Surface::clip_area`] where they may draw; everything else is forwarded.
-pub struct Viewport<'a, T> {
-    inner: &'a mut T,
-    viewport: Rectangle,
-}
-
-impl<'a, T: DrawTarget> Viewport<'a, T> {
-    /// Wraps `inner`, clipping to the part of `viewport` that lies on it.
-    pub fn new(inner: &'a mut T, viewport: Rectangle) -> Self {
-        Self { inner, viewport }
-    }
-}
-
-impl<T: DrawTarget> Dimensions for Viewport<'_, T> {
-    fn bounding_box(&self) -> Rectangle {
-        self.inner.bounding_box()
-    }
-}
-
-impl<T: DrawTarget> DrawTarget for Viewport<'_, T> {
-    type Color = T::Color;
-    type Error = T::Error;
-
-    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
-    where
-        I: IntoIterator<Item = Pixel<Self::Color>>,
-    {
-        self.inner.draw_iter(pixels)
-    }
-
-    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error>
-    where
-        I: IntoIterator<Item = Self::Color>,
-    {
-        self.inner.fill_contiguous(area, colors)
-    }
-
-    fn fill_solid(&mut self, area: &Rectangle, color: Self::Color) -> Result<(), Self::Error> {
-        self.inner.fill_solid(area, color)
-    }
-}
-
-impl<T: DrawTarget> Surface for Viewport<'_, T> {
-    fn clip_area(&self) -> Rectangle {
-        self.viewport.intersection(&self.inner.bounding_box())
-    }
-}
-
 /// Brightness of the unclipped lines under the clipped ones, in 256ths.
 const DIM: u32 = 80;
 
@@ -610,7 +559,9 @@ fn clipping(display: &mut Display) -> SceneResult {
         }
     }
     {
-        let mut v = Viewport::new(&mut *display, CLIP_VIEWPORT);
+        // rasterizer-core's ClipTo narrows the display's clip area to the viewport.
+        let mut any = AnyTarget::new(&mut *display);
+        let mut v = ClipTo::new(&mut any, CLIP_VIEWPORT);
         for &(a, b, color) in &lines {
             let Ok(()) = draw_line(&mut v, a, b, color);
         }
@@ -641,6 +592,7 @@ mod tests {
     use super::*;
     use embedded_graphics_core::geometry::OriginDimensions;
     use embedded_graphics_core::primitives::PointsIter;
+    use embedded_graphics_core::Pixel;
     use std::convert::Infallible;
 
     /// Counts how often each pixel is written.

@@ -5,24 +5,19 @@
 //! - the Suzanne pictures render into a [`Framebuffer<Rgb565>`] (what a microcontroller sends to
 //!   its panel), which is then copied pixel by pixel onto the simulator display;
 //! - the cube and near-plane pictures draw straight onto the simulator display through
-//!   [`AnyTarget`] and through [`ClipRect`], a `Surface` that clips to one frame of the strip.
-//!
-//! A pipeline [`Viewport`] only maps normalised device coordinates to pixels: it does not clip.
-//! The homogeneous clipper lets triangles reach a guard band four times the view's size and leaves
-//! the rest to the rasterizer, which clips to the target's `Surface::clip_area`. So the frames of
-//! [`cube_inside`] each draw through a [`ClipRect`] of their own rectangle.
+//!   [`AnyTarget`]; each frame of [`cube_inside`] has its own pipeline [`Viewport`], which the
+//!   pipeline also clips to, so the four frames share one display.
 //!
 //! Every picture is [`WIDTH`] x [`HEIGHT`] display pixels and is saved at [`SCALE`]x. Scene set-up
 //! (camera paths, colours) uses `f64` on the host; everything the pipeline does is integer.
 
-use crate::demo::{hsv, Display, SceneResult, Viewport as ClipRect, BACKGROUND};
+use crate::demo::{hsv, Display, SceneResult, BACKGROUND};
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::text::{Baseline, Text};
 use embedded_graphics::Drawable;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 use host_tools::obj::LoadedMesh;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
@@ -373,9 +368,8 @@ pub fn room_frame(k: usize) -> Viewport {
     }
 }
 
-/// Frame `k` of [`cube_inside`], drawn into its quarter of `display` through a [`ClipRect`] of that
-/// quarter (the viewport alone does not clip), with its own region of the depth buffer (which
-/// covers the display).
+/// Frame `k` of [`cube_inside`], drawn into its quarter of `display` (the pipeline clips to its
+/// viewport), with its own region of the depth buffer (which covers the display).
 pub fn draw_room_frame(
     room: &ColoredMesh,
     k: usize,
@@ -400,12 +394,7 @@ pub fn draw_room_frame(
         depth,
         VertexColors::<Rgb888>::new(),
     );
-    let rect = Rectangle::new(
-        Point::new(frame.x, frame.y),
-        Size::new(frame.width, frame.height),
-    );
-    let mut target = ClipRect::new(display, rect);
-    let Ok(stats) = p.draw(&mut target, &room.mesh());
+    let Ok(stats) = p.draw(&mut AnyTarget::new(display), &room.mesh());
     check_drawn("room", stats.drawn)
 }
 
