@@ -15,17 +15,10 @@ cd "$ROOT"
 TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
 OUT="$TARGET_DIR/callgrind"
 
-if ! command -v valgrind >/dev/null 2>&1; then
-    echo "valgrind not found: installing it" >&2
-    SUDO=""
-    if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-    $SUDO apt-get update
-    $SUDO apt-get install -y valgrind
-fi
-
-echo "building count2d (release)..." >&2
-RUSTFLAGS="" CARGO_TARGET_DIR="$TARGET_DIR" cargo build --quiet --release -p host-tools --example count2d
-BIN="$TARGET_DIR/release/examples/count2d"
+# shellcheck source=lib/callgrind-common.sh
+source "$ROOT/scripts/lib/callgrind-common.sh"
+ensure_valgrind
+build_example count2d
 mkdir -p "$OUT"
 
 # count SCENE RENDERER FRAME_FN: prints the instructions of one counted frame.

@@ -21,24 +21,18 @@ OUT="$TARGET_DIR/callgrind"
 TRIANGLES=968
 
 ALL=(m1 m1_nodepth m1_nocull m1_unlit m1_flat m1_phong m1_unlit_nodepth_nocull m1_wireframe
-    m1_cached m1_depth_always m1_cull_keepall)
+    m1_cached m1_depth_always m1_cull_keepall m1_band8 m1_band16 m1_band32 m1_band240
+    m1_band16_cached)
 if [ "$#" -gt 0 ]; then
     COMBOS=("$@")
 else
     COMBOS=("${ALL[@]}")
 fi
 
-if ! command -v valgrind >/dev/null 2>&1; then
-    echo "valgrind not found: installing it" >&2
-    SUDO=""
-    if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-    $SUDO apt-get update
-    $SUDO apt-get install -y valgrind
-fi
-
-echo "building count3d (release)..." >&2
-RUSTFLAGS="" CARGO_TARGET_DIR="$TARGET_DIR" cargo build --quiet --release -p host-tools --example count3d
-BIN="$TARGET_DIR/release/examples/count3d"
+# shellcheck source=lib/callgrind-common.sh
+source "$ROOT/scripts/lib/callgrind-common.sh"
+ensure_valgrind
+build_example count3d
 mkdir -p "$OUT"
 
 # count COMBINATION: prints the instructions of the counted frame (the call of frame_COMBINATION).
