@@ -45,6 +45,7 @@ pub mod color;
 pub mod geom;
 pub mod math;
 pub mod mesh;
+pub mod numerics;
 pub mod pipeline;
 pub mod raster;
 pub mod shade;

@@ -59,6 +59,11 @@ pub trait Scalar:
     }
     /// `round(self * 2^bits)` as an integer, saturating at the `i32` range (NaN gives 0).
     fn to_scaled_int(self, bits: u32) -> i32;
+    /// The raw integer of a fixed-point value (`value * 2^F`), or `None` for a floating-point
+    /// format. The divide methods of [`crate::numerics`] other than exact division work on these.
+    fn raw_bits(self) -> Option<i64> {
+        None
+    }
     /// `round(num * scale / (den * div))` as an integer (0 when `den * div <= 0`), the perspective
     /// divide and viewport in one step. `|scale|, |div| < 2^31`. Exact for fixed point: the only
     /// error is the final rounding, halves up.
@@ -171,6 +176,11 @@ impl<const F: u32> Scalar for Fx<F> {
 
     fn from_fx16_bits(bits: i32) -> Self {
         Fx::<16>::from_bits(bits).convert()
+    }
+
+    #[inline(always)]
+    fn raw_bits(self) -> Option<i64> {
+        Some(i64::from(self.to_bits()))
     }
 
     fn to_scaled_int(self, bits: u32) -> i32 {

@@ -14,8 +14,9 @@ use crate::clip::polygon::{
 };
 use crate::geom::SubPoint;
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
+use crate::numerics::{reciprocal, Divide, Numerics, Standard};
 use crate::raster::edge::row_at_or_below;
-use crate::raster::interp::{fill_triangle_interp, DepthTest, ScreenVertex};
+use crate::raster::interp::{fill_triangle_interp_with, DepthTest, ScreenVertex};
 use crate::raster::line::draw_line;
 use crate::target::{Band, ClipTo, Framebuffer, Storage, Surface};
 use cull::Cull;
@@ -293,8 +294,13 @@ pub struct Transforms<S> {
 /// `BITS` is the number of sub-pixel bits of screen coordinates (4: 28.4). With `PERSPECTIVE` the
 /// shader's values are interpolated perspective-correctly (two divisions per pixel); without, they
 /// are affine in screen space (depth is always exact, being affine in screen space anyway).
+///
+/// `N` holds the remaining accuracy knobs ([`crate::numerics`]): the divide method and the
+/// precision of interpolation. [`Pipeline::new`] makes a [`Standard`] pipeline;
+/// [`Pipeline::with_numerics`] changes them.
 #[derive(Debug, Clone)]
-pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 4, const PERSPECTIVE: bool = false> {
+pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 4, const PERSPECTIVE: bool = false, N = Standard>
+{
     mvp: Mat4<S>,
     model: Mat4<S>,
     normal_matrix: Mat4<S>,
@@ -305,6 +311,7 @@ pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 4, const PERSPECTIVE: bool = 
     pub depth: D,
     /// The shading stage.
     pub shading: Sh,
+    _numerics: core::marker::PhantomData<N>,
 }
 
 impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool> Pipeline<S, C, D, Sh, BITS, PERSPECTIVE>
@@ -336,6 +343,34 @@ where
             cull,
             depth,
             shading,
+            _numerics: core::marker::PhantomData,
+        }
+    }
+}
+
+impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool, N>
+    Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, N>
+where
+    S: Scalar,
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<S>,
+    N: Numerics,
+{
+    /// The same pipeline with other numeric knobs ([`crate::numerics`]), e.g.
+    /// `Pipeline::new(..).with_numerics::<Custom<NewtonDivide, 16, GradientSpans>>()`.
+    ///
+    /// [`Custom<NewtonDivide, 16, GradientSpans>`]: crate::numerics::Custom
+    pub fn with_numerics<M: Numerics>(self) -> Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, M> {
+        Pipeline {
+            mvp: self.mvp,
+            model: self.model,
+            normal_matrix: self.normal_matrix,
+            viewport: self.viewport,
+            cull: self.cull,
+            depth: self.depth,
+            shading: self.shading,
+            _numerics: core::marker::PhantomData,
         }
     }
 
@@ -351,17 +386,61 @@ where
 
     /// Projects a clip-space point (w > 0) to sub-pixel screen coordinates and depth: the divide and
     /// the viewport in one rounding per coordinate (error at most half a sub-pixel unit and half a
-    /// depth step, beyond the error already in the clip-space coordinates).
+    /// depth step, beyond the error already in the clip-space coordinates). With a reciprocal
+    /// divide method ([`Divide::Reciprocal`], [`Divide::Newton`]) and a fixed-point format, a point
+    /// inside the view volume takes one reciprocal of `w` and three multiplications instead, and
+    /// may be one unit off; other points and floating-point formats divide exactly.
     #[inline]
     pub fn project(&self, p: &Vec4<S>) -> (SubPoint<BITS>, u16) {
         let vp = &self.viewport;
-        // x_s = (x/w + 1) W/2 in sub-pixels, y flipped, depth = (z/w + 1)/2 * 65535.
-        let sx = S::scaled_ratio(p.x + p.w, p.w, i64::from(vp.width) << BITS, 2);
-        let sy = S::scaled_ratio(p.w - p.y, p.w, i64::from(vp.height) << BITS, 2);
-        let z = S::scaled_ratio(p.z + p.w, p.w, 65535, 2).clamp(0, 65535) as u16;
-        let ox = i64::from(vp.x) << BITS;
-        let oy = i64::from(vp.y) << BITS;
         let clamp = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+        let (ox, oy) = (i64::from(vp.x) << BITS, i64::from(vp.y) << BITS);
+        let (scale_x, scale_y) = (i64::from(vp.width) << BITS, i64::from(vp.height) << BITS);
+        if let (Some(x), Some(y), Some(z), Some(w)) = (
+            p.x.raw_bits(),
+            p.y.raw_bits(),
+            p.z.raw_bits(),
+            p.w.raw_bits(),
+        ) {
+            // Fixed point: x_s = (x + w) W 2^BITS / 2w, y flipped, depth (z + w) 65535 / 2w, on the
+            // raw integers in i64 (the sums would saturate in the format for |w| near its limit).
+            let (nx, ny, nz, d) = (x + w, w - y, z + w, 2 * w);
+            let (sx, sy, z) = if N::DIVIDE != Divide::Exact
+                && w > 0
+                && [nx, ny, nz].iter().all(|n| (0..=d).contains(n))
+            {
+                // One reciprocal of d (r / 2^k ≈ 1 / d, r in [2^30, 2^31], k >= 31), then per
+                // coordinate t = n / d in 0.32 (n r < 2^63 as n <= d < 2^32) and
+                // round(t scale / 2^32) (t <= 2^32 + 2 and scale < 2^24 keep it below 2^57).
+                let (r, k) = reciprocal(d as u64, N::DIVIDE);
+                let ratio = |n: i64, scale: i64| {
+                    let prod = n as u64 * r;
+                    let t = (if k >= 32 {
+                        prod >> (k - 32)
+                    } else {
+                        prod << (32 - k)
+                    }) as i64;
+                    (t * scale + (1 << 31)) >> 32
+                };
+                (ratio(nx, scale_x), ratio(ny, scale_y), ratio(nz, 65535))
+            } else {
+                // |n| < 2^33 and scale < 2^24: the product fits i64. Rounds halves up.
+                let ratio = |n: i64, scale: i64| {
+                    if d <= 0 {
+                        0
+                    } else {
+                        (n * scale + d / 2).div_euclid(d)
+                    }
+                };
+                (ratio(nx, scale_x), ratio(ny, scale_y), ratio(nz, 65535))
+            };
+            let z = z.clamp(0, 65535) as u16;
+            return (SubPoint::new(clamp(sx + ox), clamp(sy + oy)), z);
+        }
+        // x_s = (x/w + 1) W/2 in sub-pixels, y flipped, depth = (z/w + 1)/2 * 65535.
+        let sx = S::scaled_ratio(p.x + p.w, p.w, scale_x, 2);
+        let sy = S::scaled_ratio(p.w - p.y, p.w, scale_y, 2);
+        let z = S::scaled_ratio(p.z + p.w, p.w, 65535, 2).clamp(0, 65535) as u16;
         (SubPoint::new(clamp(sx + ox), clamp(sy + oy)), z)
     }
 
@@ -647,7 +726,7 @@ where
                 q: Self::q(&clip[k]),
             });
             let shading = &self.shading;
-            fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
+            fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
                 target,
                 &mut self.depth,
                 sv,
@@ -693,7 +772,7 @@ where
         let shading = &self.shading;
         for k in 1..screen.len() - 1 {
             let t = [screen[0], screen[k], screen[k + 1]];
-            fill_triangle_interp::<_, _, _, _, BITS, PERSPECTIVE>(
+            fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
                 target,
                 &mut self.depth,
                 t,

@@ -7,6 +7,7 @@
 //! and its buffer compile away.
 
 use crate::geom::{PixelRect, SubPoint};
+use crate::numerics::{Numerics, SpanStart, Standard};
 use crate::raster::triangle::setup::{walk_spans, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::Surface;
@@ -172,7 +173,7 @@ impl DepthTest for DepthBuffer<'_> {
         len: u32,
         z: i64,
         dz: i64,
-        mut run: F,
+        run: F,
     ) -> Result<(), E>
     where
         F: FnMut(u32, u32) -> Result<(), E>,
@@ -187,35 +188,52 @@ impl DepthTest for DepthBuffer<'_> {
         let Some(row) = self.buf.get_mut(start..start + len as usize) else {
             return Ok(());
         };
-        let compare = self.compare;
-        let mut z = z;
-        let mut i = 0usize;
-        while i < row.len() {
-            let begin = i;
-            while i < row.len() {
-                let d = (z >> 16).clamp(0, 65535) as u16;
-                if !compare.pass(d, row[i]) {
-                    break;
-                }
-                row[i] = d;
-                i += 1;
-                z += dz;
-            }
-            if i > begin {
-                run(begin as u32, (i - begin) as u32)?;
-            }
-            // Skip the failing pixel(s).
-            while i < row.len() {
-                let d = (z >> 16).clamp(0, 65535) as u16;
-                if compare.pass(d, row[i]) {
-                    break;
-                }
-                i += 1;
-                z += dz;
-            }
+        // The usual test gets its own loop, with the comparison known at compile time; the others
+        // share one (a copy per comparison would multiply the shading code inlined into each).
+        if self.compare == Compare::Less {
+            passing_runs(row, z, dz, |new, old| new < old, run)
+        } else {
+            let compare = self.compare;
+            passing_runs(row, z, dz, |new, old| compare.pass(new, old), run)
         }
-        Ok(())
     }
+}
+
+/// Calls `run(offset, len)` for each run of pixels of `row` whose depth `(z + i dz) >> 16`
+/// (clamped to `0 ..= 65535`) passes `pass(new, stored)`, storing those depths first.
+#[inline(always)]
+fn passing_runs<E, P, F>(row: &mut [u16], z: i64, dz: i64, pass: P, mut run: F) -> Result<(), E>
+where
+    P: Fn(u16, u16) -> bool,
+    F: FnMut(u32, u32) -> Result<(), E>,
+{
+    let mut z = z;
+    let mut i = 0usize;
+    while i < row.len() {
+        let begin = i;
+        while i < row.len() {
+            let d = (z >> 16).clamp(0, 65535) as u16;
+            if !pass(d, row[i]) {
+                break;
+            }
+            row[i] = d;
+            i += 1;
+            z += dz;
+        }
+        if i > begin {
+            run(begin as u32, (i - begin) as u32)?;
+        }
+        // Skip the failing pixel(s).
+        while i < row.len() {
+            let d = (z >> 16).clamp(0, 65535) as u16;
+            if pass(d, row[i]) {
+                break;
+            }
+            i += 1;
+            z += dz;
+        }
+    }
+    Ok(())
 }
 
 /// A vertex in screen space: sub-pixel position, depth and the shader's values.
@@ -230,9 +248,6 @@ pub struct ScreenVertex<V, const BITS: u32 = 4> {
     /// `2^20 / w`, clamped to `1 ..= Q_MAX`: read only by perspective-correct interpolation.
     pub q: i64,
 }
-
-/// Fractional bits of interpolated values.
-const FRAC: u32 = 16;
 
 /// One linear function over the screen: `v(dx2, dy2) = v0 + (a dx2 + b dy2) / den2` in doubled
 /// sub-pixel offsets from the first vertex.
@@ -273,7 +288,7 @@ struct Exact {
     r: i64,
 }
 
-struct Interp<'a, S: Surface, D, V, F, const P: bool> {
+struct Interp<'a, S: Surface, D, V, F, N, const P: bool> {
     surface: &'a mut S,
     depth: &'a mut D,
     shade: F,
@@ -297,20 +312,43 @@ struct Interp<'a, S: Surface, D, V, F, const P: bool> {
     /// The moves fit `i64` (`den2 < 2^46`, steps below 2^40): otherwise every span start is
     /// evaluated from scratch.
     incremental: bool,
+    /// [`SpanStart::Gradient`] for this triangle: span starts from `steps` and `grad_row`.
+    gradient: bool,
+    /// Per-row gradients in the fractional bits (gradient span starts only).
+    grad_row: [i64; PLANES],
     count: usize,
     /// Perspective-correct only: the first vertex's values and the differences to the other two.
     base: [i64; MAX_VARYINGS],
     d1: [i64; MAX_VARYINGS],
     d2: [i64; MAX_VARYINGS],
-    _v: core::marker::PhantomData<V>,
+    _v: core::marker::PhantomData<(V, N)>,
 }
 
-impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: bool>
-    Interp<'_, S, D, V, F, P>
+impl<
+        S: Surface,
+        D: DepthTest,
+        V: Varyings,
+        F: FnMut(&V) -> S::Color,
+        N: Numerics,
+        const P: bool,
+    > Interp<'_, S, D, V, F, N, P>
 {
     /// Moves every plane's exact value to the span starting at `(x0, row)`.
     #[inline(always)]
     fn seek(&mut self, row: i32, x0: i32) {
+        if self.gradient {
+            // v0 + (gx dx2 + gy dy2) / 2s, rounded: a function of the position alone.
+            let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.origin.0;
+            let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
+            let sh = self.s.trailing_zeros() + 1;
+            for i in 0..self.used {
+                self.at[i].q = (self.steps[i] * dx2 + self.grad_row[i] * dy2 + self.s) >> sh;
+            }
+            if D::ENABLED {
+                self.at[Z].q = (self.steps[Z] * dx2 + self.grad_row[Z] * dy2 + self.s) >> sh;
+            }
+            return;
+        }
         if let (true, Some((pr, px))) = (self.incremental, self.prev) {
             let (dr, dc) = (i64::from(row - pr), i64::from(x0 - px));
             for i in 0..self.used {
@@ -337,7 +375,7 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
     fn exact(&mut self, i: usize, dx2: i64, dy2: i64) {
         let p = self.planes[i];
         let f = i128::from(p.a) * i128::from(dx2) + i128::from(p.b) * i128::from(dy2);
-        let (q, r) = divmod((f << FRAC) + i128::from(self.den2 / 2), self.den2);
+        let (q, r) = divmod((f << N::FRAC) + i128::from(self.den2 / 2), self.den2);
         self.at[i] = Exact { q, r };
     }
 
@@ -377,23 +415,34 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
         }
     }
 
-    /// Plane `i`'s value at the current span start, in 16.16.
+    /// Plane `i`'s value at the current span start, with `N::FRAC` fractional bits.
     #[inline(always)]
     fn value(&self, i: usize) -> i64 {
-        (self.planes[i].v0 << FRAC).saturating_add(self.at[i].q)
+        (self.planes[i].v0 << N::FRAC).saturating_add(self.at[i].q)
     }
 }
 
-impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: bool> SpanSink
-    for Interp<'_, S, D, V, F, P>
+impl<
+        S: Surface,
+        D: DepthTest,
+        V: Varyings,
+        F: FnMut(&V) -> S::Color,
+        N: Numerics,
+        const P: bool,
+    > SpanSink for Interp<'_, S, D, V, F, N, P>
 {
     type Error = S::Error;
 
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         self.seek(row, x0);
-        let z0 = if D::ENABLED { self.value(Z) } else { 0 };
-        let dz = self.steps[Z];
+        // The depth test takes 16 fractional bits.
+        let z0 = if D::ENABLED {
+            self.value(Z) << (16 - N::FRAC)
+        } else {
+            0
+        };
+        let dz = self.steps[Z] << (16 - N::FRAC);
         let planes = self.used;
         let mut start = [0i64; MAX_VARYINGS];
         for (i, s) in start.iter_mut().enumerate().take(planes) {
@@ -421,16 +470,16 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
                 if P {
                     // The barycentrics divided by w, over 1/w: one division each per pixel.
                     let q = acc[0].max(1);
-                    let l1 = (acc[1].max(0) << FRAC) / q;
-                    let l2 = (acc[2].max(0) << FRAC) / q;
+                    let l1 = (acc[1].max(0) << N::FRAC) / q;
+                    let l2 = (acc[2].max(0) << N::FRAC) / q;
                     for (i, out) in v.as_mut_slice().iter_mut().enumerate().take(count) {
                         let mix = l1 * d1[i] + l2 * d2[i];
-                        *out = (base[i] + ((mix + (1 << (FRAC - 1))) >> FRAC)) as i32;
+                        *out = (base[i] + ((mix + (1 << (N::FRAC - 1))) >> N::FRAC)) as i32;
                     }
                 } else {
                     for (out, a) in v.as_mut_slice().iter_mut().zip(&acc) {
                         // Rounded to the nearest unit of the value.
-                        *out = ((a + (1 << (FRAC - 1))) >> FRAC) as i32;
+                        *out = ((a + (1 << (N::FRAC - 1))) >> N::FRAC) as i32;
                     }
                 }
                 for i in 0..planes {
@@ -456,6 +505,8 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, const P: b
 /// (`1/w`, see [`ScreenVertex::q`]): the barycentrics divided by `w` are planes over the screen and
 /// each pixel divides them by `1/w` (two divisions per pixel). Without it they are affine in screen
 /// space, which is exact for depth and close for small triangles.
+///
+/// This is [`fill_triangle_interp_with`] with the [`Standard`] numeric knobs.
 pub fn fill_triangle_interp<S, D, V, F, const BITS: u32, const PERSPECTIVE: bool>(
     surface: &mut S,
     depth: &mut D,
@@ -467,6 +518,28 @@ where
     D: DepthTest,
     V: Varyings,
     F: FnMut(&V) -> S::Color,
+{
+    fill_triangle_interp_with::<S, D, V, F, Standard, BITS, PERSPECTIVE>(
+        surface, depth, vertices, shade,
+    )
+}
+
+/// [`fill_triangle_interp`] with chosen numeric knobs `N` ([`crate::numerics`]): the fractional
+/// bits of the interpolation and the span-start method. With [`SpanStart::Gradient`] the pixels
+/// still depend only on their position (bands match the whole frame), but values may differ from
+/// the exactly rounded plane by the gradients' rounding times the distance from the first vertex.
+pub fn fill_triangle_interp_with<S, D, V, F, N, const BITS: u32, const PERSPECTIVE: bool>(
+    surface: &mut S,
+    depth: &mut D,
+    vertices: [ScreenVertex<V, BITS>; 3],
+    shade: F,
+) -> Result<(), S::Error>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    F: FnMut(&V) -> S::Color,
+    N: Numerics,
 {
     let Some(t) = Sorted::new(&vertices.map(|v| v.p)) else {
         return Ok(());
@@ -514,10 +587,32 @@ where
     let mut col = [Exact::default(); PLANES];
     let mut row = [Exact::default(); PLANES];
     let mut incremental = den2 < 1 << 46;
+    let mut grad_row = [0i64; PLANES];
+    // Gradient span starts when every plane's a 2s 2^F and b 2s 2^F fit i64 and the gradients stay
+    // below 2^30 (then gx dx2 + gy dy2 < 2^62 for offsets within the guard band).
+    let limit = 1i64 << (61 - BITS - N::FRAC);
+    let fits = |i: usize| planes[i].a.abs() < limit && planes[i].b.abs() < limit;
+    let mut gradient =
+        N::SPANS == SpanStart::Gradient && (0..used).all(fits) && (!D::ENABLED || fits(Z));
+    if gradient {
+        let round = |n: i64| (n + den2 / 2).div_euclid(den2);
+        let mut grad = |i: usize| {
+            let p = planes[i];
+            steps[i] = round((p.a * 2 * s) << N::FRAC);
+            grad_row[i] = round((p.b * 2 * s) << N::FRAC);
+            steps[i].abs() < 1 << 30 && grad_row[i].abs() < 1 << 30
+        };
+        for i in 0..used {
+            gradient &= grad(i);
+        }
+        if D::ENABLED {
+            gradient &= grad(Z);
+        }
+    }
     let mut setup = |i: usize| {
         let p = planes[i];
-        let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << FRAC, den2);
-        let (rq, rr) = divmod((i128::from(p.b) * i128::from(2 * s)) << FRAC, den2);
+        let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << N::FRAC, den2);
+        let (rq, rr) = divmod((i128::from(p.b) * i128::from(2 * s)) << N::FRAC, den2);
         // The per-pixel step is the column move rounded: round(a 2s 2^16 / den2).
         steps[i] = cq + i64::from(2 * cr >= den2);
         col[i] = Exact { q: cq, r: cr };
@@ -526,14 +621,16 @@ where
         // the products below 2^56.
         incremental &= cq.unsigned_abs() < 1 << 40 && rq.unsigned_abs() < 1 << 40;
     };
-    for i in 0..used {
-        setup(i);
-    }
-    if D::ENABLED {
-        setup(Z);
+    if !gradient {
+        for i in 0..used {
+            setup(i);
+        }
+        if D::ENABLED {
+            setup(Z);
+        }
     }
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    let mut sink = Interp::<S, D, V, F, PERSPECTIVE> {
+    let mut sink = Interp::<S, D, V, F, N, PERSPECTIVE> {
         surface,
         depth,
         shade,
@@ -548,6 +645,8 @@ where
         prev: None,
         at: [Exact::default(); PLANES],
         incremental,
+        gradient,
+        grad_row,
         count,
         base,
         d1,

@@ -1,0 +1,239 @@
+//! The accuracy knobs of the 3D path besides the number format ([`crate::math::Scalar`]), the
+//! sub-pixel bits and the trigonometry table size: how the perspective divide divides, and how
+//! precisely colour and depth are interpolated across a triangle.
+//!
+//! They are compile-time choices, carried by a type implementing [`Numerics`] (the last generic
+//! parameter of [`crate::pipeline::Pipeline`]), so a pipeline compiles only the method it uses.
+//! [`Standard`] is the default; [`Custom`] picks each knob. `docs/ACCURACY.md` measures what each
+//! choice costs and what it changes.
+
+use core::marker::PhantomData;
+
+/// How the perspective divide turns clip coordinates into screen coordinates and depth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Divide {
+    /// One exact, correctly rounded division per coordinate (three per vertex): the only error is
+    /// the final rounding.
+    Exact,
+    /// One division per vertex for a 31-bit reciprocal of `w`, then a multiplication per
+    /// coordinate: within one unit of the exact result (two roundings instead of one).
+    Reciprocal,
+    /// No division at all: the reciprocal comes from a 64-entry table refined by two
+    /// Newton-Raphson steps (for cores without a divide instruction, such as the Cortex-M0+):
+    /// within one unit of the exact result.
+    Newton,
+}
+
+/// Where each span of a triangle starts its interpolated values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpanStart {
+    /// The exactly rounded value of every plane at the first pixel of every span, kept as a
+    /// quotient and remainder (no division per span): the value of each pixel is at most half a
+    /// step of the last fractional bit from the true plane at the span start.
+    Exact,
+    /// Each plane's per-pixel and per-row gradients rounded once per triangle to the fractional
+    /// bits; a span starts at `v0 + gx dx + gy dy` (two multiplications per plane), so the value
+    /// of a pixel is still a function of its position alone (bands match the whole frame), but
+    /// carries the gradients' rounding times the distance from the first vertex. Falls back to
+    /// [`SpanStart::Exact`] for triangles whose gradients are too large.
+    Gradient,
+}
+
+/// A set of numeric knobs: the last generic parameter of [`crate::pipeline::Pipeline`].
+pub trait Numerics {
+    /// The divide method of the perspective divide.
+    const DIVIDE: Divide;
+    /// Fractional bits of interpolated values and depth as they step across a triangle
+    /// (4 to 16). Depth is a 16-bit integer and Gouraud colours carry 8 fractional bits, so fewer
+    /// bits show as steps only across long spans.
+    const FRAC: u32;
+    /// How spans start.
+    const SPANS: SpanStart;
+}
+
+/// The library's default: exact division, 16 fractional bits, exact span starts.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Standard;
+
+impl Numerics for Standard {
+    const DIVIDE: Divide = Divide::Exact;
+    const FRAC: u32 = 16;
+    const SPANS: SpanStart = SpanStart::Exact;
+}
+
+/// A divide method as a type, for [`Custom`].
+pub trait DivideMethod {
+    /// The method.
+    const METHOD: Divide;
+}
+
+/// [`Divide::Exact`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ExactDivide;
+/// [`Divide::Reciprocal`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ReciprocalDivide;
+/// [`Divide::Newton`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NewtonDivide;
+
+impl DivideMethod for ExactDivide {
+    const METHOD: Divide = Divide::Exact;
+}
+impl DivideMethod for ReciprocalDivide {
+    const METHOD: Divide = Divide::Reciprocal;
+}
+impl DivideMethod for NewtonDivide {
+    const METHOD: Divide = Divide::Newton;
+}
+
+/// A span-start method as a type, for [`Custom`].
+pub trait SpanMethod {
+    /// The method.
+    const METHOD: SpanStart;
+}
+
+/// [`SpanStart::Exact`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ExactSpans;
+/// [`SpanStart::Gradient`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct GradientSpans;
+
+impl SpanMethod for ExactSpans {
+    const METHOD: SpanStart = SpanStart::Exact;
+}
+impl SpanMethod for GradientSpans {
+    const METHOD: SpanStart = SpanStart::Gradient;
+}
+
+/// Each knob chosen: `Custom<ReciprocalDivide, 12, GradientSpans>`. `FRAC` outside `4..=16` is
+/// clamped into it.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Custom<D = ExactDivide, const FRAC: u32 = 16, P = ExactSpans>(PhantomData<(D, P)>);
+
+impl<D: DivideMethod, const FRAC: u32, P: SpanMethod> Numerics for Custom<D, FRAC, P> {
+    const DIVIDE: Divide = D::METHOD;
+    const FRAC: u32 = if FRAC < 4 {
+        4
+    } else if FRAC > 16 {
+        16
+    } else {
+        FRAC
+    };
+    const SPANS: SpanStart = P::METHOD;
+}
+
+/// The reciprocal `r` and shift `k >= 31` with `r ≈ 2^k / d` for `d > 0`, `r` in `[2^30, 2^31]`, by
+/// the chosen method ([`Divide::Exact`] is treated as [`Divide::Reciprocal`]).
+#[inline]
+pub(crate) fn reciprocal(d: u64, method: Divide) -> (u64, u32) {
+    // Normalise d into [2^31, 2^32): m = d 2^t, so 2^62 / m = 2^(62 - t) / d.
+    let lz = d.leading_zeros();
+    let (m, t) = if lz >= 32 {
+        (d << (lz - 32), (lz - 32) as i32)
+    } else {
+        // Drop low bits, rounding: the reciprocal only needs 31 bits.
+        let sh = 32 - lz;
+        let m = (d + (1 << (sh - 1))) >> sh;
+        // Rounding up may carry into bit 32.
+        if m >> 32 != 0 {
+            (m >> 1, -(sh as i32) - 1)
+        } else {
+            (m, -(sh as i32))
+        }
+    };
+    let r = match method {
+        Divide::Newton => newton_reciprocal(m),
+        Divide::Exact | Divide::Reciprocal => ((1u64 << 62) + m / 2) / m,
+    };
+    // r ≈ 2^(62 - t) / d with t <= 31: k >= 31.
+    (r, (62 - t) as u32)
+}
+
+/// `2^62 / m` for `m` in `[2^31, 2^32)` without a division: a 64-entry table of the reciprocal of
+/// the top six bits below the leading one, then two Newton-Raphson steps (`r' = r (2 - m r)`),
+/// each doubling the correct bits (about 7, 14, 28), and a final correction of the last units.
+#[inline]
+fn newton_reciprocal(m: u64) -> u64 {
+    // Table entry i: 2^37 / (64 + i + 0.5), the reciprocal of the middle of the interval, in
+    // 1.30 (times 2^30 of 2^62 / m's scale once shifted).
+    const TABLE: [u32; 64] = {
+        let mut t = [0u32; 64];
+        let mut i = 0;
+        while i < 64 {
+            // 2^38 / (2 (64 + i) + 1) = 2^37 / (64 + i + 0.5).
+            t[i] = ((1u64 << 38) / (2 * (64 + i as u64) + 1)) as u32;
+            i += 1;
+        }
+        t
+    };
+    // m = (64 + i + f) 2^25 with i the six bits below the leading one.
+    let i = ((m >> 25) & 63) as usize;
+    // r0 ≈ 2^62 / m = 2^37 / (m / 2^25), within 1/129 of it, in [2^30, 2^31].
+    let mut r = i64::from(TABLE[i]);
+    let m = m as i64;
+    for _ in 0..2 {
+        // e = 2^62 - m r (m r < 2^63), then r += r e / 2^62 in two halves of the shift so that
+        // the product stays below 2^63 (|e| < 2^56 from the table on).
+        let e = (1i64 << 62) - m * r;
+        r += (r * (e >> 31)) >> 31;
+    }
+    // Two steps leave r within a few units: settle it on round(2^62 / m) with the remainder.
+    let mut rem = (1i64 << 62) - m * r;
+    while rem < 0 {
+        r -= 1;
+        rem += m;
+    }
+    while rem >= m {
+        r += 1;
+        rem -= m;
+    }
+    // Round half up, as the division does.
+    if 2 * rem >= m {
+        r += 1;
+    }
+    r as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn newton_matches_division() {
+        let mut x = 0x1234_5678u32;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let m = (1u64 << 31) | u64::from(x >> 1);
+            let exact = ((1u64 << 62) + m / 2) / m;
+            assert_eq!(newton_reciprocal(m), exact, "m = {m}");
+        }
+        for m in [1u64 << 31, (1u64 << 32) - 1, 3 << 30] {
+            assert_eq!(newton_reciprocal(m), ((1u64 << 62) + m / 2) / m);
+        }
+    }
+
+    #[test]
+    fn reciprocal_scales() {
+        for d in [
+            1u64,
+            2,
+            3,
+            1000,
+            1 << 31,
+            (1 << 32) + 7,
+            u64::from(u32::MAX) << 20,
+        ] {
+            for method in [Divide::Reciprocal, Divide::Newton] {
+                let (r, k) = reciprocal(d, method);
+                assert!((1 << 30..=1 << 31).contains(&r), "{d}: r = {r}");
+                // r d ≈ 2^k within 2^(k - 29).
+                let err = (u128::from(r) * u128::from(d)).abs_diff(1u128 << k);
+                assert!(err <= 1u128 << (k - 29), "{d} {method:?}: {err}");
+            }
+        }
+    }
+}

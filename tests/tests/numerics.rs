@@ -1,0 +1,378 @@
+//! The numeric knobs of `rasterizer_core::numerics`: the reciprocal divide methods stay within one
+//! unit of the exact divide, gradient span starts within one unit of the exactly rounded planes,
+//! fewer fractional bits within their stated error, and every choice keeps coverage unchanged and
+//! band renders identical to whole frames.
+
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics_core::prelude::*;
+use proptest::prelude::*;
+use rasterizer_core::geom::SubPoint;
+use rasterizer_core::math::{Angle, Fx, Fx16, Mat4, Vec3, Vec4};
+use rasterizer_core::numerics::{
+    Custom, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics, ReciprocalDivide,
+    Standard,
+};
+use rasterizer_core::pipeline::cull::CullClockwise;
+use rasterizer_core::pipeline::shading::{GouraudLit, Unlit};
+use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, Transforms, Viewport};
+use rasterizer_core::raster::interp::{
+    fill_triangle_interp_with, Compare, DepthBuffer, ScreenVertex,
+};
+use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+use rasterizer_core::target::Framebuffer;
+
+type Recip = Custom<ReciprocalDivide, 16, ExactSpans>;
+type Newton = Custom<NewtonDivide, 16, ExactSpans>;
+type Gradient = Custom<ExactDivide, 16, GradientSpans>;
+
+fn transforms(w: u32, h: u32) -> Transforms<Fx16> {
+    Transforms {
+        model: Mat4::rotation_y(Angle::from_degrees(30)),
+        view: Mat4::look_at(
+            Vec3::from_ints(0, 0, 3),
+            Vec3::default(),
+            Vec3::from_ints(0, 1, 0),
+        )
+        .unwrap(),
+        projection: Mat4::perspective(
+            Angle::from_degrees(60),
+            Fx16::from_ratio(i64::from(w), i64::from(h)),
+            Fx16::from_ratio(1, 10),
+            Fx16::from_int(100),
+        )
+        .unwrap(),
+    }
+}
+
+fn lighting() -> Lighting<Fx16, 1> {
+    let mut l = Lighting::new(
+        Material {
+            ambient: Rgb888::new(40, 30, 30),
+            diffuse: Rgb888::new(220, 140, 80),
+            specular: Rgb888::WHITE,
+            shininess: 16,
+        },
+        Rgb888::WHITE,
+        Specular::BlinnPhong,
+        Vec3::from_ints(0, 0, 3),
+    );
+    l.add_light(Light::Directional {
+        direction: Vec3::from_ints(1, 1, 1),
+        color: Rgb888::WHITE,
+    })
+    .unwrap();
+    l
+}
+
+/// A pipeline of format `Fx<F>` with numerics `N`, only for its `project`.
+fn projector<const F: u32, N: Numerics>(
+    w: u32,
+    h: u32,
+) -> Pipeline<
+    Fx<F>,
+    CullClockwise,
+    rasterizer_core::raster::interp::NoDepth,
+    Unlit<Rgb565>,
+    4,
+    false,
+    N,
+> {
+    let t = Transforms {
+        model: Mat4::identity(),
+        view: Mat4::identity(),
+        projection: Mat4::identity(),
+    };
+    Pipeline::new(
+        &t,
+        Viewport::new(w, h),
+        CullClockwise,
+        rasterizer_core::raster::interp::NoDepth,
+        Unlit {
+            color: Rgb565::WHITE,
+        },
+    )
+    .with_numerics::<N>()
+}
+
+/// A clip-space point inside the view volume: `|x|, |y|, |z| <= w`.
+fn inside<const F: u32>(w: i32, x: i32, y: i32, z: i32) -> Vec4<Fx<F>> {
+    let part = |v: i32| (i64::from(v) * i64::from(w) / i64::from(i32::MAX)) as i32;
+    Vec4 {
+        x: Fx::from_bits(part(x)),
+        y: Fx::from_bits(part(y)),
+        z: Fx::from_bits(part(z)),
+        w: Fx::from_bits(w),
+    }
+}
+
+fn close(a: (SubPoint<4>, u16), b: (SubPoint<4>, u16)) -> bool {
+    (a.0.x - b.0.x).abs() <= 1 && (a.0.y - b.0.y).abs() <= 1 && a.1.abs_diff(b.1) <= 1
+}
+
+fn check_divide<const F: u32>(w: i32, x: i32, y: i32, z: i32, width: u32, height: u32) {
+    let p = inside::<F>(w, x, y, z);
+    let exact = projector::<F, Standard>(width, height).project(&p);
+    let recip = projector::<F, Recip>(width, height).project(&p);
+    let newton = projector::<F, Newton>(width, height).project(&p);
+    assert!(
+        close(exact, recip),
+        "{p:?}: exact {exact:?}, reciprocal {recip:?}"
+    );
+    assert!(
+        close(exact, newton),
+        "{p:?}: exact {exact:?}, newton {newton:?}"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// One reciprocal (by division or by Newton-Raphson) and three multiplications land within
+    /// one sub-pixel unit and one depth step of the exact divide, for every fixed-point format
+    /// and any `w` the format holds.
+    #[test]
+    fn reciprocal_divides_within_one_unit(
+        w in 1i32..=i32::MAX,
+        x in -i32::MAX..=i32::MAX,
+        y in -i32::MAX..=i32::MAX,
+        z in -i32::MAX..=i32::MAX,
+        width in 1u32..=32767,
+        height in 1u32..=32767,
+    ) {
+        check_divide::<16>(w, x, y, z, width, height);
+        check_divide::<8>(w, x, y, z, width, height);
+        check_divide::<24>(w, x, y, z, width, height);
+    }
+
+    /// Points outside the view volume (and w <= 0) take the exact path in every method.
+    #[test]
+    fn outside_points_divide_exactly(
+        w in i32::MIN..=i32::MAX,
+        x in i32::MIN..=i32::MAX,
+        y in i32::MIN..=i32::MAX,
+        z in i32::MIN..=i32::MAX,
+    ) {
+        let p = Vec4 { x: Fx16::from_bits(x), y: Fx16::from_bits(y), z: Fx16::from_bits(z), w: Fx16::from_bits(w) };
+        let exact = projector::<16, Standard>(320, 240).project(&p);
+        let newton = projector::<16, Newton>(320, 240).project(&p);
+        prop_assert!(close(exact, newton), "{:?}: {:?} {:?}", p, exact, newton);
+    }
+}
+
+/// Draws one triangle with Gouraud colours and depth through numerics `N`: the colours and the
+/// depth buffer.
+fn draw_one<N: Numerics>(v: [ScreenVertex<[i32; 3], 4>; 3]) -> (Vec<Rgb888>, Vec<u16>) {
+    let (w, h) = (96u32, 96u32);
+    let mut color = vec![0u8; (w * h * 3) as usize];
+    let mut depth = vec![u16::MAX; (w * h) as usize];
+    {
+        let mut fb = Framebuffer::<Rgb888>::new(&mut color, w, h).unwrap();
+        let mut db = DepthBuffer::new(&mut depth, w, h, Compare::Always).unwrap();
+        let shade = |c: &[i32; 3]| {
+            let ch = |x: i32| ((x + 128) >> 8).clamp(0, 255) as u8;
+            Rgb888::new(ch(c[0]), ch(c[1]), ch(c[2]))
+        };
+        let Ok(()) =
+            fill_triangle_interp_with::<_, _, _, _, N, 4, false>(&mut fb, &mut db, v, shade);
+    }
+    let pixels = color
+        .chunks(3)
+        .map(|c| Rgb888::new(c[0], c[1], c[2]))
+        .collect();
+    (pixels, depth)
+}
+
+fn vertex() -> impl Strategy<Value = ScreenVertex<[i32; 3], 4>> {
+    (
+        -200i32..1736,
+        -200i32..1736,
+        any::<u16>(),
+        prop::array::uniform3(0i32..=255 << 8),
+    )
+        .prop_map(|(x, y, z, var)| ScreenVertex {
+            p: SubPoint::new(x, y),
+            z,
+            var,
+            q: 0,
+        })
+}
+
+/// The largest channel and depth differences between two draws.
+fn compare(a: &(Vec<Rgb888>, Vec<u16>), b: &(Vec<Rgb888>, Vec<u16>)) -> (u8, u16) {
+    let mut color = 0u8;
+    let mut depth = 0u16;
+    for i in 0..a.1.len() {
+        let (p, q) = (a.0[i], b.0[i]);
+        color = color
+            .max(p.r().abs_diff(q.r()))
+            .max(p.g().abs_diff(q.g()))
+            .max(p.b().abs_diff(q.b()));
+        depth = depth.max(a.1[i].abs_diff(b.1[i]));
+    }
+    (color, depth)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Gradient span starts stay within one 8-bit colour step and one depth step of the exactly
+    /// rounded planes (at 16 fractional bits and spans of at most 96 pixels).
+    #[test]
+    fn gradient_spans_within_one_step(v in prop::array::uniform3(vertex())) {
+        let exact = draw_one::<Standard>(v);
+        let gradient = draw_one::<Gradient>(v);
+        let (color, depth) = compare(&exact, &gradient);
+        prop_assert!(color <= 1 && depth <= 1, "colour {} depth {}", color, depth);
+    }
+
+    /// Fewer fractional bits: the per-pixel steps are rounded to 2^-FRAC, so across a span of at
+    /// most 96 pixels the error grows by at most 96 / 2^(FRAC + 1) units, plus one for rounding.
+    #[test]
+    fn fewer_fraction_bits_within_their_bound(v in prop::array::uniform3(vertex())) {
+        let exact = draw_one::<Standard>(v);
+        let f12 = draw_one::<Custom<ExactDivide, 12, ExactSpans>>(v);
+        let f8 = draw_one::<Custom<ExactDivide, 8, GradientSpans>>(v);
+        // Depth is in whole units: 96 / 2^13 < 1, 96 / 2^9 < 1.
+        let (c12, d12) = compare(&exact, &f12);
+        prop_assert!(c12 <= 1 && d12 <= 2, "12 bits: colour {} depth {}", c12, d12);
+        let (c8, d8) = compare(&exact, &f8);
+        prop_assert!(c8 <= 1 && d8 <= 2, "8 bits: colour {} depth {}", c8, d8);
+    }
+}
+
+/// Coverage never depends on the numeric knobs: the same pixels for every choice.
+#[test]
+fn coverage_is_independent_of_numerics() {
+    let mut x = 0x1234_5678u32;
+    let mut r = || {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        x
+    };
+    for _ in 0..500 {
+        let v: [ScreenVertex<[i32; 3], 4>; 3] = core::array::from_fn(|_| ScreenVertex {
+            p: SubPoint::new((r() % 1600) as i32 - 32, (r() % 1600) as i32 - 32),
+            z: r() as u16,
+            var: [(r() % 65536) as i32, 0, 0],
+            q: 0,
+        });
+        let covered = |d: &(Vec<Rgb888>, Vec<u16>)| -> Vec<bool> {
+            d.1.iter().map(|&z| z != u16::MAX).collect()
+        };
+        let base = covered(&draw_one::<Standard>(v));
+        // Depth 65535 may be a real depth: compare only where the exact draw has another value.
+        for other in [
+            covered(&draw_one::<Gradient>(v)),
+            covered(&draw_one::<Custom<NewtonDivide, 4, GradientSpans>>(v)),
+        ] {
+            for (i, (&a, &b)) in base.iter().zip(&other).enumerate() {
+                if a {
+                    assert!(
+                        b || draw_one::<Standard>(v).1[i] >= u16::MAX - 1,
+                        "pixel {i}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Band renders of Suzanne equal the whole frame for every numerics choice: the values of a pixel
+/// depend on its position alone.
+#[test]
+fn bands_equal_whole_frame_for_every_numerics() {
+    fn check<N: Numerics>() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
+        let loaded = host_tools::obj::LoadedMesh::load(&path).unwrap();
+        let mesh = loaded.mesh();
+        let (w, h) = (160u32, 120u32);
+        let mut whole = vec![0u16; (w * h) as usize];
+        let mut depth = vec![u16::MAX; (w * h) as usize];
+        {
+            let mut fb = Framebuffer::<Rgb565>::new(&mut whole, w, h).unwrap();
+            let db = DepthBuffer::new(&mut depth, w, h, Compare::Less).unwrap();
+            let mut p = Pipeline::<_, _, _, _, 4, false>::new(
+                &transforms(w, h),
+                Viewport::new(w, h),
+                CullClockwise,
+                db,
+                GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
+            )
+            .with_numerics::<N>();
+            p.draw(&mut fb, &mesh).unwrap();
+        }
+        for rows in [1u32, 7, 16, 120] {
+            let mut band = vec![0u16; (w * rows) as usize];
+            let mut band_depth = vec![0u16; (w * rows) as usize];
+            let mut bins = vec![BinEntry::ZERO; mesh.triangles.len()];
+            let mut out = vec![0u16; (w * h) as usize];
+            let db = DepthBuffer::new(&mut band_depth, w, rows, Compare::Less).unwrap();
+            let mut p = Pipeline::<_, _, _, _, 4, false>::new(
+                &transforms(w, h),
+                Viewport::new(w, h),
+                CullClockwise,
+                db,
+                GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
+            )
+            .with_numerics::<N>();
+            let banding = Banding {
+                width: w,
+                height: h,
+                rows,
+                background: Rgb565::BLACK,
+                clear_depth: u16::MAX,
+            };
+            p.draw_banded(&mesh, &banding, &mut band, &mut bins, &mut [], |b| {
+                let y0 = b.y0() as u32;
+                let data = b.framebuffer().as_slice();
+                out[(y0 * w) as usize..(y0 * w) as usize + data.len()].copy_from_slice(data);
+            })
+            .unwrap();
+            assert!(out == whole, "{} rows differ", rows);
+        }
+    }
+    check::<Standard>();
+    check::<Gradient>();
+    check::<Custom<NewtonDivide, 8, GradientSpans>>();
+    check::<Custom<ReciprocalDivide, 12, ExactSpans>>();
+}
+
+/// A point with `w` near the top of 16.16 projects from the exact sums: `w - y` and `z + w` no
+/// longer saturate in the format before the divide (they moved the point by up to a few units).
+#[test]
+fn projection_near_the_format_limit_is_exact() {
+    let (w, y, z) = (1_690_739_965i64, -456_765_291i64, 688_000_000i64);
+    let p = Vec4 {
+        x: Fx16::from_bits(0),
+        y: Fx16::from_bits(y as i32),
+        z: Fx16::from_bits(z as i32),
+        w: Fx16::from_bits(w as i32),
+    };
+    let (width, height) = (320u32, 23_846u32);
+    for got in [
+        projector::<16, Standard>(width, height).project(&p),
+        projector::<16, Newton>(width, height).project(&p),
+    ] {
+        let round = |n: i64, scale: i64| {
+            let (n, d) = (i128::from(n) * i128::from(scale), i128::from(2 * w));
+            ((2 * n + d).div_euclid(2 * d)) as i64
+        };
+        let sy = round(w - y, i64::from(height) << 4);
+        let depth = round(z + w, 65535);
+        assert!(
+            (i64::from(got.0.y) - sy).abs() <= 1,
+            "{got:?} against y {sy}"
+        );
+        assert!(
+            (i64::from(got.1) - depth).abs() <= 1,
+            "{got:?} against depth {depth}"
+        );
+    }
+    // The exact divide is exact.
+    let exact = projector::<16, Standard>(width, height).project(&p);
+    let n = i128::from(w - y) * (i128::from(height) << 4);
+    let d = i128::from(2 * w);
+    assert_eq!(i128::from(exact.0.y), (2 * n + d).div_euclid(2 * d));
+}
