@@ -298,8 +298,6 @@ struct Interp<'a, S: Surface, D, V, F, N, const P: bool> {
     /// The values' planes (affine), or `1/w` and the two scaled barycentrics (perspective-correct),
     /// then depth in slot [`Z`].
     planes: [Plane; PLANES],
-    /// Which slots are in use: `0..used` and, with a depth test, `Z`.
-    used: usize,
     /// Per-pixel steps in 16.16, rounded (the same for every span).
     steps: [i64; PLANES],
     /// `divmod(a 2s 2^16, den2)` and `divmod(b 2s 2^16, den2)`: the exact moves of `N` per column
@@ -316,7 +314,6 @@ struct Interp<'a, S: Surface, D, V, F, N, const P: bool> {
     gradient: bool,
     /// Per-row gradients in the fractional bits (gradient span starts only).
     grad_row: [i64; PLANES],
-    count: usize,
     /// Perspective-correct only: the first vertex's values and the differences to the other two.
     base: [i64; MAX_VARYINGS],
     d1: [i64; MAX_VARYINGS],
@@ -333,6 +330,23 @@ impl<
         const P: bool,
     > Interp<'_, S, D, V, F, N, P>
 {
+    /// The number of values `V` holds (at most [`MAX_VARYINGS`]): a constant once inlined, so the
+    /// per-pixel loops unroll.
+    #[inline(always)]
+    fn count() -> usize {
+        V::default().as_slice().len().min(MAX_VARYINGS)
+    }
+
+    /// The planes in use besides depth: the values, or `1/w` and two barycentrics.
+    #[inline(always)]
+    fn used() -> usize {
+        if P {
+            3
+        } else {
+            Self::count()
+        }
+    }
+
     /// Moves every plane's exact value to the span starting at `(x0, row)`.
     #[inline(always)]
     fn seek(&mut self, row: i32, x0: i32) {
@@ -341,7 +355,7 @@ impl<
             let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.origin.0;
             let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
             let sh = self.s.trailing_zeros() + 1;
-            for i in 0..self.used {
+            for i in 0..Self::used() {
                 self.at[i].q = (self.steps[i] * dx2 + self.grad_row[i] * dy2 + self.s) >> sh;
             }
             if D::ENABLED {
@@ -351,7 +365,7 @@ impl<
         }
         if let (true, Some((pr, px))) = (self.incremental, self.prev) {
             let (dr, dc) = (i64::from(row - pr), i64::from(x0 - px));
-            for i in 0..self.used {
+            for i in 0..Self::used() {
                 self.advance(i, dr, dc);
             }
             if D::ENABLED {
@@ -360,7 +374,7 @@ impl<
         } else {
             let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.origin.0;
             let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.origin.1;
-            for i in 0..self.used {
+            for i in 0..Self::used() {
                 self.exact(i, dx2, dy2);
             }
             if D::ENABLED {
@@ -443,14 +457,14 @@ impl<
             0
         };
         let dz = self.steps[Z] << (16 - N::FRAC);
-        let planes = self.used;
+        let planes = Self::used();
         let mut start = [0i64; MAX_VARYINGS];
         for (i, s) in start.iter_mut().enumerate().take(planes) {
             *s = self.value(i);
         }
         let mut step = [0i64; MAX_VARYINGS];
         step[..planes].copy_from_slice(&self.steps[..planes]);
-        let count = self.count;
+        let count = Self::count();
         let Self {
             surface,
             depth,
@@ -638,7 +652,6 @@ where
         origin: v0,
         den2,
         planes,
-        used,
         steps,
         col,
         row,
@@ -647,7 +660,6 @@ where
         incremental,
         gradient,
         grad_row,
-        count,
         base,
         d1,
         d2,
