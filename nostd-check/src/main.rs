@@ -1,17 +1,33 @@
 //! A `#![no_std] #![no_main]` binary that calls every public drawing entry point of
 //! `rasterizer-core`. If any dependency brings in `std`, linking fails with a duplicate
 //! `panic_impl` lang item; its `.text` size is the first number of the flash budget.
+//!
+//! The default feature `all` is that binary. Without it (`--no-default-features`), the features
+//! of one effects combination build a binary with only that combination's calls, for its code
+//! size (module `one`, `scripts/memory.sh`).
 #![no_std]
 #![no_main]
 
+#[cfg(not(feature = "all"))]
+mod one;
+
+#[cfg(feature = "all")]
 use core::hint::black_box;
+#[cfg(feature = "all")]
 use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
+#[cfg(feature = "all")]
 use embedded_graphics_core::prelude::*;
+#[cfg(feature = "all")]
 use rasterizer_core::geom::SubPoint;
+#[cfg(feature = "all")]
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
+#[cfg(feature = "all")]
 use rasterizer_core::raster::point::draw_point;
+#[cfg(feature = "all")]
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
+#[cfg(feature = "all")]
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
+#[cfg(feature = "all")]
 use rasterizer_core::target::{AnyTarget, Framebuffer, Surface};
 
 #[panic_handler]
@@ -28,8 +44,10 @@ pub extern "C" fn rust_eh_personality() {}
 #[link(name = "c")]
 unsafe extern "C" {}
 
+#[cfg(feature = "all")]
 static mut RGB565: [u16; 64 * 48] = [0; 64 * 48];
 
+#[cfg(feature = "all")]
 fn draw_all<S: Surface>(s: &mut S, a: S::Color, b: S::Color, c: S::Color) -> Result<(), S::Error>
 where
     S::Color: rasterizer_core::color::Channels,
@@ -58,6 +76,7 @@ where
 
 /// The 3D entry points: packed mesh, pipeline draws (filled, cached, wireframe, banded) with the
 /// float-free default stages.
+#[cfg(feature = "all")]
 fn draw_3d(buf: &mut [u16]) -> u32 {
     use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
     use rasterizer_core::mesh::PackedMesh;
@@ -153,8 +172,10 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
 }
 
 /// A mesh converted on the host.
+#[cfg(feature = "all")]
 static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
 
+#[cfg(feature = "all")]
 #[unsafe(no_mangle)]
 pub extern "C" fn main() -> i32 {
     // Rgb565 through the framebuffer's own fast paths, in a static buffer as firmware would.

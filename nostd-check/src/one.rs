@@ -1,0 +1,356 @@
+//! One configuration at a time, for the code size of each effects combination
+//! (`scripts/memory.sh`, `docs/MEMORY.md`): built with `--no-default-features` and the features
+//! of one combination, `main` makes only the calls that combination needs, so the binary holds
+//! only their code.
+//!
+//! 3D: one shading feature (`unlit`, `flat`, `gouraud`, `phong`), optionally `depth` (a 16-bit
+//! depth buffer, `Compare::Less`), `cull` (`CullClockwise`) and the draw call (`draw` by default,
+//! `cached` for `draw_cached`, `banded` for `draw_banded` in 16-row bands, both for banded with a
+//! vertex cache). The scene is M1: the packed Suzanne, 320 x 240 Rgb565, one directional light.
+//! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, each one call into a 320 x 240 Rgb565
+//! framebuffer. No feature at all gives the empty baseline (start-up and panic handler only).
+//!
+//! The buffers are `static`s, as firmware would place them, so `.bss` shows the frame memory of
+//! the configuration.
+
+use core::hint::black_box;
+
+/// Screen width (M1). (Unused by the empty baseline.)
+#[allow(dead_code)]
+const W: u32 = 320;
+/// Screen height (M1).
+#[allow(dead_code)]
+const H: u32 = 240;
+
+#[cfg(any(
+    all(feature = "unlit", feature = "flat"),
+    all(feature = "unlit", feature = "gouraud"),
+    all(feature = "unlit", feature = "phong"),
+    all(feature = "flat", feature = "gouraud"),
+    all(feature = "flat", feature = "phong"),
+    all(feature = "gouraud", feature = "phong"),
+))]
+compile_error!("choose at most one shading feature: unlit, flat, gouraud or phong");
+
+#[cfg(all(
+    any(
+        feature = "depth",
+        feature = "cull",
+        feature = "cached",
+        feature = "banded"
+    ),
+    not(any(
+        feature = "unlit",
+        feature = "flat",
+        feature = "gouraud",
+        feature = "phong"
+    ))
+))]
+compile_error!(
+    "depth, cull, cached and banded need a shading feature: unlit, flat, gouraud or phong"
+);
+
+/// A whole 320 x 240 Rgb565 frame, for the 2D calls and the whole-frame 3D draws.
+#[cfg(any(
+    feature = "line2d",
+    feature = "triangle2d",
+    feature = "gouraud2d",
+    feature = "polygon2d",
+    all(
+        any(
+            feature = "unlit",
+            feature = "flat",
+            feature = "gouraud",
+            feature = "phong"
+        ),
+        not(feature = "banded")
+    )
+))]
+static mut FRAME: [u16; (W * H) as usize] = [0; (W * H) as usize];
+
+/// The static frame as a framebuffer.
+#[cfg(any(
+    feature = "line2d",
+    feature = "triangle2d",
+    feature = "gouraud2d",
+    feature = "polygon2d",
+    all(
+        any(
+            feature = "unlit",
+            feature = "flat",
+            feature = "gouraud",
+            feature = "phong"
+        ),
+        not(feature = "banded")
+    )
+))]
+fn frame(
+) -> Option<rasterizer_core::target::Framebuffer<'static, embedded_graphics_core::pixelcolor::Rgb565>>
+{
+    // SAFETY: `main` calls this once per use and drops the framebuffer before the next call; nothing
+    // else refers to FRAME.
+    #[allow(static_mut_refs)]
+    let buf = unsafe { &mut FRAME };
+    rasterizer_core::target::Framebuffer::new(buf, W, H).ok()
+}
+
+/// The 2D calls of the chosen features.
+#[cfg(any(
+    feature = "line2d",
+    feature = "triangle2d",
+    feature = "gouraud2d",
+    feature = "polygon2d"
+))]
+fn draw_2d() {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use embedded_graphics_core::prelude::*;
+    use rasterizer_core::geom::SubPoint;
+
+    let Some(mut fb) = frame() else {
+        return;
+    };
+    #[allow(unused_variables)]
+    let sp = |x: i32, y: i32| black_box(SubPoint::<4>::new(x * 16 + 5, y * 16 + 11));
+    #[cfg(feature = "line2d")]
+    {
+        let p = |x: i32, y: i32| black_box(Point::new(x, y));
+        let _ = rasterizer_core::raster::line::draw_line(
+            &mut fb,
+            p(-40, 7),
+            p(371, 233),
+            Rgb565::WHITE,
+        );
+    }
+    #[cfg(feature = "triangle2d")]
+    {
+        let v = [sp(20, 10), sp(300, 120), sp(90, 230)];
+        let _ = rasterizer_core::raster::triangle::fill_triangle(&mut fb, v, Rgb565::GREEN);
+    }
+    #[cfg(feature = "gouraud2d")]
+    {
+        let v = [sp(20, 10), sp(300, 120), sp(90, 230)];
+        let c = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
+        let _ = rasterizer_core::raster::triangle::fill_triangle_gouraud(&mut fb, v, c);
+    }
+    #[cfg(feature = "polygon2d")]
+    {
+        use rasterizer_core::raster::polygon::{FillRule, Polygon};
+        let star = [
+            sp(160, 5),
+            sp(250, 230),
+            sp(10, 80),
+            sp(310, 80),
+            sp(70, 230),
+        ];
+        if let Ok(poly) = Polygon::<8>::new(&star) {
+            let _ = poly.fill(&mut fb, FillRule::NonZero, Rgb565::CYAN);
+        }
+    }
+    black_box(fb.as_slice());
+}
+
+/// The 3D configuration of the chosen features.
+#[cfg(any(
+    feature = "unlit",
+    feature = "flat",
+    feature = "gouraud",
+    feature = "phong"
+))]
+mod three_d {
+    use super::{H, W};
+    use core::hint::black_box;
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+    use rasterizer_core::mesh::PackedMesh;
+    use rasterizer_core::pipeline::{Pipeline, Transforms, Viewport};
+
+    /// The mesh, converted on the host.
+    static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
+    /// Suzanne's vertices: the length of the vertex cache.
+    #[cfg(feature = "cached")]
+    const VERTICES: usize = 507;
+    /// Suzanne's triangles: bins for the worst case, every triangle visible.
+    #[cfg(feature = "banded")]
+    const TRIANGLES: usize = 968;
+    /// Rows per band.
+    #[cfg(feature = "banded")]
+    const ROWS: u32 = 16;
+    /// Rows of the depth buffer: a band's or the whole frame's.
+    #[cfg(all(feature = "depth", feature = "banded"))]
+    const DEPTH_ROWS: u32 = ROWS;
+    #[cfg(all(feature = "depth", not(feature = "banded")))]
+    const DEPTH_ROWS: u32 = H;
+
+    #[cfg(feature = "unlit")]
+    type Sh = rasterizer_core::pipeline::shading::Unlit<Rgb565>;
+    #[cfg(feature = "flat")]
+    type Sh = rasterizer_core::pipeline::shading::FlatLit<Fx16, Rgb565, 1>;
+    #[cfg(feature = "gouraud")]
+    type Sh = rasterizer_core::pipeline::shading::GouraudLit<Fx16, Rgb565, 1>;
+    #[cfg(feature = "phong")]
+    type Sh = rasterizer_core::pipeline::shading::PhongLit<Fx16, Rgb565, 1>;
+
+    /// A vertex cache entry of the chosen shading.
+    type Cached = rasterizer_core::pipeline::CachedVertex<
+        Fx16,
+        <Sh as rasterizer_core::pipeline::shading::Shading<Fx16>>::Varyings,
+    >;
+
+    #[cfg(feature = "depth")]
+    static mut DEPTH: [u16; (W * DEPTH_ROWS) as usize] = [0; (W * DEPTH_ROWS) as usize];
+    #[cfg(feature = "banded")]
+    static mut BAND: [u16; (W * ROWS) as usize] = [0; (W * ROWS) as usize];
+    #[cfg(feature = "banded")]
+    static mut BINS: [rasterizer_core::pipeline::BinEntry; TRIANGLES] =
+        [rasterizer_core::pipeline::BinEntry::ZERO; TRIANGLES];
+    #[cfg(feature = "cached")]
+    static mut CACHE: core::mem::MaybeUninit<[Cached; VERTICES]> = core::mem::MaybeUninit::uninit();
+
+    #[cfg(feature = "unlit")]
+    fn shading() -> Sh {
+        rasterizer_core::pipeline::shading::Unlit {
+            color: black_box(Rgb565::new(27, 35, 10)),
+        }
+    }
+
+    #[cfg(not(feature = "unlit"))]
+    fn shading() -> Sh {
+        use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+        use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+        let mut lighting = Lighting::<Fx16, 1>::new(
+            Material {
+                ambient: Rgb888::new(40, 30, 30),
+                diffuse: Rgb888::new(220, 140, 80),
+                specular: Rgb888::WHITE,
+                shininess: 16,
+            },
+            Rgb888::WHITE,
+            Specular::BlinnPhong,
+            Vec3::from_ints(0, 0, 3),
+        );
+        let _ = lighting.add_light(Light::Directional {
+            direction: black_box(Vec3::from_ints(1, 1, 1)),
+            color: Rgb888::WHITE,
+        });
+        Sh::new(lighting)
+    }
+
+    /// The M1 frame; returns the number of triangles drawn.
+    pub fn draw() -> u32 {
+        let Ok(mesh) = PackedMesh::parse(black_box(MESH)) else {
+            return 0;
+        };
+        let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
+        let xf = Transforms {
+            model: Mat4::rotation_y(black_box(Angle::from_degrees(30))),
+            view: Mat4::look_at(p(0, 0, 3), p(0, 0, 0), p(0, 1, 0)).unwrap_or_default(),
+            projection: Mat4::perspective(
+                Angle::from_degrees(60),
+                Fx16::from_ratio(W.into(), H.into()),
+                Fx16::from_ratio(1, 10),
+                Fx16::from_int(100),
+            )
+            .unwrap_or_default(),
+        };
+        #[cfg(feature = "cull")]
+        let cull = rasterizer_core::pipeline::cull::CullClockwise;
+        #[cfg(not(feature = "cull"))]
+        let cull = rasterizer_core::pipeline::cull::NoCull;
+        #[cfg(feature = "depth")]
+        let depth = {
+            use rasterizer_core::raster::interp::{Compare, DepthBuffer};
+            // SAFETY: the only reference to DEPTH, made once.
+            #[allow(static_mut_refs)]
+            let z = unsafe { &mut DEPTH };
+            z.fill(u16::MAX);
+            let Ok(depth) = DepthBuffer::new(z, W, DEPTH_ROWS, Compare::Less) else {
+                return 0;
+            };
+            depth
+        };
+        #[cfg(not(feature = "depth"))]
+        let depth = rasterizer_core::raster::interp::NoDepth;
+        #[cfg(feature = "cached")]
+        let cache: &mut [Cached] = {
+            // SAFETY: the only reference to CACHE, made once; every entry is written before the
+            // array is treated as initialised.
+            #[allow(static_mut_refs)]
+            let cache = unsafe { &mut CACHE };
+            let first = cache.as_mut_ptr().cast::<Cached>();
+            for i in 0..VERTICES {
+                // SAFETY: `i` is within the array.
+                unsafe { first.add(i).write(Cached::default()) };
+            }
+            // SAFETY: all VERTICES entries were written above.
+            unsafe { cache.assume_init_mut() }
+        };
+        #[cfg(not(feature = "cached"))]
+        let cache: &mut [Cached] = &mut [];
+        let mut pl =
+            Pipeline::<Fx16, _, _, Sh>::new(&xf, Viewport::new(W, H), cull, depth, shading());
+
+        #[cfg(not(feature = "banded"))]
+        {
+            let Some(mut fb) = super::frame() else {
+                return 0;
+            };
+            #[cfg(feature = "cached")]
+            let stats = pl.draw_cached(&mut fb, &mesh, cache);
+            #[cfg(not(feature = "cached"))]
+            let stats = {
+                let _ = &cache;
+                pl.draw(&mut fb, &mesh)
+            };
+            black_box(fb.as_slice());
+            stats.map_or(0, |s| s.drawn)
+        }
+        #[cfg(feature = "banded")]
+        {
+            use rasterizer_core::pipeline::Banding;
+            // SAFETY: the only references to BAND and BINS, made once.
+            #[allow(static_mut_refs)]
+            let (band, bins) = unsafe { (&mut BAND, &mut BINS) };
+            let banding = Banding {
+                width: W,
+                height: H,
+                rows: ROWS,
+                background: Rgb565::new(0, 0, 0),
+                clear_depth: u16::MAX,
+            };
+            pl.draw_banded(&mesh, &banding, band, bins, cache, |b| {
+                // Where firmware would start the display's DMA.
+                black_box(b.framebuffer().as_slice());
+            })
+            .map_or(0, |s| s.drawn)
+        }
+    }
+}
+
+/// The calls of the chosen combination; exits with 1 if a 3D configuration drew nothing.
+#[unsafe(no_mangle)]
+pub extern "C" fn main() -> i32 {
+    #[cfg(any(
+        feature = "line2d",
+        feature = "triangle2d",
+        feature = "gouraud2d",
+        feature = "polygon2d"
+    ))]
+    draw_2d();
+    #[allow(unused_mut)]
+    let mut drawn = 0u32;
+    #[cfg(any(
+        feature = "unlit",
+        feature = "flat",
+        feature = "gouraud",
+        feature = "phong"
+    ))]
+    {
+        drawn += three_d::draw();
+        // Nothing drawn means a broken configuration: fail the run.
+        if black_box(drawn) == 0 {
+            return 1;
+        }
+    }
+    black_box(drawn);
+    0
+}

@@ -1,0 +1,697 @@
+//! Peak stack of every render call, measured by painting the stack, and the RAM each configuration
+//! needs besides (framebuffer, depth buffer, band buffers, bins, vertex cache), for
+//! `docs/MEMORY.md` (`scripts/memory.sh` collects the `MEMORY` lines this test prints).
+//!
+//! # Method
+//!
+//! Each configuration runs in a fresh thread with a [`THREAD_STACK`]-byte stack. There, the
+//! scene is built, the render call is made once as a warm-up, the buffers are reset, and then
+//! [`measure`]:
+//!
+//! 1. reads the stack pointer and fills the [`PAINT`] bytes below it with [`PATTERN`] (one
+//!    `rep stosq`, so the painting itself writes nothing else on the stack);
+//! 2. calls the render call through an `#[inline(never)]` function;
+//! 3. scans the painted region from its lowest address up for the first byte that differs from
+//!    the pattern: the distance from the stack pointer of step 1 to that byte is the peak stack
+//!    of the call. It includes the harness's own two call frames (the `#[inline(never)]`
+//!    trampoline and the closure), which [`self_check`] measures on its own (`noop`).
+//!
+//! The measurement is checked: a deepest byte at the very bottom of the painted region means the
+//! call may have gone further, and fails the test; [`self_check`] shows that a function with a
+//! 4 KB local array is measured at 4 KB plus a small tolerance, and that a region too small for it
+//! is reported as overflowed rather than as a figure.
+//!
+//! # Bounds
+//!
+//! Every configuration has an upper bound ([`BOUNDS`]): the figure measured when the bound was
+//! set, times 1.5, rounded up to 64 bytes. The margin absorbs compiler-version drift; a real
+//! regression (a new large local, lost inlining that stacks frames, recursion) fails the test, and
+//! a deliberate change updates the table. `cargo test` (debug) and `cargo test --release` use the
+//! column of their own build, since an unoptimised build keeps every temporary on the stack and
+//! needs several times more. `docs/MEMORY.md` gives the release figures.
+//!
+//! This is the stack of the host's x86-64 build (the only target installed here): a Cortex-M
+//! build will differ (32-bit pointers and registers shrink frames; 64-bit arithmetic needs
+//! register pairs and can spill more), so treat the figures as an estimate for firmware and
+//! re-measure on the target (e.g. by painting its stack the same way).
+//!
+//! Run `cargo test -p tests --test stack -- --nocapture` to see the figures.
+#![cfg(target_arch = "x86_64")]
+// Stack painting writes below the stack pointer and reads the bytes back: only inline assembly
+// and raw pointers can do that, so this one test file allows `unsafe` (the library denies it).
+#![allow(unsafe_code)]
+
+use core::hint::black_box;
+use core::mem::size_of;
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics_core::prelude::*;
+use rasterizer_core::geom::SubPoint;
+use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::mesh::PackedMesh;
+use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
+use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
+use rasterizer_core::pipeline::{
+    BandError, Banding, BinEntry, CachedVertex, Pipeline, RenderStats, Transforms, Viewport,
+};
+use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
+use rasterizer_core::raster::line::draw_line;
+use rasterizer_core::raster::polygon::{FillRule, Polygon};
+use rasterizer_core::raster::triangle::{fill_triangle, fill_triangle_gouraud};
+use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+use rasterizer_core::target::Framebuffer;
+
+/// The stack of each measuring thread.
+const THREAD_STACK: usize = 4 << 20;
+/// Bytes painted below the stack pointer: far more than any render call needs, even unoptimised.
+const PAINT: usize = 1 << 20;
+/// The paint: no byte of it is 0x00 or 0xff, the likeliest values for a call to write.
+const PATTERN: u64 = 0xA5C3_5A3C_96E1_7BD2;
+
+/// The M1 scene's screen.
+const W: u32 = 320;
+const H: u32 = 240;
+/// Rows per band for `draw_banded`.
+const BAND_ROWS: u32 = 16;
+/// Suzanne, converted on the host: what firmware embeds (and what `nostd-check` links).
+static SUZANNE: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
+
+/// Upper bounds on the peak stack in bytes: (configuration, debug build, release build). Each is
+/// the figure measured on 2026-11-22 (rustc 1.95.0, rasterizer-core of commit ca08cce) times 1.5,
+/// rounded up to 64 bytes; see the module documentation.
+const BOUNDS: &[(&str, usize, usize)] = &[
+    ("line", 3136, 768),
+    ("triangle", 10560, 384),
+    ("gouraud_triangle", 13056, 1088),
+    ("polygon", 6208, 1728),
+    ("flat_depth_cull_draw", 44992, 4544),
+    ("flat_depth_nocull_draw", 44928, 4544),
+    ("flat_nodepth_cull_draw", 35008, 4480),
+    ("flat_nodepth_nocull_draw", 35008, 4416),
+    ("flat_depth_cull_cached", 45120, 4608),
+    ("flat_depth_nocull_cached", 45056, 4544),
+    ("flat_nodepth_cull_cached", 35136, 4480),
+    ("flat_nodepth_nocull_cached", 35136, 4480),
+    ("flat_depth_cull_banded16", 47360, 4928),
+    ("flat_depth_nocull_banded16", 47296, 4864),
+    ("flat_nodepth_cull_banded16", 37376, 4800),
+    ("flat_nodepth_nocull_banded16", 37376, 4800),
+    ("gouraud_depth_cull_draw", 45632, 6144),
+    ("gouraud_depth_nocull_draw", 45632, 6144),
+    ("gouraud_nodepth_cull_draw", 35648, 5952),
+    ("gouraud_nodepth_nocull_draw", 35648, 5952),
+    ("gouraud_depth_cull_cached", 45760, 6144),
+    ("gouraud_depth_nocull_cached", 45760, 6144),
+    ("gouraud_nodepth_cull_cached", 35776, 5952),
+    ("gouraud_nodepth_nocull_cached", 35776, 5952),
+    ("gouraud_depth_cull_banded16", 48000, 6464),
+    ("gouraud_depth_nocull_banded16", 48000, 6464),
+    ("gouraud_nodepth_cull_banded16", 38016, 6272),
+    ("gouraud_nodepth_nocull_banded16", 38016, 6272),
+    ("gouraud_depth_cull_banded16_cached", 48000, 6464),
+    ("unlit_depth_cull_draw", 43584, 4224),
+    ("unlit_depth_nocull_draw", 43584, 4224),
+    ("unlit_nodepth_cull_draw", 33664, 4096),
+    ("unlit_nodepth_nocull_draw", 33664, 4096),
+    ("unlit_depth_cull_cached", 43712, 4224),
+    ("unlit_depth_nocull_cached", 43712, 4224),
+    ("unlit_nodepth_cull_cached", 33792, 4160),
+    ("unlit_nodepth_nocull_cached", 33792, 4160),
+    ("unlit_depth_cull_banded16", 46016, 4544),
+    ("unlit_depth_nocull_banded16", 46016, 4544),
+    ("unlit_nodepth_cull_banded16", 36032, 4416),
+    ("unlit_nodepth_nocull_banded16", 36032, 4416),
+    ("phong_depth_cull_draw", 49664, 7488),
+    ("phong_depth_nocull_draw", 49664, 7552),
+    ("phong_nodepth_cull_draw", 39680, 7296),
+    ("phong_nodepth_nocull_draw", 39680, 7296),
+    ("phong_depth_cull_cached", 49792, 7552),
+    ("phong_depth_nocull_cached", 49792, 7552),
+    ("phong_nodepth_cull_cached", 39808, 7296),
+    ("phong_nodepth_nocull_cached", 39808, 7360),
+    ("phong_depth_cull_banded16", 52032, 7872),
+    ("phong_depth_nocull_banded16", 52032, 7872),
+    ("phong_nodepth_cull_banded16", 42048, 7616),
+    ("phong_nodepth_nocull_banded16", 42048, 7616),
+];
+
+/// Why a measurement is not a figure.
+#[derive(Debug, PartialEq, Eq)]
+enum MeasureError {
+    /// The lowest painted byte was overwritten: the call may have used more than the region.
+    Overflowed,
+}
+
+/// Paints `paint` bytes below the stack pointer, calls `render` through an `#[inline(never)]`
+/// trampoline and returns how far below that stack pointer the deepest overwritten byte lies.
+#[inline(never)]
+fn measure(paint: usize, render: &mut dyn FnMut()) -> Result<usize, MeasureError> {
+    assert!(paint.is_multiple_of(8) && paint >= 64);
+    let sp: usize;
+    // SAFETY: the `paint` bytes below the stack pointer belong to this thread's stack (the thread
+    // was created with `THREAD_STACK` bytes, several times `PAINT`, and this runs near its top)
+    // and hold nothing live: everything of this frame and its callers is at or above the stack
+    // pointer, and this function calls others, so it keeps nothing in the red zone either.
+    // `rep stosq` writes forwards (the ABI guarantees a clear direction flag) and touches no
+    // other memory.
+    unsafe {
+        core::arch::asm!(
+            "mov {sp}, rsp",
+            "mov rdi, {sp}",
+            "sub rdi, rcx",
+            "shr rcx, 3",
+            "rep stosq",
+            sp = out(reg) sp,
+            inout("rcx") paint => _,
+            out("rdi") _,
+            in("rax") PATTERN,
+        );
+    }
+    trampoline(render);
+    let low = sp - paint;
+    let words = low as *const u64;
+    let mut i = 0;
+    // SAFETY: the same painted region, read back; it is still this thread's stack, and bytes
+    // below the stack pointer may be read (they are plain memory, possibly just written).
+    let word = |i: usize| unsafe { words.add(i).read_volatile() };
+    while i < paint / 8 && word(i) == PATTERN {
+        i += 1;
+    }
+    if i == 0 {
+        return Err(MeasureError::Overflowed);
+    }
+    if i == paint / 8 {
+        // Nothing written at all (cannot happen: the trampoline's call stores a return address).
+        return Ok(0);
+    }
+    // Little-endian: the lowest-addressed byte of a word is its least significant one.
+    let byte = ((word(i) ^ PATTERN).trailing_zeros() / 8) as usize;
+    Ok(sp - (low + 8 * i + byte))
+}
+
+/// The call under measurement, never inlined into [`measure`].
+#[inline(never)]
+fn trampoline(render: &mut dyn FnMut()) {
+    render();
+}
+
+/// Runs `f` in a fresh thread with a [`THREAD_STACK`]-byte stack.
+fn on_fresh_stack<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
+    std::thread::Builder::new()
+        .stack_size(THREAD_STACK)
+        .spawn(f)
+        .expect("spawn a measuring thread")
+        .join()
+        .expect("measuring thread")
+}
+
+/// Warm-up call, reset, then the measured call.
+fn peak(render: &mut dyn FnMut(), reset: &mut dyn FnMut()) -> usize {
+    render();
+    reset();
+    match measure(PAINT, render) {
+        Ok(bytes) => bytes,
+        Err(e) => panic!("stack measurement failed: {e:?} ({PAINT} bytes painted)"),
+    }
+}
+
+// --- Self-check of the method ---
+
+/// Nothing: the harness's own frames.
+#[inline(never)]
+fn noop() {
+    black_box(());
+}
+
+/// A function with 4 KB of locals that it really writes (`black_box` makes the array escape).
+#[inline(never)]
+fn four_kb() {
+    let mut a = [0u8; 4096];
+    black_box(&mut a);
+}
+
+#[test]
+fn self_check() {
+    let (base, big, small_region) = on_fresh_stack(|| {
+        let base = measure(PAINT, &mut || noop()).unwrap();
+        let big = measure(PAINT, &mut || four_kb()).unwrap();
+        let small_region = measure(1024, &mut || four_kb());
+        (base, big, small_region)
+    });
+    println!("MEMORY selfcheck noop={base} four_kb={big}");
+    // The harness costs a few call frames; an unoptimised build keeps a little more per frame.
+    assert!(base > 0 && base < 512, "noop measured at {base} bytes");
+    // The array and the harness, nothing missed and little added.
+    assert!(
+        (4096..4096 + 1024).contains(&big),
+        "a 4096-byte array measured at {big} bytes"
+    );
+    assert_eq!(small_region, Err(MeasureError::Overflowed));
+}
+
+// --- The scene ---
+
+fn transforms() -> Transforms<Fx16> {
+    Transforms {
+        model: Mat4::rotation_y(Angle::from_degrees(30)),
+        view: Mat4::look_at(
+            Vec3::from_ints(0, 0, 3),
+            Vec3::default(),
+            Vec3::from_ints(0, 1, 0),
+        )
+        .unwrap(),
+        projection: Mat4::perspective(
+            Angle::from_degrees(60),
+            Fx16::from_ratio(i64::from(W), i64::from(H)),
+            Fx16::from_ratio(1, 10),
+            Fx16::from_int(100),
+        )
+        .unwrap(),
+    }
+}
+
+/// The lighting of the M1 reference render (BENCHMARKS.md).
+fn lighting() -> Lighting<Fx16, 1> {
+    let mut l = Lighting::new(
+        Material {
+            ambient: Rgb888::new(40, 30, 30),
+            diffuse: Rgb888::new(220, 140, 80),
+            specular: Rgb888::WHITE,
+            shininess: 16,
+        },
+        Rgb888::WHITE,
+        Specular::BlinnPhong,
+        Vec3::from_ints(0, 0, 3),
+    );
+    l.add_light(Light::Directional {
+        direction: Vec3::from_ints(1, 1, 1),
+        color: Rgb888::WHITE,
+    })
+    .unwrap();
+    l
+}
+
+/// How the frame is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// `draw` into a whole 320 x 240 framebuffer.
+    Draw,
+    /// `draw_cached` with one cache entry per mesh vertex.
+    Cached,
+    /// `draw_banded` in 16-row bands, without a vertex cache.
+    Banded,
+    /// `draw_banded` in 16-row bands, with one cache entry per mesh vertex.
+    BandedCached,
+}
+
+impl Mode {
+    fn name(self) -> &'static str {
+        match self {
+            Mode::Draw => "draw",
+            Mode::Cached => "cached",
+            Mode::Banded => "banded16",
+            Mode::BandedCached => "banded16_cached",
+        }
+    }
+}
+
+type Pipe<C, D, Sh> = Pipeline<Fx16, C, D, Sh>;
+type Cache<Sh> = CachedVertex<Fx16, <Sh as Shading<Fx16>>::Varyings>;
+
+#[inline(never)]
+fn render_draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
+    p: &mut Pipe<C, D, Sh>,
+    fb: &mut Framebuffer<'_, Rgb565>,
+    mesh: &PackedMesh<'_>,
+) -> RenderStats {
+    let Ok(stats) = p.draw(fb, mesh);
+    stats
+}
+
+#[inline(never)]
+fn render_cached<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
+    p: &mut Pipe<C, D, Sh>,
+    fb: &mut Framebuffer<'_, Rgb565>,
+    mesh: &PackedMesh<'_>,
+    cache: &mut [Cache<Sh>],
+) -> RenderStats {
+    let Ok(stats) = p.draw_cached(fb, mesh, cache);
+    stats
+}
+
+/// A banded frame; each finished band is handed to `black_box`, where firmware would start the
+/// display's DMA.
+#[inline(never)]
+fn render_banded<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
+    p: &mut Pipe<C, D, Sh>,
+    mesh: &PackedMesh<'_>,
+    band: &mut [u16],
+    bins: &mut [BinEntry],
+    cache: &mut [Cache<Sh>],
+) -> Result<RenderStats, BandError> {
+    let banding = Banding {
+        width: W,
+        height: H,
+        rows: BAND_ROWS,
+        background: Rgb565::BLACK,
+        clear_depth: u16::MAX,
+    };
+    p.draw_banded(mesh, &banding, band, bins, cache, |b| {
+        black_box(b.framebuffer().as_slice());
+    })
+}
+
+/// One configuration's figures, in bytes.
+#[derive(Debug, Default)]
+struct Figures {
+    name: String,
+    stack: usize,
+    framebuffer: usize,
+    depth: usize,
+    band: usize,
+    band_depth: usize,
+    bins: usize,
+    visible: usize,
+    cache: usize,
+    cache_entry: usize,
+    pipeline: usize,
+    drawn: u32,
+}
+
+impl Figures {
+    /// The line `scripts/memory.sh` reads.
+    fn line(&self) -> String {
+        format!(
+            "MEMORY {} stack={} framebuffer={} depth={} band={} band_depth={} bins={} \
+             visible={} cache={} cache_entry={} pipeline={} drawn={}",
+            self.name,
+            self.stack,
+            self.framebuffer,
+            self.depth,
+            self.band,
+            self.band_depth,
+            self.bins,
+            self.visible,
+            self.cache,
+            self.cache_entry,
+            self.pipeline,
+            self.drawn,
+        )
+    }
+}
+
+/// Words of an Rgb565 framebuffer of `rows` rows, and its bytes.
+fn rgb565_bytes(rows: u32) -> (usize, usize) {
+    let words = Framebuffer::<Rgb565>::required_len(W, rows).unwrap();
+    (words, words * size_of::<u16>())
+}
+
+/// Builds the M1 pipeline with the given stages and measures one render call in `mode`.
+fn run<C, D, Sh>(cull: C, depth: D, shading: Sh, mode: Mode, depth_rows: u32) -> Figures
+where
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<Fx16, Color = Rgb565>,
+{
+    let mesh = PackedMesh::parse(SUZANNE).expect("packed Suzanne");
+    let xf = transforms();
+    let mut p = Pipe::new(&xf, Viewport::new(W, H), cull, depth, shading);
+    let uses_depth = D::ENABLED;
+    let mut fig = Figures {
+        pipeline: size_of::<Pipe<C, D, Sh>>(),
+        cache_entry: size_of::<Cache<Sh>>(),
+        depth: if uses_depth {
+            depth_rows as usize * W as usize * size_of::<u16>()
+        } else {
+            0
+        },
+        ..Figures::default()
+    };
+    let vertices = mesh.vertices();
+    let with_cache = matches!(mode, Mode::Cached | Mode::BandedCached);
+    let mut cache = vec![Cache::<Sh>::default(); if with_cache { vertices } else { 0 }];
+    fig.cache = cache.len() * size_of::<Cache<Sh>>();
+    let mut drawn = 0;
+    match mode {
+        Mode::Draw | Mode::Cached => {
+            let (words, bytes) = rgb565_bytes(H);
+            fig.framebuffer = bytes;
+            let mut buf = vec![0u16; words];
+            let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
+            let cell = core::cell::RefCell::new((&mut p, &mut fb, &mut cache));
+            fig.stack = peak(
+                &mut || {
+                    let mut g = cell.borrow_mut();
+                    let (p, fb, cache) = &mut *g;
+                    let stats = if with_cache {
+                        render_cached(p, fb, &mesh, cache)
+                    } else {
+                        render_draw(p, fb, &mesh)
+                    };
+                    drawn = black_box(stats).drawn;
+                },
+                &mut || {
+                    let mut g = cell.borrow_mut();
+                    g.1.clear(Rgb565::BLACK).unwrap();
+                    g.0.depth.start_band(0, u16::MAX);
+                },
+            );
+        }
+        Mode::Banded | Mode::BandedCached => {
+            let (words, bytes) = rgb565_bytes(BAND_ROWS);
+            fig.band = bytes;
+            fig.band_depth = fig.depth;
+            fig.depth = 0;
+            let mut band = vec![0u16; words];
+            // Exactly as many bins as the frame has visible triangles: a draw without bins says.
+            let visible = match render_banded(&mut p, &mesh, &mut band, &mut [], &mut cache) {
+                Err(BandError::TooFewBins { needed, .. }) => needed,
+                other => panic!("expected TooFewBins, got {other:?}"),
+            };
+            fig.visible = visible;
+            fig.bins = visible * size_of::<BinEntry>();
+            let mut bins = vec![BinEntry::default(); visible];
+            fig.stack = peak(
+                &mut || {
+                    let stats = render_banded(&mut p, &mesh, &mut band, &mut bins, &mut cache);
+                    drawn = black_box(stats.unwrap()).drawn;
+                },
+                // Each band starts from the background and a cleared depth buffer.
+                &mut || {},
+            );
+        }
+    }
+    fig.drawn = drawn;
+    fig
+}
+
+/// Measures one configuration in its own thread.
+fn config<C, Sh>(
+    name: &str,
+    cull: impl FnOnce() -> C + Send + 'static,
+    shading: impl FnOnce() -> Sh + Send + 'static,
+    depth: bool,
+    mode: Mode,
+) -> Figures
+where
+    C: Cull,
+    Sh: Shading<Fx16, Color = Rgb565>,
+{
+    let mut fig = on_fresh_stack(move || {
+        let rows = match mode {
+            Mode::Draw | Mode::Cached => H,
+            Mode::Banded | Mode::BandedCached => BAND_ROWS,
+        };
+        let mut z = vec![u16::MAX; (W * rows) as usize];
+        if depth {
+            let d = DepthBuffer::new(&mut z, W, rows, Compare::Less).unwrap();
+            run(cull(), d, shading(), mode, rows)
+        } else {
+            run(cull(), NoDepth, shading(), mode, rows)
+        }
+    });
+    fig.name = name.to_string();
+    fig
+}
+
+/// The bound of a configuration for this build.
+fn bound(name: &str) -> Option<usize> {
+    BOUNDS
+        .iter()
+        .find(|b| b.0 == name)
+        .map(|b| if cfg!(debug_assertions) { b.1 } else { b.2 })
+}
+
+/// Prints the figures and checks each against its bound (all printed before any failure).
+fn report(figures: &[Figures]) {
+    let mut failures = Vec::new();
+    let mut out = String::new();
+    for f in figures {
+        out.push_str(&f.line());
+        out.push('\n');
+        match bound(&f.name) {
+            Some(b) if f.stack <= b => {}
+            Some(b) => failures.push(format!("{}: {} bytes > bound {b}", f.name, f.stack)),
+            None => failures.push(format!("{}: no bound ({} bytes measured)", f.name, f.stack)),
+        }
+    }
+    print!("{out}");
+    assert!(failures.is_empty(), "peak stack: {failures:#?}");
+}
+
+/// Every depth, cull and draw-mode combination of one shading stage.
+fn shading_configs<Sh>(label: &str, make: fn() -> Sh) -> Vec<Figures>
+where
+    Sh: Shading<Fx16, Color = Rgb565> + 'static,
+{
+    let mut figures = Vec::new();
+    for mode in [Mode::Draw, Mode::Cached, Mode::Banded] {
+        for depth in [true, false] {
+            for cull in [true, false] {
+                let name = format!(
+                    "{label}_{}_{}_{}",
+                    if depth { "depth" } else { "nodepth" },
+                    if cull { "cull" } else { "nocull" },
+                    mode.name()
+                );
+                figures.push(if cull {
+                    config(&name, || CullClockwise, make, depth, mode)
+                } else {
+                    config(&name, || NoCull, make, depth, mode)
+                });
+            }
+        }
+    }
+    figures
+}
+
+#[test]
+fn stack_unlit() {
+    // The diffuse colour of the lit material, as count3d's unlit M1.
+    report(&shading_configs("unlit", || Unlit {
+        color: Rgb565::from(Rgb888::new(220, 140, 80)),
+    }));
+}
+
+#[test]
+fn stack_flat() {
+    report(&shading_configs("flat", || {
+        FlatLit::<Fx16, Rgb565, 1>::new(lighting())
+    }));
+}
+
+#[test]
+fn stack_gouraud() {
+    let mut figures = shading_configs("gouraud", || GouraudLit::<Fx16, Rgb565, 1>::new(lighting()));
+    // M1 in bands with the vertex cache too.
+    figures.push(config(
+        "gouraud_depth_cull_banded16_cached",
+        || CullClockwise,
+        || GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
+        true,
+        Mode::BandedCached,
+    ));
+    report(&figures);
+}
+
+#[test]
+fn stack_phong() {
+    report(&shading_configs("phong", || {
+        PhongLit::<Fx16, Rgb565, 1>::new(lighting())
+    }));
+}
+
+// --- 2D primitives ---
+
+/// Measures a 2D call drawing into a 320 x 240 Rgb565 framebuffer.
+fn primitive(name: &str, draw: fn(&mut Framebuffer<'_, Rgb565>)) -> Figures {
+    let mut fig = on_fresh_stack(move || {
+        let (words, bytes) = rgb565_bytes(H);
+        let mut buf = vec![0u16; words];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
+        let cell = core::cell::RefCell::new(&mut fb);
+        let stack = peak(&mut || draw(&mut cell.borrow_mut()), &mut || {
+            cell.borrow_mut().clear(Rgb565::BLACK).unwrap()
+        });
+        Figures {
+            stack,
+            framebuffer: bytes,
+            ..Figures::default()
+        }
+    });
+    fig.name = name.to_string();
+    fig
+}
+
+fn sp(x: i32, y: i32) -> SubPoint<4> {
+    black_box(SubPoint::new(x * 16 + 5, y * 16 + 11))
+}
+
+/// A line with both ends off screen: the clipped path.
+#[inline(never)]
+fn line(fb: &mut Framebuffer<'_, Rgb565>) {
+    let p = |x, y| black_box(Point::new(x, y));
+    draw_line(fb, p(-40, 7), p(371, 233), Rgb565::WHITE).unwrap();
+}
+
+/// A triangle over about a third of the screen, with sub-pixel vertices.
+#[inline(never)]
+fn triangle(fb: &mut Framebuffer<'_, Rgb565>) {
+    fill_triangle(fb, [sp(20, 10), sp(300, 120), sp(90, 230)], Rgb565::GREEN).unwrap();
+}
+
+/// The same triangle with a colour per vertex.
+#[inline(never)]
+fn gouraud_triangle(fb: &mut Framebuffer<'_, Rgb565>) {
+    let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
+    fill_triangle_gouraud(fb, [sp(20, 10), sp(300, 120), sp(90, 230)], colors).unwrap();
+}
+
+/// The polygon, built by the caller (its edge table is the caller's RAM).
+fn star() -> Polygon<8> {
+    Polygon::new(&[
+        sp(160, 5),
+        sp(250, 230),
+        sp(10, 80),
+        sp(310, 80),
+        sp(70, 230),
+    ])
+    .unwrap()
+}
+
+/// A self-intersecting five-pointed star, non-zero rule.
+#[inline(never)]
+fn polygon(fb: &mut Framebuffer<'_, Rgb565>) {
+    black_box(star())
+        .fill(fb, FillRule::NonZero, Rgb565::CYAN)
+        .unwrap();
+}
+
+#[test]
+fn stack_2d() {
+    let mut figures = vec![
+        primitive("line", line),
+        primitive("triangle", triangle),
+        primitive("gouraud_triangle", gouraud_triangle),
+        primitive("polygon", polygon),
+    ];
+    figures[3].pipeline = size_of::<Polygon<8>>();
+    report(&figures);
+}
+
+/// Sizes of the types the RAM figures are made of.
+#[test]
+fn type_sizes() {
+    let mesh = PackedMesh::parse(SUZANNE).expect("packed Suzanne");
+    println!(
+        "MEMORY types bin_entry={} cached_unlit={} cached_flat={} cached_gouraud={} \
+         cached_phong={} polygon8={} mesh_vertices={} mesh_triangles={}",
+        size_of::<BinEntry>(),
+        size_of::<Cache<Unlit<Rgb565>>>(),
+        size_of::<Cache<FlatLit<Fx16, Rgb565, 1>>>(),
+        size_of::<Cache<GouraudLit<Fx16, Rgb565, 1>>>(),
+        size_of::<Cache<PhongLit<Fx16, Rgb565, 1>>>(),
+        size_of::<Polygon<8>>(),
+        mesh.vertices(),
+        mesh.triangles(),
+    );
+}
