@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
-# Counts the instructions of one frame of the M1 scene of shared/bench/WORKLOADS.md (Suzanne, 968
-# triangles, 320x240 Rgb565) for each combination of pipeline stages with callgrind, and prints a
-# markdown table (instructions per frame, per mesh triangle, per drawn triangle, ratio to `m1`) and
-# the RenderStats of each frame.
+# Counts the instructions of one frame of the mesh scenes of shared/bench/WORKLOADS.md (M1 Suzanne,
+# 968 triangles; M2 Stanford bunny res3, 3,851; M3 full Stanford bunny, 69,451; 320x240 Rgb565) with
+# callgrind, for each combination of pipeline stages and for the comparison renderer euc, and prints
+# markdown tables (instructions per frame, per mesh triangle, per drawn triangle, ratio to the
+# scene's `m1`; ours against euc) and the RenderStats of each frame.
+#
+# A job is SCENE:COMBINATION (count3d --scene SCENE COMBINATION), or COMBINATION for M1. The
+# combination names are count3d's (`m1` is the headline pipeline whatever the scene; `euc` is euc).
 #
 # Usage (from anywhere; paths are relative to the repo root):
-#   scripts/callgrind3d.sh                  # every combination
-#   scripts/callgrind3d.sh m1 m1_nodepth    # only these
+#   scripts/callgrind3d.sh                  # every M1 combination, the shading models on M2 and M3,
+#                                           # and euc on all three
+#   scripts/callgrind3d.sh m1 m1_nodepth    # only these (M1)
+#   scripts/callgrind3d.sh M2:m1 M2:euc     # M2
 #   ANNOTATE=1 scripts/callgrind3d.sh       # also write callgrind_annotate --auto=yes --inclusive=no
 #                                           # reports next to the outputs
 #
@@ -18,15 +24,26 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
 OUT="$TARGET_DIR/callgrind"
-TRIANGLES=968
 
-ALL=(m1 m1_nodepth m1_nocull m1_unlit m1_flat m1_phong m1_unlit_nodepth_nocull m1_wireframe
+M1_ALL=(m1 m1_nodepth m1_nocull m1_unlit m1_flat m1_phong m1_unlit_nodepth_nocull m1_wireframe
     m1_cached m1_depth_always m1_cull_keepall m1_band8 m1_band16 m1_band32 m1_band240
-    m1_band16_cached)
+    m1_band16_cached euc)
+# M2 and M3: the shading models (Gouraud is the headline), the vertex cache and euc.
+MESH_ALL=(m1 m1_cached m1_unlit m1_flat m1_phong m1_wireframe euc)
 if [ "$#" -gt 0 ]; then
-    COMBOS=("$@")
+    JOBS=()
+    for job in "$@"; do
+        case "$job" in
+        *:*) JOBS+=("$job") ;;
+        *) JOBS+=("M1:$job") ;;
+        esac
+    done
 else
-    COMBOS=("${ALL[@]}")
+    JOBS=()
+    for c in "${M1_ALL[@]}"; do JOBS+=("M1:$c"); done
+    for scene in M2 M3; do
+        for c in "${MESH_ALL[@]}"; do JOBS+=("$scene:$c"); done
+    done
 fi
 
 # shellcheck source=lib/callgrind-common.sh
@@ -35,81 +52,112 @@ ensure_valgrind
 build_example count3d
 mkdir -p "$OUT"
 
-# count COMBINATION: prints the instructions of the counted frame (the call of frame_COMBINATION).
-# Only one frame_* function runs per process, so the pattern's trailing wildcard (the symbol hash)
-# cannot pick up another combination's function.
+# count SCENE COMBINATION: prints the instructions of the counted frame (the call of
+# frame_COMBINATION). Only one frame_* function runs per process, so the pattern's trailing wildcard
+# (the symbol hash) cannot pick up another combination's function.
 count() {
-    local combo="$1"
-    local file="$OUT/3d-$combo.out"
-    rm -f "$file"
-    valgrind --tool=callgrind --toggle-collect="*::frame_${combo}*" --callgrind-out-file="$file" \
-        "$BIN" "$combo" >"$OUT/3d-$combo.stdout" 2>"$OUT/3d-$combo.log" || {
-        echo "valgrind failed for $combo, see $OUT/3d-$combo.log" >&2
+    local scene="$1" combo="$2"
+    local base="$OUT/3d-$scene-$combo"
+    rm -f "$base.out"
+    valgrind --tool=callgrind --toggle-collect="*::frame_${combo}*" --callgrind-out-file="$base.out" \
+        "$BIN" --scene "$scene" "$combo" >"$base.stdout" 2>"$base.log" || {
+        echo "valgrind failed for $scene $combo, see $base.log" >&2
         return 1
     }
     local total
-    total="$(awk '/^totals:/ {print $2; found=1} END {if (!found) exit 1}' "$file" ||
-        awk '/^summary:/ {print $2}' "$file")"
+    total="$(awk '/^totals:/ {print $2; found=1} END {if (!found) exit 1}' "$base.out" ||
+        awk '/^summary:/ {print $2}' "$base.out")"
     if [ -z "$total" ] || [ "$total" -eq 0 ]; then
-        echo "no instructions collected for $combo: did frame_$combo get inlined or merged?" >&2
+        echo "no instructions collected for $scene $combo: did frame_$combo get inlined or merged?" >&2
         return 1
     fi
     if [ "${ANNOTATE:-0}" = "1" ]; then
-        callgrind_annotate --auto=yes --inclusive=no "$file" >"$OUT/3d-$combo.annotate.txt" 2>/dev/null || true
+        callgrind_annotate --auto=yes --inclusive=no "$base.out" >"$base.annotate.txt" 2>/dev/null || true
     fi
     echo "$total"
 }
 
-# stat COMBINATION KEY: a field of the RenderStats line the example printed.
-stat() { sed -n "s/.* $2=\([0-9]*\).*/\1/p" "$OUT/3d-$1.stdout"; }
+# stat SCENE COMBINATION KEY: a field of the stats line the example printed.
+stat() { sed -n "s/.* $3=\([0-9]*\).*/\1/p" "$OUT/3d-$1-$2.stdout"; }
 
 declare -A INSTR
-for combo in "${COMBOS[@]}"; do
-    echo "counting $combo..." >&2
-    INSTR[$combo]="$(count "$combo")"
+for job in "${JOBS[@]}"; do
+    echo "counting $job..." >&2
+    INSTR[$job]="$(count "${job%%:*}" "${job#*:}")"
 done
-if [ -z "${INSTR[m1]:-}" ]; then
-    echo "counting m1 (the reference of the ratio)..." >&2
-    INSTR[m1]="$(count m1)"
-fi
+# The reference of each scene's ratio column.
+for job in "${JOBS[@]}"; do
+    scene="${job%%:*}"
+    if [ -z "${INSTR[$scene:m1]:-}" ]; then
+        echo "counting $scene:m1 (the reference of the ratio)..." >&2
+        INSTR[$scene:m1]="$(count "$scene" m1)"
+    fi
+done
 
 div() { awk -v a="$1" -v b="$2" -v f="$3" 'BEGIN {printf f, (b == 0 ? 0 : a / b)}'; }
 thousands() { printf "%s" "$1" | sed ':a;s/\B[0-9]\{3\}\>/,&/;ta'; }
 
 echo
-echo "M1 (Suzanne, $TRIANGLES triangles, 320x240 Rgb565), one frame, callgrind, $(date +%Y-%m-%d):"
+echo "One frame, callgrind, 320x240 Rgb565, $(date +%Y-%m-%d):"
 echo
-echo "| combination | instructions / frame | per triangle (/ $TRIANGLES) | drawn | culled | per drawn triangle | vs m1 |"
-echo "|---|---:|---:|---:|---:|---:|---:|"
-for combo in "${COMBOS[@]}"; do
-    n="${INSTR[$combo]}"
-    drawn="$(stat "$combo" drawn)"
-    culled="$(stat "$combo" culled)"
-    echo "| \`$combo\` | $(thousands "$n") | $(thousands "$(div "$n" "$TRIANGLES" "%.0f")") | $drawn | $culled |" \
-        "$(thousands "$(div "$n" "$drawn" "%.0f")") | $(div "$n" "${INSTR[m1]}" "%.3f") |"
+echo "| scene | combination | triangles | instructions / frame | per triangle | drawn | culled | per drawn triangle | vs the scene's m1 |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
+for job in "${JOBS[@]}"; do
+    scene="${job%%:*}"
+    combo="${job#*:}"
+    n="${INSTR[$job]}"
+    tris="$(stat "$scene" "$combo" triangles)"
+    drawn="$(stat "$scene" "$combo" drawn)"
+    culled="$(stat "$scene" "$combo" culled)"
+    echo "| $scene | \`$combo\` | $(thousands "$tris") | $(thousands "$n") | $(thousands "$(div "$n" "$tris" "%.0f")") |" \
+        "$(thousands "$drawn") | $(thousands "$culled") | $(thousands "$(div "$n" "$drawn" "%.0f")") |" \
+        "$(div "$n" "${INSTR[$scene:m1]}" "%.3f") |"
 done
+
+# Ours against euc, for each scene where euc was counted.
 echo
-echo "RenderStats of each counted frame:"
+echo "Ours (Gouraud + depth + back faces culled) against euc, instructions per frame:"
+echo
+echo "| scene | triangles | ours \`m1\` | ours \`m1_cached\` | euc | m1 / euc | m1_cached / euc |"
+echo "|---|---:|---:|---:|---:|---:|---:|"
+for scene in M1 M2 M3; do
+    euc="${INSTR[$scene:euc]:-}"
+    [ -n "$euc" ] || continue
+    m1="${INSTR[$scene:m1]}"
+    cached="${INSTR[$scene:m1_cached]:-}"
+    tris="$(stat "$scene" euc triangles)"
+    cached_col="-"
+    cached_ratio="-"
+    if [ -n "$cached" ]; then
+        cached_col="$(thousands "$cached")"
+        cached_ratio="$(div "$cached" "$euc" "%.3f")"
+    fi
+    echo "| $scene | $(thousands "$tris") | $(thousands "$m1") | $cached_col | $(thousands "$euc") |" \
+        "$(div "$m1" "$euc" "%.3f") | $cached_ratio |"
+done
+
+echo
+echo "Stats of each counted frame:"
 echo
 echo '```'
-for combo in "${COMBOS[@]}"; do
-    cat "$OUT/3d-$combo.stdout"
+for job in "${JOBS[@]}"; do
+    cat "$OUT/3d-${job%%:*}-${job#*:}.stdout"
 done
 echo '```'
 
 # The controls: an effect present but doing nothing must not be cheaper than the pipeline built
 # without it (the zero-sized "off" stage must cost less or equal).
 control() {
-    local off="$1" present="$2" what="$3"
+    local off="M1:$1" present="M1:$2" what="$3"
     if [ -n "${INSTR[$off]:-}" ] && [ -n "${INSTR[$present]:-}" ]; then
         local verdict="holds"
         if [ "${INSTR[$off]}" -gt "${INSTR[$present]}" ]; then verdict="FAILS"; fi
-        echo "- $what: \`$off\` $(thousands "${INSTR[$off]}") <= \`$present\` $(thousands "${INSTR[$present]}")" \
+        echo "- $what: \`$1\` $(thousands "${INSTR[$off]}") <= \`$2\` $(thousands "${INSTR[$present]}")" \
             "(saves $(thousands $((INSTR[$present] - INSTR[$off]))), $(div "$((100 * (INSTR[$present] - INSTR[$off])))" "${INSTR[$present]}" "%.1f") %): $verdict"
     fi
 }
 echo
-echo "Controls (the zero-sized off stage must cost no more than the stage present but doing nothing):"
+echo "Controls on M1 (the zero-sized off stage must cost no more than the stage present but doing nothing):"
 echo
 control m1_nodepth m1_depth_always "depth (NoDepth vs DepthBuffer with Compare::Always)"
 control m1_nocull m1_cull_keepall "culling (NoCull vs a runtime keep-everything Cull)"

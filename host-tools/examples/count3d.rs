@@ -1,12 +1,16 @@
-//! Draws one frame of the M1 scene of `shared/bench/WORKLOADS.md` (Suzanne, 968 triangles) for
-//! callgrind to count, with one combination of pipeline stages (`scripts/callgrind3d.sh`).
+//! Draws one frame of a mesh scene of `shared/bench/WORKLOADS.md` (M1 Suzanne, 968 triangles; M2
+//! the Stanford bunny res3, 3,851; M3 the full Stanford bunny, 69,451) for callgrind to count, with
+//! one combination of pipeline stages, or with the comparison renderer euc
+//! (`scripts/callgrind3d.sh`).
 //!
-//! `count3d COMBINATION`, one of the names below. The mesh is loaded, the pipeline built and one warm
-//! frame drawn outside the counted function; the colour and depth buffers are cleared outside it too.
-//! Then exactly one call of `frame_<COMBINATION>` draws the counted frame. Every combination is its own
-//! monomorphized `Pipeline` type and its own `#[inline(never)]` function; each function also hands its
-//! own name to `black_box`, so that no two of them are identical and none can be merged into another
-//! (rustc runs LLVM's function merging).
+//! `count3d [--scene M1|M2|M3] COMBINATION`, one of the names below; the scene is M1 unless given.
+//! The combination names are those of the M1 benchmark (`m1` is the headline pipeline, whatever the
+//! scene): a combination is a pipeline type, the scene is data. The mesh is loaded, the pipeline
+//! built and one warm frame drawn outside the counted function; the colour and depth buffers are
+//! cleared outside it too. Then exactly one call of `frame_<COMBINATION>` draws the counted frame.
+//! Every combination is its own monomorphized `Pipeline` type and its own `#[inline(never)]`
+//! function; each function also hands its own name to `black_box`, so that no two of them are
+//! identical and none can be merged into another (rustc runs LLVM's function merging).
 //!
 //! | combination | shading | depth | culling | draw |
 //! |---|---|---|---|---|
@@ -21,40 +25,54 @@
 //! | `m1_cached` | `GouraudLit` | `DepthBuffer` (`Less`) | `CullClockwise` | `draw_cached` |
 //! | `m1_depth_always` | `GouraudLit` | `DepthBuffer` (`Always`) | `CullClockwise` | `draw` |
 //! | `m1_cull_keepall` | `GouraudLit` | `DepthBuffer` (`Less`) | `KeepAll` (runtime "keep") | `draw` |
+//! | `m1_band8` ... `m1_band240`, `m1_band16_cached` | `GouraudLit` | band `DepthBuffer` | `CullClockwise` | `draw_banded` |
+//! | `euc` | euc 0.5.3, Gouraud in `f32` | `f32` buffer | back faces | `euc::Pipeline::draw` |
 //!
-//! The last two are the controls for "an effect turned off costs no more than a pipeline built
-//! without it": `m1_depth_always` (depth effect present, doing nothing useful) against `m1_nodepth`,
-//! and `m1_cull_keepall` (a culling stage that keeps everything, decided at run time) against
-//! `m1_nocull`.
+//! `m1_depth_always` and `m1_cull_keepall` are the controls for "an effect turned off costs no more
+//! than a pipeline built without it": `m1_depth_always` (depth effect present, doing nothing
+//! useful) against `m1_nodepth`, and `m1_cull_keepall` (a culling stage that keeps everything,
+//! decided at run time) against `m1_nocull`. `euc` draws the same scene with euc (see
+//! `benches/support/euc3d.rs`) into a `u16` Rgb565 buffer with an `f32` depth buffer.
 //!
-//! Scene: model rotated 30° about Y; camera at (0, 0, 3) looking at the origin, up +Y; 60° vertical
-//! field of view, aspect 4:3, near 0.1, far 100; 320 x 240 Rgb565; the mesh's own normals. Lighting
-//! (as the reference render of M1): one directional white light from (1, 1, 1), ambient white,
-//! material ambient (40, 30, 30), diffuse (220, 140, 80), specular white, shininess 16, Blinn-Phong,
-//! eye at (0, 0, 3) in world space. `Unlit` draws (220, 140, 80); the wireframe is white.
+//! The scenes (camera, projection, lighting, the meshes' normalisation) are those of
+//! `host_tools::scenes3d`: model rotated 30° about Y; camera at (0, 0, 3) looking at the origin, up
+//! +Y; 60° vertical field of view, aspect 4:3, near 0.1, far 100; 320 x 240 Rgb565. Lighting: one
+//! directional white light from (1, 1, 1), ambient white, material ambient (40, 30, 30), diffuse
+//! (220, 140, 80), specular white, shininess 16, Blinn-Phong, eye at (0, 0, 3) in world space.
+//! `Unlit` draws (220, 140, 80); the wireframe is white.
 //!
-//! Prints `COMBINATION triangles=.. drawn=.. culled=.. clipped=.. outside=.. invalid=..
-//! checksum=..` for the counted frame.
+//! Prints `COMBINATION scene=.. triangles=.. drawn=.. culled=.. clipped=.. outside=.. invalid=..
+//! covered=.. checksum=..` for the counted frame (`covered`: pixels not left black). For `euc`,
+//! `drawn` and `culled` come from euc's own culling test run apart from the frame.
+//!
+//! `count3d [--scene S] compare [DIR]` draws the scene with `m1` and with euc and prints how far
+//! the two pictures are apart (and writes them as PNG files into DIR when given); nothing is
+//! counted.
 
+#[path = "../benches/support/euc3d.rs"]
+mod euc3d;
+
+use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
+use euc3d::{EucColor, EucDepth, EucScene};
 use host_tools::obj::LoadedMesh;
 use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
+use rasterizer_core::math::Fx16;
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
 use rasterizer_core::pipeline::{
-    Banding, BinEntry, CachedVertex, Mesh, Pipeline, RenderStats, Transforms, Viewport,
+    Banding, BinEntry, CachedVertex, Mesh, Pipeline, RenderStats, Viewport,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::Framebuffer;
 use std::hint::black_box;
-use std::path::PathBuf;
+use std::path::Path;
 use std::process::ExitCode;
 
 /// Every combination, in the order the script reports them.
-const COMBINATIONS: [&str; 16] = [
+const COMBINATIONS: [&str; 17] = [
     "m1",
     "m1_nodepth",
     "m1_nocull",
@@ -71,6 +89,7 @@ const COMBINATIONS: [&str; 16] = [
     "m1_band32",
     "m1_band240",
     "m1_band16_cached",
+    "euc",
 ];
 
 /// A culling stage that keeps every triangle, but only finds that out at run time: the "culling
@@ -85,53 +104,10 @@ impl Cull for KeepAll {
 
 type Fb<'a> = Framebuffer<'a, Rgb565>;
 type Mesh3<'a> = Mesh<'a, Fx16, u32>;
-type Light1 = Lighting<Fx16, 1>;
 /// A 16.16 pipeline with 28.4 screen coordinates and affine interpolation.
 type Pipe<C, D, Sh> = Pipeline<Fx16, C, D, Sh, 4>;
 /// A counted frame function.
 type FrameFn<C, D, Sh> = fn(&mut Pipe<C, D, Sh>, &mut Fb<'_>, &Mesh3<'_>) -> RenderStats;
-
-const DIFFUSE: Rgb888 = Rgb888::new(220, 140, 80);
-
-fn lighting() -> Light1 {
-    let material = Material {
-        ambient: Rgb888::new(40, 30, 30),
-        diffuse: DIFFUSE,
-        specular: Rgb888::WHITE,
-        shininess: 16,
-    };
-    let mut l = Lighting::new(
-        material,
-        Rgb888::WHITE,
-        Specular::BlinnPhong,
-        Vec3::from_ints(0, 0, 3),
-    );
-    l.add_light(Light::Directional {
-        direction: Vec3::from_ints(1, 1, 1),
-        color: Rgb888::WHITE,
-    })
-    .expect("one light fits");
-    l
-}
-
-fn transforms() -> Transforms<Fx16> {
-    Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(30)),
-        view: Mat4::look_at(
-            Vec3::from_ints(0, 0, 3),
-            Vec3::from_ints(0, 0, 0),
-            Vec3::from_ints(0, 1, 0),
-        )
-        .expect("camera basis"),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(WIDTH.into(), HEIGHT.into()),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .expect("projection"),
-    }
-}
 
 /// The drawing of one frame, shared by the warm frame and the counted `frame_*` functions.
 #[inline(always)]
@@ -343,46 +319,155 @@ fn clear_z(d: &mut DepthBuffer<'_>) {
 
 fn no_z(_: &mut NoDepth) {}
 
-fn model_path() -> PathBuf {
-    // CARGO_MANIFEST_DIR is host-tools/: the repository's own assets first, then the shared ones
-    // next to the repository.
-    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let local = manifest.join("../assets/models/suzanne.obj");
-    if local.exists() {
-        local
-    } else {
-        manifest.join("../../shared/assets/models/suzanne.obj")
+#[inline(never)]
+fn frame_euc(scene: &EucScene, color: &mut EucColor, depth: &mut EucDepth) {
+    black_box("frame_euc");
+    scene.render(color, depth);
+}
+
+/// A checksum of a picture, so that the frame cannot be optimised away and runs can be compared.
+fn checksum(px: &[u16]) -> u32 {
+    black_box(px)
+        .iter()
+        .fold(0u32, |s, &w| s.rotate_left(5) ^ u32::from(w))
+}
+
+/// Pixels not left black (every lit colour of the scenes is at least the ambient term).
+fn covered(px: &[u16]) -> usize {
+    px.iter().filter(|&&w| w != 0).count()
+}
+
+fn rgb888(w: u16) -> [u8; 3] {
+    let c = Rgb888::from(Rgb565::from(RawU16::new(w)));
+    [c.r(), c.g(), c.b()]
+}
+
+/// Draws the scene with `m1` and with euc, prints how far apart the two pictures are and writes
+/// them into `dir` as PNG files when given.
+fn compare(scene: Scene, loaded: &LoadedMesh, dir: Option<&Path>) -> ExitCode {
+    let mesh = loaded.mesh();
+    let xf = transforms();
+    let mut buf = vec![0u16; PIXELS].into_boxed_slice();
+    let mut fb = Fb::new(&mut buf, WIDTH, HEIGHT).expect("320 x 240 buffer");
+    let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
+    let mut p = Pipeline::new(
+        &xf,
+        Viewport::new(WIDTH, HEIGHT),
+        CullClockwise,
+        zb(&mut zbuf, Compare::Less),
+        GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
+    );
+    let ours = draw(&mut p, &mut fb, &mesh);
+    let euc = EucScene::new(loaded);
+    let (mut color, mut depth) = EucScene::buffers();
+    euc.render(&mut color, &mut depth);
+    let (euc_drawn, euc_culled) = euc.stats();
+    let (a, b) = (fb.as_slice(), color.as_ref());
+    let (mut only_ours, mut only_euc, mut both, mut sum, mut max, mut off2) = (0, 0, 0, 0u64, 0, 0);
+    for (&x, &y) in a.iter().zip(b) {
+        match (x != 0, y != 0) {
+            (true, false) => only_ours += 1,
+            (false, true) => only_euc += 1,
+            (true, true) => {
+                both += 1;
+                let d = (0..3)
+                    .map(|k| rgb888(x)[k].abs_diff(rgb888(y)[k]))
+                    .max()
+                    .unwrap_or(0);
+                sum += u64::from(d);
+                max = max.max(d);
+                off2 += usize::from(d > 16);
+            }
+            (false, false) => {}
+        }
     }
+    println!(
+        "{} ours: drawn={} culled={} covered={}; euc: drawn={euc_drawn} culled={euc_culled} \
+         covered={}",
+        scene.name(),
+        ours.drawn,
+        ours.culled,
+        covered(a),
+        covered(b)
+    );
+    println!(
+        "pixels covered by both {both}, by ours only {only_ours}, by euc only {only_euc}; \
+         largest channel difference where both: mean {:.2}, max {max} (8-bit steps), \
+         {off2} pixels more than 16 apart",
+        sum as f64 / both.max(1) as f64
+    );
+    if let Some(dir) = dir {
+        for (who, px) in [("ours", a), ("euc", b)] {
+            let img = image::RgbImage::from_fn(WIDTH, HEIGHT, |x, y| {
+                image::Rgb(rgb888(px[(y * WIDTH + x) as usize]))
+            });
+            let path = dir.join(format!("{}-{who}.png", scene.name()));
+            if let Err(e) = img.save(&path) {
+                eprintln!("count3d: {}: {e}", path.display());
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    ExitCode::SUCCESS
 }
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: count3d COMBINATION   one of: {}",
+        "usage: count3d [--scene M1|M2|M3] COMBINATION   one of: {}\n       \
+         count3d [--scene M1|M2|M3] compare [DIR]",
         COMBINATIONS.join(" ")
     );
     ExitCode::from(2)
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let [name] = args.as_slice() else {
-        return usage();
-    };
-    let name = name.as_str();
-    if !COMBINATIONS.contains(&name) {
-        return usage();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let mut scene = Scene::M1;
+    if args.first().map(String::as_str) == Some("--scene") {
+        let Some(s) = args.get(1).and_then(|s| Scene::parse(s)) else {
+            return usage();
+        };
+        scene = s;
+        args.drain(..2);
     }
-    let path = model_path();
-    let loaded = match LoadedMesh::load(&path) {
+    let (name, dir) = match args.as_slice() {
+        [c] if c == "compare" => ("compare", None),
+        [c, dir] if c == "compare" => ("compare", Some(Path::new(dir))),
+        [name] if COMBINATIONS.contains(&name.as_str()) => (name.as_str(), None),
+        _ => return usage(),
+    };
+    let loaded = match scene.load() {
         Ok(m) => m,
         Err(e) => {
-            eprintln!("count3d: {}: {e}", path.display());
+            eprintln!("count3d: {}: {e}", scene.path().display());
             return ExitCode::FAILURE;
         }
     };
-    if loaded.normals.is_none() {
-        eprintln!("count3d: {} has no normals", path.display());
-        return ExitCode::FAILURE;
+    if name == "compare" {
+        return compare(scene, &loaded, dir);
+    }
+    let scene_name = scene.name();
+    if name == "euc" {
+        // The scene in f32 and both buffers are set up, and one warm frame drawn, outside the count.
+        let euc = EucScene::new(&loaded);
+        let (mut color, mut depth) = EucScene::buffers();
+        euc.render(&mut color, &mut depth);
+        EucScene::clear(&mut color, &mut depth);
+        frame_euc(
+            black_box(&euc),
+            black_box(&mut color),
+            black_box(&mut depth),
+        );
+        let (drawn, culled) = euc.stats();
+        let px = color.as_ref();
+        println!(
+            "euc scene={scene_name} triangles={} drawn={drawn} culled={culled} covered={} \
+             checksum={:08x}",
+            euc.triangles(),
+            covered(px),
+            checksum(px)
+        );
+        return ExitCode::SUCCESS;
     }
     let mesh = loaded.mesh();
 
@@ -561,9 +646,8 @@ fn main() -> ExitCode {
     };
 
     // Keep the frame alive and print a checksum, so that nothing can be optimised away.
-    let sum = black_box(fb.as_slice())
-        .iter()
-        .fold(0u32, |s, &w| s.rotate_left(5) ^ u32::from(w));
+    let px = fb.as_slice();
+    let (sum, covered) = (checksum(px), covered(px));
     let RenderStats {
         triangles,
         invalid,
@@ -573,8 +657,8 @@ fn main() -> ExitCode {
         drawn,
     } = stats;
     println!(
-        "{name} triangles={triangles} drawn={drawn} culled={culled} clipped={clipped} \
-         outside={outside} invalid={invalid} checksum={sum:08x}"
+        "{name} scene={scene_name} triangles={triangles} drawn={drawn} culled={culled} \
+         clipped={clipped} outside={outside} invalid={invalid} covered={covered} checksum={sum:08x}"
     );
     ExitCode::SUCCESS
 }

@@ -4,3 +4,4 @@ pub mod convert;
 pub mod obj;
 pub mod scenefile;
 pub mod scenes;
+pub mod scenes3d;
