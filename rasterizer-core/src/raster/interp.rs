@@ -8,6 +8,7 @@
 
 use crate::geom::{PixelRect, SubPoint};
 use crate::numerics::{Numerics, SpanStart, Standard};
+use crate::raster::edge::row_at_or_below;
 use crate::raster::triangle::setup::{walk_spans, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::Surface;
@@ -559,6 +560,17 @@ where
         return Ok(());
     };
     let [v0, v1, v2] = t.v;
+    let s = 1i64 << BITS;
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    // A triangle between two rows or two columns of pixel centres (most triangles of a dense mesh
+    // far away), or outside the clip area, covers no pixel: skip the set-up. Conservative: the
+    // span walk still decides coverage exactly.
+    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+    let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
+    let cols = row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
+    if rows.is_empty() || cols.is_empty() {
+        return Ok(());
+    }
     let [o0, o1, o2] = t.order;
     let sign = t.cross.signum();
     let den2 = 2 * t.cross.abs();
@@ -596,7 +608,6 @@ where
     };
     let zs = [vertices[o0].z, vertices[o1].z, vertices[o2].z].map(i64::from);
     planes[Z] = plane(zs[0], zs[1], zs[2]);
-    let s = 1i64 << BITS;
     let mut steps = [0i64; PLANES];
     let mut col = [Exact::default(); PLANES];
     let mut row = [Exact::default(); PLANES];
@@ -643,7 +654,6 @@ where
             setup(Z);
         }
     }
-    let clip = PixelRect::from_rectangle(&surface.clip_area());
     let mut sink = Interp::<S, D, V, F, N, PERSPECTIVE> {
         surface,
         depth,
