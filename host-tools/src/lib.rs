@@ -1,7 +1,9 @@
 //! Host-side helpers shared by the host tools, benches and examples.
 
+pub mod accuracy;
 pub mod convert;
 pub mod obj;
+pub mod reference3d;
 pub mod scenefile;
 pub mod scenes;
 pub mod scenes3d;

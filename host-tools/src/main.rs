@@ -53,6 +53,21 @@ enum Command {
     Animate(host_tools::scenefile::AnimateArgs),
     /// Render a scene in fixed point and in floating point and write the difference image.
     Compare(host_tools::scenefile::CompareArgs),
+    /// Sweep the accuracy knobs against an f64 reference and write docs/ACCURACY.md and its plot.
+    #[command(
+        long_about = "Sweep the accuracy knobs of the 3D pipeline and write the report.\n\n\
+        Every configuration (geometry format, sub-pixel bits, sine table size, perspective-correct \
+        interpolation, and combinations) is measured against an f64 reference on the workload \
+        scenes M1-M3 and on random scenes, its instructions per M1 frame are counted with \
+        callgrind (valgrind must be installed, or pass --no-count), and the limits of each format \
+        are found. Writes OUT/ACCURACY.md and OUT/images/accuracy.svg.\n\n\
+        Run from the repository root, release build: \
+        cargo run --release -p host-tools -- accuracy"
+    )]
+    Accuracy(host_tools::accuracy::AccuracyArgs),
+    /// Draw one configuration's counted M1 frame (run by `accuracy` under callgrind).
+    #[command(hide = true)]
+    AccuracyCount(host_tools::accuracy::CountArgs),
 }
 
 /// Options of the `demo` command.
@@ -83,6 +98,8 @@ fn main() -> ExitCode {
         Command::Render(args) => host_tools::scenefile::render(&args),
         Command::Animate(args) => host_tools::scenefile::animate(&args),
         Command::Compare(args) => host_tools::scenefile::compare(&args),
+        Command::Accuracy(args) => host_tools::accuracy::run(&args),
+        Command::AccuracyCount(args) => host_tools::accuracy::run_count(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

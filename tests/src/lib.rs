@@ -8,7 +8,6 @@ use embedded_graphics_core::Pixel;
 use rasterizer_core::geom::SubPoint;
 
 pub mod packed;
-pub mod reference3d;
 
 /// A draw target that panics on any out-of-bounds write and on any pixel written twice.
 #[derive(Debug, Clone)]

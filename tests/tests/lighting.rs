@@ -1,6 +1,7 @@
 //! Phong and Blinn-Phong lighting against an f64 reference of the same formula, and the edge cases.
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use host_tools::reference3d::{lit, RefLight};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
@@ -14,10 +15,6 @@ type V3 = [f64; 3];
 
 fn sub(a: V3, b: V3) -> V3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 fn dot(a: V3, b: V3) -> f64 {
@@ -55,42 +52,18 @@ fn chans(c: Rgb888) -> [f64; 3] {
     [c.r() as f64, c.g() as f64, c.b() as f64]
 }
 
-/// The exact lit colour per channel, unrounded, clamped to 255.
+/// The exact lit colour per channel, unrounded, clamped to 255 (`host_tools::reference3d::lit`).
 fn reference(s: &Scene) -> [f64; 3] {
-    let m = &s.material;
-    let (ma, md, ms) = (chans(m.ambient), chans(m.diffuse), chans(m.specular));
-    let la = chans(rgb(s.ambient));
-    let n = unit(s.normal);
-    let v = unit(sub(s.eye, s.position));
-    let mut out = [0.0; 3];
-    for c in 0..3 {
-        out[c] = ma[c] * la[c] / 255.0;
-    }
-    for &(point, p, color) in &s.lights {
-        let l = if point {
-            unit(sub(p, s.position))
-        } else {
-            unit(p)
-        };
-        let nl = dot(n, l);
-        if nl <= 0.0 {
-            continue;
-        }
-        let e = m.shininess as i32;
-        let spec = match s.model {
-            Specular::None => 0.0,
-            Specular::Phong => {
-                let r = sub([2.0 * nl * n[0], 2.0 * nl * n[1], 2.0 * nl * n[2]], l);
-                dot(r, v).max(0.0).powi(e)
-            }
-            Specular::BlinnPhong => dot(n, unit(add(l, v))).max(0.0).powi(e),
-        };
-        let lc = chans(rgb(color));
-        for c in 0..3 {
-            out[c] += md[c] * lc[c] / 255.0 * nl + ms[c] * lc[c] / 255.0 * spec;
-        }
-    }
-    out.map(|x| x.min(255.0))
+    let lights: Vec<RefLight> = s.lights.iter().map(|&(p, v, c)| (p, v, rgb(c))).collect();
+    lit(
+        &s.material,
+        rgb(s.ambient),
+        s.model,
+        s.eye,
+        &lights,
+        s.position,
+        s.normal,
+    )
 }
 
 // ---------------------------------------------------------------------------------------------

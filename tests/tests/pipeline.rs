@@ -1,8 +1,11 @@
-//! The 3D pipeline against an independent `f64` reference (`tests::reference3d`): projection
+//! The 3D pipeline against an independent `f64` reference (`host_tools::reference3d`): projection
 //! accuracy, hard clipping cases, depth-test order invariance and whole-mesh renders.
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tools::obj::LoadedMesh;
+use host_tools::reference3d::{
+    self as r, color_id, f, f3, fx, FaceIds, FaceMesh, RefCull, RefRender, M4, V3,
+};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
@@ -12,9 +15,6 @@ use rasterizer_core::pipeline::shading::Unlit;
 use rasterizer_core::pipeline::{Pipeline, RenderStats, Transforms, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::target::AnyTarget;
-use tests::reference3d::{
-    self as r, color_id, f, f3, fx, FaceIds, FaceMesh, RefCull, RefRender, M4, V3,
-};
 use tests::StrictMock;
 
 const W: u32 = 320;

@@ -6,12 +6,12 @@
 //! `STRESS_SCENES` sets the count (CI: 1,000).
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use host_tools::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::pipeline::cull::NoCull;
 use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, Transforms, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer};
 use rasterizer_core::target::Framebuffer;
-use tests::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
 
 /// Depths this close (in 1/65,535 of the depth range) are a tie: random soups have triangles that
 /// cut through each other, and along those lines the nearer one is decided by the vertex depths'

@@ -5,12 +5,15 @@
 //!
 //! Nothing here calls into `rasterizer-core`'s geometry: the matrices are built from the same
 //! parameters (angles, positions, planes) with `f64` trigonometry, so a comparison measures the
-//! fixed-point pipeline against the exact computation. The last section holds the small
-//! pipeline-side helpers the comparisons need (a shader that paints each face with its id).
+//! fixed-point pipeline against the exact computation. Then come the `f64` lighting model (the
+//! formula of `rasterizer_core::shade`, unrounded) and the perspective-correct interpolation of
+//! per-vertex values (the true Gouraud image). The last section holds the small pipeline-side
+//! helpers the comparisons need (a shader that paints each face with its id).
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use rasterizer_core::math::{Fx16, Scalar, Vec3};
 use rasterizer_core::pipeline::shading::{Shading, VertexIn};
+use rasterizer_core::shade::{Material, Specular};
 
 /// A 4x4 matrix, `m[row][column]`, column vectors (`p' = M p`).
 pub type M4 = [[f64; 4]; 4];
@@ -439,6 +442,131 @@ fn draw_polygon(out: &mut RefRender, best: &mut [f64], scr: &[V3], area: f64, id
             }
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lighting and the true Gouraud image.
+
+fn add3(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// The channels of a colour as `f64`.
+fn channels(c: Rgb888) -> [f64; 3] {
+    [c.r(), c.g(), c.b()].map(f64::from)
+}
+
+/// A light of [`lit`]: `(is_point, position or direction, colour)`.
+pub type RefLight = (bool, V3, Rgb888);
+
+/// The lit colour per channel, unrounded, clamped to 255: ambient plus, per light facing the
+/// surface, diffuse and a Phong or Blinn-Phong highlight, the formula `rasterizer_core::shade`
+/// documents. A zero normal gives the ambient term only, as there.
+pub fn lit(
+    material: &Material,
+    ambient: Rgb888,
+    model: Specular,
+    eye: V3,
+    lights: &[RefLight],
+    position: V3,
+    normal: V3,
+) -> [f64; 3] {
+    let (ma, md, ms) = (
+        channels(material.ambient),
+        channels(material.diffuse),
+        channels(material.specular),
+    );
+    let la = channels(ambient);
+    let mut out = [0, 1, 2].map(|c| ma[c] * la[c] / 255.0);
+    if dot3(normal, normal) == 0.0 {
+        return out.map(|x| x.min(255.0));
+    }
+    let n = unit3(normal);
+    let v = unit3(sub3(eye, position));
+    for &(point, p, color) in lights {
+        let l = if point {
+            unit3(sub3(p, position))
+        } else {
+            unit3(p)
+        };
+        let nl = dot3(n, l);
+        if nl <= 0.0 {
+            continue;
+        }
+        let e = i32::from(material.shininess);
+        let spec = match model {
+            Specular::None => 0.0,
+            Specular::Phong => {
+                let r = sub3([2.0 * nl * n[0], 2.0 * nl * n[1], 2.0 * nl * n[2]], l);
+                dot3(r, v).max(0.0).powi(e)
+            }
+            Specular::BlinnPhong => dot3(n, unit3(add3(l, v))).max(0.0).powi(e),
+        };
+        let lc = channels(color);
+        for c in 0..3 {
+            out[c] += md[c] * lc[c] / 255.0 * nl + ms[c] * lc[c] / 255.0 * spec;
+        }
+    }
+    out.map(|x| x.min(255.0))
+}
+
+/// The perspective-correct barycentric weights, at the pixel centre `(px + 0.5, py + 0.5)` of a
+/// `width` x `height` viewport, of the triangle with clip-space corners `clip` (unclipped: the
+/// weights of a clipped polygon's pixel are those of its source triangle). `None` when the
+/// triangle is seen edge-on.
+///
+/// The pixel is the ray `(x_ndc, y_ndc, 1)` in the triangle's homogeneous 2D coordinates
+/// `(x, y, w)`; solving `sum b_k (x_k, y_k, w_k) = t (x_ndc, y_ndc, 1)` and scaling the `b_k` to sum
+/// to one gives the weights with which values vary linearly across the triangle in 3D.
+pub fn perspective_weights(
+    clip: &[V4; 3],
+    px: u32,
+    py: u32,
+    width: u32,
+    height: u32,
+) -> Option<V3> {
+    let xn = (f64::from(px) + 0.5) / f64::from(width) * 2.0 - 1.0;
+    let yn = 1.0 - (f64::from(py) + 0.5) / f64::from(height) * 2.0;
+    let col = |k: usize| [clip[k][0], clip[k][1], clip[k][3]];
+    let (a, b, c) = (col(0), col(1), col(2));
+    let det = dot3(a, cross3(b, c));
+    if det.abs() < 1e-300 {
+        return None;
+    }
+    let p = [xn, yn, 1.0];
+    // Cramer's rule.
+    let w = [
+        dot3(p, cross3(b, c)) / det,
+        dot3(a, cross3(p, c)) / det,
+        dot3(a, cross3(b, p)) / det,
+    ];
+    let sum = w[0] + w[1] + w[2];
+    (sum.abs() > 1e-300).then(|| w.map(|x| x / sum))
+}
+
+/// The true image of per-vertex values (e.g. lit colours): each pixel of `render` gets the values
+/// of its triangle interpolated perspective-correctly. `values[i]` belongs to position `i`; the
+/// triangle ids of `render` must be indices into `tris`.
+pub fn shade_image(
+    mvp: &M4,
+    positions: &[V3],
+    tris: &[[usize; 3]],
+    values: &[V3],
+    render: &RefRender,
+) -> Vec<Option<V3>> {
+    let (w, h) = (render.width, render.height);
+    let mut out = vec![None; render.id.len()];
+    for (i, id) in render.id.iter().enumerate() {
+        let Some(t) = *id else { continue };
+        let tri = tris[t as usize];
+        let clip = tri.map(|k| apply_point(mvp, positions[k]));
+        let (px, py) = (i as u32 % w, i as u32 / w);
+        if let Some(b) = perspective_weights(&clip, px, py, w, h) {
+            let v = tri.map(|k| values[k]);
+            out[i] = Some([0, 1, 2].map(|c| b[0] * v[0][c] + b[1] * v[1][c] + b[2] * v[2][c]));
+        }
+    }
+    out
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,0 +1,396 @@
+//! The configurations the sweep compares: one registry entry per `Pipeline` type, each knob a
+//! compile-time parameter of that type, so every entry is its own monomorphized pipeline (measured
+//! for errors here, counted by callgrind through [`counted_frame`]).
+//!
+//! Adding a configuration is one `entry!` line in [`registry`]; the numerics knobs (divide method,
+//! interpolation bits, span starts) are a `rasterizer_core::numerics` type as the last argument.
+
+use super::metrics::{image_errors, vertex_errors, Errors};
+use super::scene::{lighting, transforms, vec_s, Prepared, SceneDef};
+use crate::reference3d::{color_id, id_color, FaceIds};
+use crate::scenefile::F64;
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use embedded_graphics_core::prelude::DrawTarget;
+use rasterizer_core::math::{Fx16, Fx24, Fx8, Scalar, Vec3};
+use rasterizer_core::numerics::{
+    Custom, Divide, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics,
+    ReciprocalDivide, SpanStart, Standard,
+};
+use rasterizer_core::pipeline::cull::{Cull, CullClockwise};
+use rasterizer_core::pipeline::shading::{GouraudLit, Unlit};
+use rasterizer_core::pipeline::{Mesh, Pipeline, RenderStats, Viewport};
+use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
+use rasterizer_core::target::Framebuffer;
+use std::hint::black_box;
+
+/// A geometry format with its name in the report.
+pub trait Format: Scalar {
+    /// Short name.
+    const NAME: &'static str;
+}
+
+impl Format for Fx16 {
+    const NAME: &'static str = "16.16";
+}
+impl Format for Fx8 {
+    const NAME: &'static str = "24.8";
+}
+impl Format for Fx24 {
+    const NAME: &'static str = "8.24";
+}
+impl Format for f32 {
+    const NAME: &'static str = "f32";
+}
+impl Format for F64 {
+    const NAME: &'static str = "f64";
+}
+
+/// The knobs of one configuration, as the report prints them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Knobs {
+    /// Geometry format.
+    pub format: &'static str,
+    /// Sub-pixel bits of screen coordinates.
+    pub bits: u32,
+    /// Entries of the quarter-wave sine table.
+    pub table: usize,
+    /// Perspective-correct interpolation.
+    pub perspective: bool,
+    /// The reciprocal method of the perspective divide.
+    pub divide: Divide,
+    /// Fractional bits of interpolated colour and depth.
+    pub frac: u32,
+    /// How spans start their interpolated values.
+    pub spans: SpanStart,
+}
+
+impl Knobs {
+    /// The divide method's name in the report.
+    pub fn divide_name(&self) -> &'static str {
+        match self.divide {
+            Divide::Exact => "exact",
+            Divide::Reciprocal => "reciprocal",
+            Divide::Newton => "Newton",
+        }
+    }
+
+    /// The span-start method's name in the report.
+    pub fn spans_name(&self) -> &'static str {
+        match self.spans {
+            SpanStart::Exact => "exact",
+            SpanStart::Gradient => "gradient",
+        }
+    }
+}
+
+/// What a configuration's measurement of one scene gives: its errors, or why it could not run.
+pub type Measured = Result<Errors, String>;
+
+/// One configuration.
+#[derive(Debug, Clone, Copy)]
+pub struct Config {
+    /// Name (also the argument of the hidden `accuracy-count` command).
+    pub label: &'static str,
+    /// Which knob the entry moves away from the default ("default" for the default itself).
+    pub varies: &'static str,
+    /// The knobs.
+    pub knobs: Knobs,
+    /// A control, not a library configuration: shown in the tables, left out of the plot.
+    pub control: bool,
+    /// Measures the errors on a prepared scene (only the vertex positions when the scene has no
+    /// reference render).
+    pub measure: fn(&Prepared) -> Measured,
+    /// Draws the counted frame of a scene (M1) and describes what was drawn.
+    pub count: fn(&SceneDef) -> Result<String, String>,
+}
+
+/// One registry entry: label, the knob it varies, format, sub-pixel bits, perspective, table size
+/// and (optionally; `Standard` otherwise) the numerics type.
+macro_rules! entry {
+    ($label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal) => {
+        entry!(@ $label, $varies, $s, $bits, $persp, $table, Standard, false)
+    };
+    ($label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal,
+        $num:ty) => {
+        entry!(@ $label, $varies, $s, $bits, $persp, $table, $num, false)
+    };
+    (control $label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal) => {
+        entry!(@ $label, $varies, $s, $bits, $persp, $table, Standard, true)
+    };
+    (@ $label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal,
+        $num:ty, $control:literal) => {
+        Config {
+            label: $label,
+            varies: $varies,
+            knobs: Knobs {
+                format: <$s as Format>::NAME,
+                bits: $bits,
+                table: $table,
+                perspective: $persp,
+                divide: <$num as Numerics>::DIVIDE,
+                frac: <$num as Numerics>::FRAC,
+                spans: <$num as Numerics>::SPANS,
+            },
+            control: $control,
+            measure: measure::<$s, $bits, $persp, $table, $num>,
+            count: count::<$s, $bits, $persp, $table, $num>,
+        }
+    };
+}
+
+/// Exact division, `F` fractional bits, exact span starts.
+type Frac<const F: u32> = Custom<ExactDivide, F, ExactSpans>;
+/// Everything cheapest: no division, 4 fractional bits, gradient span starts.
+type Cheapest = Custom<NewtonDivide, 4, GradientSpans>;
+
+/// The label of the library's default configuration.
+pub const DEFAULT: &str = "default";
+
+/// Every configuration: the default, one knob at a time away from it, then combinations and the
+/// `f64` control (the same pipeline with `f64` geometry: what is left is the integer stages').
+pub fn registry() -> Vec<Config> {
+    vec![
+        entry!("default", "default", Fx16, 4, false, 256),
+        entry!("24.8", "format", Fx8, 4, false, 256),
+        entry!("8.24", "format", Fx24, 4, false, 256),
+        entry!("f32", "format", f32, 4, false, 256),
+        entry!("bits0", "sub-pixel bits", Fx16, 0, false, 256),
+        entry!("bits2", "sub-pixel bits", Fx16, 2, false, 256),
+        entry!("bits6", "sub-pixel bits", Fx16, 6, false, 256),
+        entry!("bits8", "sub-pixel bits", Fx16, 8, false, 256),
+        entry!("table4", "trig table", Fx16, 4, false, 4),
+        entry!("table16", "trig table", Fx16, 4, false, 16),
+        entry!("table64", "trig table", Fx16, 4, false, 64),
+        entry!("table1024", "trig table", Fx16, 4, false, 1024),
+        entry!("perspective", "perspective", Fx16, 4, true, 256),
+        entry!(
+            "reciprocal",
+            "divide",
+            Fx16,
+            4,
+            false,
+            256,
+            Custom<ReciprocalDivide>
+        ),
+        entry!(
+            "newton",
+            "divide",
+            Fx16,
+            4,
+            false,
+            256,
+            Custom<NewtonDivide>
+        ),
+        entry!(
+            "frac12",
+            "interpolation bits",
+            Fx16,
+            4,
+            false,
+            256,
+            Frac<12>
+        ),
+        entry!("frac8", "interpolation bits", Fx16, 4, false, 256, Frac<8>),
+        entry!("frac4", "interpolation bits", Fx16, 4, false, 256, Frac<4>),
+        entry!("gradient", "span starts", Fx16, 4, false, 256, Custom<ExactDivide, 16, GradientSpans>),
+        entry!("cheap", "combination", Fx16, 0, false, 16, Cheapest),
+        entry!("cheap-24.8", "combination", Fx8, 0, false, 16, Cheapest),
+        entry!("fine", "combination", Fx16, 8, true, 1024),
+        entry!("fine-8.24", "combination", Fx24, 8, true, 1024),
+        entry!("f32-perspective", "combination", f32, 4, true, 256),
+        entry!(control "f64", "control", F64, 4, false, 256),
+    ]
+}
+
+/// The default configuration of each format (the breakdown sweep's subjects), with the `f64`
+/// control.
+pub fn per_format() -> Vec<Config> {
+    registry()
+        .into_iter()
+        .filter(|c| c.varies == "default" || c.varies == "format" || c.varies == "control")
+        .collect()
+}
+
+/// Culling chosen at run time: back faces (as `CullClockwise`) or none. The error measurement
+/// needs both (workload meshes cull, random soups do not); the counted frame uses the
+/// compile-time `CullClockwise` as firmware would.
+#[derive(Debug, Clone, Copy)]
+struct SceneCull(bool);
+
+impl Cull for SceneCull {
+    fn keep(&self, area: i64) -> bool {
+        !self.0 || CullClockwise.keep(area)
+    }
+}
+
+/// The screen position in pixels of a sub-pixel coordinate.
+fn px(v: i32, bits: u32) -> f64 {
+    f64::from(v) / f64::from(1u32 << bits)
+}
+
+/// "No triangle" in the id image: more triangles than any scene has.
+const NO_ID: u32 = 0xFF_FFFF;
+
+fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numerics>(
+    scene: &Prepared,
+) -> Measured {
+    let def = &scene.def;
+    let (w, h) = (def.width, def.height);
+    let xf = transforms::<S, N>(&def.camera, w, h)
+        .ok_or("the camera or the projection is not representable")?;
+    let vp = Viewport::new(w, h);
+    let positions: Vec<Vec3<S>> = def.positions.iter().map(|&p| vec_s(p)).collect();
+    let normals: Vec<Vec3<S>> = def.normals.iter().map(|&n| vec_s(n)).collect();
+    let cull = SceneCull(def.cull);
+    let pixels = w as usize * h as usize;
+
+    // Vertex positions: the configuration's own projection (no buffers needed).
+    let probe = Pipeline::<S, _, _, _, BITS, P>::new(
+        &xf,
+        vp,
+        cull,
+        NoDepth,
+        Unlit {
+            color: Rgb888::BLACK,
+        },
+    )
+    .with_numerics::<Nu>();
+    let ours: Vec<[f64; 2]> = positions
+        .iter()
+        .map(|&v| {
+            let (sp, _) = probe.project(&probe.mvp().transform_point(v));
+            [px(sp.x, BITS), px(sp.y, BITS)]
+        })
+        .collect();
+    let (vertices, vertex_max, vertex_sum) = vertex_errors(&scene.screen, &ours);
+    let vertex = Errors {
+        vertices,
+        vertex_max,
+        vertex_sum,
+        ..Errors::default()
+    };
+    let Some(reference) = &scene.render else {
+        return Ok(vertex);
+    };
+
+    // Colours: Gouraud into Rgb888, the configuration exactly.
+    let mut zbuf = vec![u16::MAX; pixels];
+    let depth = DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
+    let mut p = Pipeline::<S, _, _, _, BITS, P>::new(
+        &xf,
+        vp,
+        cull,
+        depth,
+        GouraudLit::<S, Rgb888, 1>::new(lighting::<S>(&def.camera)),
+    )
+    .with_numerics::<Nu>();
+    let mut rgb = vec![0u8; pixels * 3];
+    {
+        let mut fb = Framebuffer::<Rgb888>::new(&mut rgb, w, h).map_err(|e| format!("{e:?}"))?;
+        let mesh = Mesh {
+            positions: &positions,
+            normals: Some(&normals),
+            colors: None,
+            triangles: &def.tris,
+        };
+        let Ok(_) = p.draw(&mut fb, &mesh);
+    }
+
+    // Triangle ids: each face painted with its id (three unshared corners per triangle). Ids and
+    // coverage do not depend on perspective-correct interpolation (depth is affine in screen space
+    // either way), and a constant is reproduced exactly only by affine interpolation, so this
+    // render is always affine.
+    let mut face_pos = Vec::with_capacity(def.tris.len() * 3);
+    let mut face_col = Vec::with_capacity(def.tris.len() * 3);
+    let mut face_tri = Vec::with_capacity(def.tris.len());
+    for (t, tri) in def.tris.iter().enumerate() {
+        let base = face_pos.len() as u32;
+        for &i in tri {
+            face_pos.push(positions[i as usize]);
+            face_col.push(id_color(t as u32));
+        }
+        face_tri.push([base, base + 1, base + 2]);
+    }
+    let mut ids_rgb = vec![0u8; pixels * 3];
+    {
+        let mut fb =
+            Framebuffer::<Rgb888>::new(&mut ids_rgb, w, h).map_err(|e| format!("{e:?}"))?;
+        let Ok(()) = fb.clear(id_color(NO_ID));
+        let mut zbuf = vec![u16::MAX; pixels];
+        let depth =
+            DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
+        let mut p = Pipeline::<S, _, _, _, BITS, false>::new(&xf, vp, cull, depth, FaceIds)
+            .with_numerics::<Nu>();
+        let mesh = Mesh {
+            positions: &face_pos,
+            normals: None,
+            colors: Some(&face_col),
+            triangles: &face_tri,
+        };
+        let Ok(_) = p.draw(&mut fb, &mesh);
+    }
+    let ids: Vec<Option<u32>> = ids_rgb
+        .chunks_exact(3)
+        .map(|c| {
+            let id = color_id(Rgb888::new(c[0], c[1], c[2]));
+            (id != NO_ID).then_some(id)
+        })
+        .collect();
+    let colors: Vec<[u8; 3]> = rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    Ok(vertex.merge(&image_errors(reference, &scene.colors, &ids, &colors)))
+}
+
+/// The M1 frame callgrind counts: the whole draw call of one frame, nothing else. Generic, so each
+/// configuration has its own copy; `--toggle-collect='*counted_frame*'` matches all of them, and
+/// each counting process runs exactly one.
+#[inline(never)]
+pub fn counted_frame<S: Scalar, const BITS: u32, const P: bool, Nu: Numerics>(
+    p: &mut Pipeline<S, CullClockwise, DepthBuffer<'_>, GouraudLit<S, Rgb565, 1>, BITS, P, Nu>,
+    fb: &mut Framebuffer<'_, Rgb565>,
+    mesh: &Mesh<'_, S, u32>,
+) -> RenderStats {
+    let Ok(stats) = p.draw(fb, mesh);
+    stats
+}
+
+fn count<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numerics>(
+    def: &SceneDef,
+) -> Result<String, String> {
+    let (w, h) = (def.width, def.height);
+    let xf = transforms::<S, N>(&def.camera, w, h)
+        .ok_or("the camera or the projection is not representable")?;
+    let positions: Vec<Vec3<S>> = def.positions.iter().map(|&p| vec_s(p)).collect();
+    let normals: Vec<Vec3<S>> = def.normals.iter().map(|&n| vec_s(n)).collect();
+    let mesh = Mesh {
+        positions: &positions,
+        normals: Some(&normals),
+        colors: None,
+        triangles: &def.tris,
+    };
+    let pixels = w as usize * h as usize;
+    let mut buf = vec![0u16; pixels];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, w, h).map_err(|e| format!("{e:?}"))?;
+    let mut zbuf = vec![u16::MAX; pixels];
+    let depth = DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
+    let mut p = Pipeline::<S, _, _, _, BITS, P>::new(
+        &xf,
+        Viewport::new(w, h),
+        CullClockwise,
+        depth,
+        GouraudLit::<S, Rgb565, 1>::new(lighting::<S>(&def.camera)),
+    )
+    .with_numerics::<Nu>();
+    // The warm frame, then clear: neither is counted.
+    let Ok(_) = p.draw(&mut fb, &mesh);
+    let Ok(()) = fb.clear(Rgb565::BLACK);
+    p.depth.clear(u16::MAX);
+    let stats = counted_frame(&mut p, black_box(&mut fb), black_box(&mesh));
+    let checksum = fb
+        .as_slice()
+        .iter()
+        .fold(0u32, |a, &v| a.rotate_left(5) ^ u32::from(v));
+    Ok(format!(
+        "drawn={} culled={} clipped={} checksum={checksum:08x}",
+        stats.drawn, stats.culled, stats.clipped
+    ))
+}
