@@ -7,7 +7,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
 use rasterizer_core::geom::SubPoint;
-use rasterizer_core::math::{Angle, Fx, Fx16, Mat4, Vec3, Vec4};
+use rasterizer_core::math::{Fx, Fx16, Mat4, Vec4};
 use rasterizer_core::numerics::{
     Custom, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics, ReciprocalDivide,
     Standard,
@@ -18,51 +18,14 @@ use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, Transforms, Viewpor
 use rasterizer_core::raster::interp::{
     fill_triangle_interp_with, Compare, DepthBuffer, ScreenVertex,
 };
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::Framebuffer;
 
 type Recip = Custom<ReciprocalDivide, 16, ExactSpans>;
 type Newton = Custom<NewtonDivide, 16, ExactSpans>;
 type Gradient = Custom<ExactDivide, 16, GradientSpans>;
 
-fn transforms(w: u32, h: u32) -> Transforms<Fx16> {
-    Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(30)),
-        view: Mat4::look_at(
-            Vec3::from_ints(0, 0, 3),
-            Vec3::default(),
-            Vec3::from_ints(0, 1, 0),
-        )
-        .unwrap(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(i64::from(w), i64::from(h)),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap(),
-    }
-}
-
-fn lighting() -> Lighting<Fx16, 1> {
-    let mut l = Lighting::new(
-        Material {
-            ambient: Rgb888::new(40, 30, 30),
-            diffuse: Rgb888::new(220, 140, 80),
-            specular: Rgb888::WHITE,
-            shininess: 16,
-        },
-        Rgb888::WHITE,
-        Specular::BlinnPhong,
-        Vec3::from_ints(0, 0, 3),
-    );
-    l.add_light(Light::Directional {
-        direction: Vec3::from_ints(1, 1, 1),
-        color: Rgb888::WHITE,
-    })
-    .unwrap();
-    l
-}
+// The M1 scene's matrices (aspect 4:3, as the 160 x 120 frames here) and lighting.
+use host_tools::scenes3d::{lighting, transforms};
 
 /// A pipeline of format `Fx<F>` with numerics `N`, only for its `project`.
 fn projector<const F: u32, N: Numerics>(
@@ -294,7 +257,7 @@ fn bands_equal_whole_frame_for_every_numerics() {
             let mut fb = Framebuffer::<Rgb565>::new(&mut whole, w, h).unwrap();
             let db = DepthBuffer::new(&mut depth, w, h, Compare::Less).unwrap();
             let mut p = Pipeline::<_, _, _, _, 4, false>::new(
-                &transforms(w, h),
+                &transforms(),
                 Viewport::new(w, h),
                 CullClockwise,
                 db,
@@ -310,7 +273,7 @@ fn bands_equal_whole_frame_for_every_numerics() {
             let mut out = vec![0u16; (w * h) as usize];
             let db = DepthBuffer::new(&mut band_depth, w, rows, Compare::Less).unwrap();
             let mut p = Pipeline::<_, _, _, _, 4, false>::new(
-                &transforms(w, h),
+                &transforms(),
                 Viewport::new(w, h),
                 CullClockwise,
                 db,

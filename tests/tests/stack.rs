@@ -46,18 +46,17 @@ use core::mem::size_of;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use rasterizer_core::geom::SubPoint;
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::math::Fx16;
 use rasterizer_core::mesh::PackedMesh;
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
 use rasterizer_core::pipeline::{
-    BandError, Banding, BinEntry, CachedVertex, Pipeline, RenderStats, Transforms, Viewport,
+    BandError, Banding, BinEntry, CachedVertex, Pipeline, RenderStats, Viewport,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::raster::line::draw_line;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
 use rasterizer_core::raster::triangle::{fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::Framebuffer;
 
 /// The stack of each measuring thread.
@@ -250,45 +249,8 @@ fn self_check() {
 
 // --- The scene ---
 
-fn transforms() -> Transforms<Fx16> {
-    Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(30)),
-        view: Mat4::look_at(
-            Vec3::from_ints(0, 0, 3),
-            Vec3::default(),
-            Vec3::from_ints(0, 1, 0),
-        )
-        .unwrap(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(i64::from(W), i64::from(H)),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap(),
-    }
-}
-
-/// The lighting of the M1 reference render (BENCHMARKS.md).
-fn lighting() -> Lighting<Fx16, 1> {
-    let mut l = Lighting::new(
-        Material {
-            ambient: Rgb888::new(40, 30, 30),
-            diffuse: Rgb888::new(220, 140, 80),
-            specular: Rgb888::WHITE,
-            shininess: 16,
-        },
-        Rgb888::WHITE,
-        Specular::BlinnPhong,
-        Vec3::from_ints(0, 0, 3),
-    );
-    l.add_light(Light::Directional {
-        direction: Vec3::from_ints(1, 1, 1),
-        color: Rgb888::WHITE,
-    })
-    .unwrap();
-    l
-}
+// The M1 scene's matrices and lighting, shared with the benchmarks.
+use host_tools::scenes3d::{lighting, transforms};
 
 /// How the frame is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
