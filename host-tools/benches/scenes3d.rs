@@ -1,6 +1,7 @@
 //! The 3D benchmark scenes of `shared/bench/WORKLOADS.md` (M1 Suzanne, M2 the Stanford bunny res3,
 //! M3 the full Stanford bunny) at 320 x 240: our pipeline (Gouraud, 16-bit depth buffer, back faces
-//! culled; `draw` and `draw_cached`) against euc 0.5.3 (`f32`, Gouraud, `f32` depth buffer, back
+//! culled; `draw` and `draw_cached`; and `draw` with the unlit, flat and Phong shading models)
+//! against euc 0.5.3 (`f32`, Gouraud, `f32` depth buffer, back
 //! faces culled; `benches/support/euc3d.rs`) drawing the same scene, in the same run. The scenes
 //! come from `host_tools::scenes3d`, as in `examples/count3d.rs`.
 //!
@@ -16,16 +17,19 @@
 #[path = "support/euc3d.rs"]
 mod euc3d;
 
-use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
+use criterion::measurement::WallTime;
+use criterion::{
+    criterion_group, criterion_main, BenchmarkGroup, Criterion, SamplingMode, Throughput,
+};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use euc3d::EucScene;
 use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
-use host_tools::scenes3d::{lighting, transforms, Scene};
+use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
 use rasterizer_core::math::Fx16;
 use rasterizer_core::pipeline::cull::CullClockwise;
-use rasterizer_core::pipeline::shading::GouraudLit;
-use rasterizer_core::pipeline::{CachedVertex, Pipeline, Viewport};
+use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
+use rasterizer_core::pipeline::{CachedVertex, Mesh, Pipeline, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer};
 use rasterizer_core::target::Framebuffer;
 use std::hint::black_box;
@@ -96,8 +100,61 @@ fn scene(c: &mut Criterion, scene: Scene) {
             total
         })
     });
+    // The other shading models, ours only (euc is compared on Gouraud).
+    drop(p);
+    let unlit = Unlit {
+        color: Rgb565::from(DIFFUSE),
+    };
+    other_shading(&mut g, "ours_unlit", unlit, &mesh, &mut fb);
+    other_shading(
+        &mut g,
+        "ours_flat",
+        FlatLit::new(lighting()),
+        &mesh,
+        &mut fb,
+    );
+    other_shading(
+        &mut g,
+        "ours_phong",
+        PhongLit::new(lighting()),
+        &mesh,
+        &mut fb,
+    );
     g.finish();
     black_box((fb.as_slice(), color.as_ref()));
+}
+
+/// Times `draw` of the scene with another shading model (depth buffer, back faces culled, 28.4).
+fn other_shading<Sh: Shading<Fx16, Color = Rgb565>>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    shading: Sh,
+    mesh: &Mesh<'_, Fx16, u32>,
+    fb: &mut Framebuffer<'_, Rgb565>,
+) {
+    let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
+    let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less).expect("depth buffer");
+    let mut p: Pipeline<Fx16, _, _, _, 4> = Pipeline::new(
+        &transforms(),
+        Viewport::new(WIDTH, HEIGHT),
+        CullClockwise,
+        depth,
+        shading,
+    );
+    g.bench_function(name, |b| {
+        b.iter_custom(|iters| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iters {
+                let Ok(()) = fb.clear(Rgb565::BLACK);
+                p.depth.clear(u16::MAX);
+                let t = Instant::now();
+                let Ok(stats) = p.draw(fb, black_box(mesh));
+                total += t.elapsed();
+                black_box(stats);
+            }
+            total
+        })
+    });
 }
 
 fn scenes3d(c: &mut Criterion) {
