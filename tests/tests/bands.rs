@@ -11,7 +11,6 @@ use rasterizer_core::pipeline::{
     BandError, Banding, BinEntry, CachedVertex, Mesh, MeshSource, Pipeline, Transforms, Viewport,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::Framebuffer;
 
 fn suzanne() -> host_tools::obj::LoadedMesh {
@@ -39,25 +38,8 @@ fn transforms(w: u32, h: u32, yaw: i32) -> Transforms<Fx16> {
     }
 }
 
-fn lighting() -> Lighting<Fx16, 1> {
-    let mut l = Lighting::new(
-        Material {
-            ambient: Rgb888::new(40, 30, 30),
-            diffuse: Rgb888::new(220, 140, 80),
-            specular: Rgb888::WHITE,
-            shininess: 16,
-        },
-        Rgb888::WHITE,
-        Specular::BlinnPhong,
-        Vec3::from_ints(0, 0, 3),
-    );
-    l.add_light(Light::Directional {
-        direction: Vec3::from_ints(1, 1, 1),
-        color: Rgb888::WHITE,
-    })
-    .unwrap();
-    l
-}
+// The M1 lighting, shared with the benchmarks.
+use host_tools::scenes3d::lighting;
 
 fn whole_frame<M, C, D, Sh>(mesh: &M, w: u32, h: u32, mut p: Pipeline<Fx16, C, D, Sh>) -> Vec<u16>
 where
