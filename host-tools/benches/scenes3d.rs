@@ -43,8 +43,8 @@ fn scene(c: &mut Criterion, scene: Scene) {
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, WIDTH, HEIGHT).expect("320 x 240 buffer");
     let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
     let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less).expect("depth buffer");
-    // 28.4 screen coordinates, affine interpolation: the pipeline of the `m1` count.
-    let mut p: Pipeline<Fx16, _, _, _, 4> = Pipeline::new(
+    // 26.6 screen coordinates, affine interpolation: the pipeline of the `m1` count.
+    let mut p: Pipeline<Fx16, _, _, _, 6> = Pipeline::new(
         &xf,
         Viewport::new(WIDTH, HEIGHT),
         CullClockwise,
@@ -124,7 +124,7 @@ fn scene(c: &mut Criterion, scene: Scene) {
     black_box((fb.as_slice(), color.as_ref()));
 }
 
-/// Times `draw` of the scene with another shading model (depth buffer, back faces culled, 28.4).
+/// Times `draw` of the scene with another shading model (depth buffer, back faces culled, 26.6).
 fn other_shading<Sh: Shading<Fx16, Color = Rgb565>>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
@@ -134,7 +134,7 @@ fn other_shading<Sh: Shading<Fx16, Color = Rgb565>>(
 ) {
     let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
     let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less).expect("depth buffer");
-    let mut p: Pipeline<Fx16, _, _, _, 4> = Pipeline::new(
+    let mut p: Pipeline<Fx16, _, _, _, 6> = Pipeline::new(
         &transforms(),
         Viewport::new(WIDTH, HEIGHT),
         CullClockwise,

@@ -104,15 +104,15 @@ impl Cull for KeepAll {
 
 type Fb<'a> = Framebuffer<'a, Rgb565>;
 type Mesh3<'a> = Mesh<'a, Fx16, u32>;
-/// A 16.16 pipeline with 28.4 screen coordinates and affine interpolation.
-type Pipe<C, D, Sh> = Pipeline<Fx16, C, D, Sh, 4>;
+/// A 16.16 pipeline with 26.6 screen coordinates and affine interpolation.
+type Pipe<C, D, Sh> = Pipeline<Fx16, C, D, Sh, 6>;
 /// A counted frame function.
 type FrameFn<C, D, Sh> = fn(&mut Pipe<C, D, Sh>, &mut Fb<'_>, &Mesh3<'_>) -> RenderStats;
 
 /// The drawing of one frame, shared by the warm frame and the counted `frame_*` functions.
 #[inline(always)]
 fn draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
-    p: &mut Pipeline<Fx16, C, D, Sh, 4>,
+    p: &mut Pipeline<Fx16, C, D, Sh, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -124,7 +124,7 @@ fn draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
 
 #[inline(never)]
 fn frame_m1(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -134,7 +134,7 @@ fn frame_m1(
 
 #[inline(never)]
 fn frame_m1_nodepth(
-    p: &mut Pipeline<Fx16, CullClockwise, NoDepth, GouraudLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, NoDepth, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -144,7 +144,7 @@ fn frame_m1_nodepth(
 
 #[inline(never)]
 fn frame_m1_nocull(
-    p: &mut Pipeline<Fx16, NoCull, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, NoCull, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -154,7 +154,7 @@ fn frame_m1_nocull(
 
 #[inline(never)]
 fn frame_m1_unlit(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Unlit<Rgb565>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Unlit<Rgb565>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -164,7 +164,7 @@ fn frame_m1_unlit(
 
 #[inline(never)]
 fn frame_m1_flat(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, FlatLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, FlatLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -174,7 +174,7 @@ fn frame_m1_flat(
 
 #[inline(never)]
 fn frame_m1_phong(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, PhongLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, PhongLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -184,7 +184,7 @@ fn frame_m1_phong(
 
 #[inline(never)]
 fn frame_m1_unlit_nodepth_nocull(
-    p: &mut Pipeline<Fx16, NoCull, NoDepth, Unlit<Rgb565>, 4>,
+    p: &mut Pipeline<Fx16, NoCull, NoDepth, Unlit<Rgb565>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -194,7 +194,7 @@ fn frame_m1_unlit_nodepth_nocull(
 
 #[inline(never)]
 fn frame_m1_wireframe(
-    p: &mut Pipeline<Fx16, CullClockwise, NoDepth, Unlit<Rgb565>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, NoDepth, Unlit<Rgb565>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -205,10 +205,10 @@ fn frame_m1_wireframe(
 
 #[inline(never)]
 fn frame_m1_cached(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
-    cache: &mut [CachedVertex<Fx16, [i32; 3], 4>],
+    cache: &mut [CachedVertex<Fx16, [i32; 3], 6>],
 ) -> RenderStats {
     black_box("frame_m1_cached");
     let Ok(stats) = p.draw_cached(fb, mesh, cache);
@@ -216,7 +216,7 @@ fn frame_m1_cached(
 }
 
 type BandPipeline<'a> =
-    Pipeline<Fx16, CullClockwise, DepthBuffer<'a>, GouraudLit<Fx16, Rgb565, 1>, 4>;
+    Pipeline<Fx16, CullClockwise, DepthBuffer<'a>, GouraudLit<Fx16, Rgb565, 1>, 6>;
 
 /// One banded M1 frame: each finished band is copied into `fb` (where firmware would start the
 /// display's DMA); the copy is a few thousand instructions of the count.
@@ -228,7 +228,7 @@ fn banded(
     mesh: &Mesh3<'_>,
     band: &mut [u16],
     bins: &mut [BinEntry],
-    cache: &mut [CachedVertex<Fx16, [i32; 3], 4>],
+    cache: &mut [CachedVertex<Fx16, [i32; 3], 6>],
 ) -> RenderStats {
     let banding = Banding {
         width: WIDTH,
@@ -255,7 +255,7 @@ macro_rules! band_frame {
             mesh: &Mesh3<'_>,
             band: &mut [u16],
             bins: &mut [BinEntry],
-            cache: &mut [CachedVertex<Fx16, [i32; 3], 4>],
+            cache: &mut [CachedVertex<Fx16, [i32; 3], 6>],
         ) -> RenderStats {
             black_box(stringify!($name));
             banded(p, $rows, fb, mesh, band, bins, cache)
@@ -271,7 +271,7 @@ band_frame!(frame_m1_band16_cached, 16);
 
 #[inline(never)]
 fn frame_m1_depth_always(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -281,7 +281,7 @@ fn frame_m1_depth_always(
 
 #[inline(never)]
 fn frame_m1_cull_keepall(
-    p: &mut Pipeline<Fx16, KeepAll, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 4>,
+    p: &mut Pipeline<Fx16, KeepAll, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
 ) -> RenderStats {
@@ -292,7 +292,7 @@ fn frame_m1_cull_keepall(
 /// Builds a pipeline, draws the warm frame (not counted), clears both buffers (not counted) and
 /// calls `frame` once for the counted frame.
 fn run<C, D, Sh>(
-    mut p: Pipeline<Fx16, C, D, Sh, 4>,
+    mut p: Pipeline<Fx16, C, D, Sh, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
     clear_depth: fn(&mut D),
