@@ -27,6 +27,10 @@ use embedded_graphics_core::prelude::RgbColor;
 use embedded_graphics_core::primitives::Rectangle;
 use shading::{Shading, VertexIn};
 
+/// The sub-pixel bits of screen coordinates a [`Pipeline`] (and its [`CachedVertex`]) has unless
+/// told otherwise: 6, so 26.6 (`docs/ACCURACY.md` measures the choice).
+pub const DEFAULT_BITS: u32 = 6;
+
 /// An index into a mesh's vertex arrays.
 pub trait VertexIndex: Copy {
     /// As `usize`.
@@ -191,7 +195,7 @@ pub struct RenderStats {
 /// Its size is the RAM a cached draw needs per mesh vertex: 40 bytes for 16.16 with three
 /// varyings (Gouraud), so 20 KB for Suzanne's 507 vertices.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct CachedVertex<S, V, const BITS: u32 = 6> {
+pub struct CachedVertex<S, V, const BITS: u32 = DEFAULT_BITS> {
     clip: Vec4<S>,
     screen: SubPoint<BITS>,
     z: u16,
@@ -301,8 +305,15 @@ pub struct Transforms<S> {
 /// precision of interpolation. [`Pipeline::new`] makes a [`Standard`] pipeline;
 /// [`Pipeline::with_numerics`] changes them.
 #[derive(Debug, Clone)]
-pub struct Pipeline<S, C, D, Sh, const BITS: u32 = 6, const PERSPECTIVE: bool = false, N = Standard>
-{
+pub struct Pipeline<
+    S,
+    C,
+    D,
+    Sh,
+    const BITS: u32 = DEFAULT_BITS,
+    const PERSPECTIVE: bool = false,
+    N = Standard,
+> {
     mvp: Mat4<S>,
     model: Mat4<S>,
     normal_matrix: Mat4<S>,
