@@ -5,10 +5,15 @@ use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::numerics::{
+    Custom, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics, ReciprocalDivide,
+    Standard,
+};
 use rasterizer_core::pipeline::cull::{CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{GouraudLit, Shading, VertexColors};
 use rasterizer_core::pipeline::{
     BandError, Banding, BinEntry, CachedVertex, Mesh, MeshSource, Pipeline, Transforms, Viewport,
+    DEFAULT_BITS,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::target::Framebuffer;
@@ -41,12 +46,18 @@ fn transforms(w: u32, h: u32, yaw: i32) -> Transforms<Fx16> {
 // The M1 lighting, shared with the benchmarks.
 use host_tools::scenes3d::lighting;
 
-fn whole_frame<M, C, D, Sh>(mesh: &M, w: u32, h: u32, mut p: Pipeline<Fx16, C, D, Sh>) -> Vec<u16>
+fn whole_frame<M, C, D, Sh, N>(
+    mesh: &M,
+    w: u32,
+    h: u32,
+    mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, false, N>,
+) -> Vec<u16>
 where
     M: MeshSource<Fx16>,
     C: rasterizer_core::pipeline::cull::Cull,
     D: DepthTest,
     Sh: Shading<Fx16, Color = Rgb565>,
+    N: Numerics,
 {
     let mut whole = vec![0u16; (w * h) as usize];
     let mut fb = Framebuffer::<Rgb565>::new(&mut whole, w, h).unwrap();
@@ -55,18 +66,19 @@ where
     whole
 }
 
-fn banded<M, C, D, Sh>(
+fn banded<M, C, D, Sh, N>(
     mesh: &M,
     w: u32,
     h: u32,
     rows: u32,
-    mut p: Pipeline<Fx16, C, D, Sh>,
+    mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, false, N>,
 ) -> Vec<u16>
 where
     M: MeshSource<Fx16>,
     C: rasterizer_core::pipeline::cull::Cull,
     D: DepthTest,
     Sh: Shading<Fx16, Color = Rgb565>,
+    N: Numerics,
 {
     let mut band = vec![0u16; (w * rows.min(h)) as usize];
     let mut bins = vec![BinEntry::default(); mesh.triangle_count()];
@@ -143,6 +155,43 @@ fn compare_bands<M, C, Sh>(
             "{differ} pixels differ with bands of {rows} rows"
         );
     }
+}
+
+/// Band renders equal the whole frame for every numeric knob (`rasterizer_core::numerics`): with
+/// reciprocal divides, fewer interpolation bits and gradient span starts too, the values of a pixel
+/// depend on its position alone.
+#[test]
+fn suzanne_bands_for_every_numerics() {
+    type Gouraud = GouraudLit<Fx16, Rgb565, 1>;
+    fn pipeline<N: Numerics>(
+        depth: &mut [u16],
+        rows: u32,
+    ) -> Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Gouraud, DEFAULT_BITS, false, N> {
+        Pipeline::new(
+            &transforms(160, 120, 30),
+            Viewport::new(160, 120),
+            CullClockwise,
+            DepthBuffer::new(depth, 160, rows, Compare::Less).unwrap(),
+            GouraudLit::new(lighting()),
+        )
+        .with_numerics::<N>()
+    }
+    fn check<N: Numerics>(mesh: &Mesh<'_, Fx16, u32>) {
+        let (w, h) = (160u32, 120u32);
+        let mut z = vec![u16::MAX; (w * h) as usize];
+        let whole = whole_frame(mesh, w, h, pipeline::<N>(&mut z, h));
+        for rows in [1u32, 7, 16, 120] {
+            let mut z = vec![u16::MAX; (w * rows) as usize];
+            let out = banded(mesh, w, h, rows, pipeline::<N>(&mut z, rows));
+            assert!(out == whole, "{rows} rows differ");
+        }
+    }
+    let m = suzanne();
+    let mesh = m.mesh();
+    check::<Standard>(&mesh);
+    check::<Custom<ExactDivide, 16, GradientSpans>>(&mesh);
+    check::<Custom<NewtonDivide, 8, GradientSpans>>(&mesh);
+    check::<Custom<ReciprocalDivide, 12, ExactSpans>>(&mesh);
 }
 
 #[test]
