@@ -5,6 +5,7 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
 use rasterizer_core::geom::{SubPoint, GUARD_BAND_PIXELS};
+use rasterizer_core::raster::interp::{fill_triangle_interp, NoDepth, ScreenVertex};
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
 use rasterizer_core::target::{AnyTarget, Framebuffer};
 use std::collections::BTreeSet;
@@ -508,5 +509,46 @@ proptest! {
         let pts = [Point::new(x0, y0), Point::new(x1, y1), Point::new(x2, y2)];
         let mut outline = StrictMock::<Rgb565>::new(20, 16);
         draw_triangle(&mut AnyTarget::new(&mut outline), pts, Rgb565::WHITE).unwrap();
+    }
+}
+
+/// The pixels the interpolating (3D) fill writes for `v`, with no depth buffer.
+fn interp_mock<const B: u32>(w: u32, h: u32, v: [SubPoint<B>; 3]) -> StrictMock<BinaryColor> {
+    let mut mock = StrictMock::new(w, h);
+    let vertices = v.map(|p| ScreenVertex {
+        p,
+        z: 0,
+        var: [0i32],
+        q: 1,
+    });
+    fill_triangle_interp::<_, _, _, _, B, false>(
+        &mut AnyTarget::new(&mut mock),
+        &mut NoDepth,
+        vertices,
+        |_| BinaryColor::On,
+    )
+    .unwrap();
+    mock
+}
+
+/// A vertex within a few pixels of `(16, 16)`: most such triangles reach at most four pixel
+/// centres, where the fill asks the span walk for coverage before setting up its planes.
+fn tiny() -> impl Strategy<Value = i32> {
+    (16 * 64 - 160)..(16 * 64 + 160)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    #[test]
+    fn interp_coverage_of_tiny_triangles_equals_reference(x0 in tiny(), y0 in tiny(), x1 in tiny(), y1 in tiny(), x2 in tiny(), y2 in tiny()) {
+        let v = [SubPoint::<6>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        prop_assert_eq!(interp_mock(32, 32, v).written(), reference_set(v, 32, 32));
+    }
+
+    #[test]
+    fn interp_coverage_equals_reference(x0 in coord(), y0 in coord(), x1 in coord(), y1 in coord(), x2 in coord(), y2 in coord()) {
+        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        prop_assert_eq!(interp_mock(48, 40, v).written(), reference_set(v, 48, 40));
     }
 }
