@@ -803,9 +803,10 @@ where
     /// The pipeline's depth stage must hold `banding.rows` rows too (a [`DepthBuffer`] of
     /// `width` x `rows`); it is cleared to `banding.clear_depth` before each band. Triangles are
     /// binned once per frame (`bins` holds one entry per visible triangle), so each band draws
-    /// only the triangles that touch it, in mesh order. `cache` is as in
-    /// [`Pipeline::draw_cached`] (may be empty: vertices shared across bands are then processed
-    /// again). The pixels are exactly those of a whole-frame [`Pipeline::draw`] of the same scene,
+    /// only the triangles that touch it, in mesh order; finding them is one test per bin and band
+    /// (about 9,000 for M1's 613 visible triangles in 15 bands, far below the drawing). `cache` is
+    /// as in [`Pipeline::draw_cached`] (may be empty: vertices shared across bands are then
+    /// processed again). The pixels are exactly those of a whole-frame [`Pipeline::draw`] of the same scene,
     /// for any band height.
     ///
     /// [`DepthBuffer`]: crate::raster::interp::DepthBuffer
@@ -874,27 +875,18 @@ where
                 actual: bins.len(),
             });
         }
-        let bins = &mut bins[..count];
-        bins.sort_unstable_by_key(|b| (b.first, b.triangle));
-        // Sweep the bands: [start, next) holds the triangles that began at or above this band.
-        let (mut start, mut next) = (0usize, 0usize);
+        // The bins stay in mesh order, and each band scans them for the triangles that touch it:
+        // the order a whole-frame draw has, for a test per bin and band. (Keeping a window sorted
+        // by first band and then by triangle cost M1 in 16-row bands 11 % of its frame.) `lo`
+        // skips the leading bins that ended above the band.
+        let bins = &bins[..count];
+        let mut lo = 0usize;
         let mut scratch = RenderStats::default();
         let bands = height.div_ceil(rows);
         for b in 0..bands {
-            while next < bins.len() && bins[next].first <= b {
-                next += 1;
+            while bins.get(lo).is_some_and(|e| e.last < b) {
+                lo += 1;
             }
-            // Retire the triangles that ended above this band to the front of the window.
-            let mut i = start;
-            while i < next {
-                if bins[i].last < b {
-                    bins.swap(i, start);
-                    start += 1;
-                }
-                i += 1;
-            }
-            // Mesh order within the band, as a whole-frame draw has it.
-            bins[start..next].sort_unstable_by_key(|e| e.triangle);
             let y0 = b * rows;
             let h = rows.min(height - y0);
             let len = Framebuffer::<Px>::required_len(width, h).unwrap_or(0);
@@ -906,7 +898,7 @@ where
             let mut strip = Band::new(fb, y0 as i32);
             {
                 let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
-                for e in &bins[start..next] {
+                for e in bins[lo..].iter().filter(|e| e.first <= b && b <= e.last) {
                     let Ok(()) = self.draw_triangle(
                         &mut target,
                         mesh,
