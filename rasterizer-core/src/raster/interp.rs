@@ -641,10 +641,16 @@ where
             gradient &= grad(Z);
         }
     }
+    // A triangle on one row of pixel centres has one span: it never moves down a row.
+    let one_row = rows.end - rows.start == 1;
     let mut setup = |i: usize| {
         let p = planes[i];
         let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << N::FRAC, den2);
-        let (rq, rr) = divmod((i128::from(p.b) * i128::from(2 * s)) << N::FRAC, den2);
+        let (rq, rr) = if one_row {
+            (0, 0)
+        } else {
+            divmod((i128::from(p.b) * i128::from(2 * s)) << N::FRAC, den2)
+        };
         // The per-pixel step is the column move rounded: round(a 2s 2^16 / den2).
         steps[i] = cq + i64::from(2 * cr >= den2);
         col[i] = Exact { q: cq, r: cr };
