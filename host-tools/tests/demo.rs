@@ -1,4 +1,5 @@
-//! Runs the `demo` command end to end: every PNG is written, and a bad `--out` fails cleanly.
+//! Runs the `demo` command end to end: every PNG is written and equals the README's gallery in
+//! `docs/images/`, and a bad `--out` fails cleanly.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -58,6 +59,17 @@ fn demo_writes_every_picture() {
         // A blank 600x450 (or 640x480) picture compresses to well under a kilobyte; every scene has real content.
         assert!(bytes.len() > 2000, "{file} is only {} bytes", bytes.len());
         assert!(stdout.contains(file), "{file} not reported:\n{stdout}");
+        // The README's gallery is this output: a change that moves a pixel renders it again.
+        let shown = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../docs/images")
+            .join(file);
+        let committed =
+            std::fs::read(&shown).unwrap_or_else(|e| panic!("{}: {e}", shown.display()));
+        assert!(
+            committed == bytes,
+            "docs/images/{file} is not what the demo draws now: run \
+             `cargo run --release -p host-tools -- demo` from the repository root"
+        );
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
