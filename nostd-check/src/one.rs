@@ -50,25 +50,8 @@ compile_error!(
     "depth, cull, cached and banded need a shading feature: unlit, flat, gouraud or phong"
 );
 
-/// A whole 320 x 240 Rgb565 frame, for the 2D calls and the whole-frame 3D draws.
-#[cfg(any(
-    feature = "line2d",
-    feature = "triangle2d",
-    feature = "gouraud2d",
-    feature = "polygon2d",
-    all(
-        any(
-            feature = "unlit",
-            feature = "flat",
-            feature = "gouraud",
-            feature = "phong"
-        ),
-        not(feature = "banded")
-    )
-))]
-static mut FRAME: [u16; (W * H) as usize] = [0; (W * H) as usize];
-
-/// The static frame as a framebuffer.
+/// A whole 320 x 240 Rgb565 frame (a static, for the 2D calls and the whole-frame 3D draws) as a
+/// framebuffer.
 #[cfg(any(
     feature = "line2d",
     feature = "triangle2d",
@@ -87,6 +70,7 @@ static mut FRAME: [u16; (W * H) as usize] = [0; (W * H) as usize];
 fn frame(
 ) -> Option<rasterizer_core::target::Framebuffer<'static, embedded_graphics_core::pixelcolor::Rgb565>>
 {
+    static mut FRAME: [u16; (W * H) as usize] = [0; (W * H) as usize];
     // SAFETY: `main` calls this once per use and drops the framebuffer before the next call; nothing
     // else refers to FRAME.
     #[allow(static_mut_refs)]
