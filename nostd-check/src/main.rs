@@ -8,6 +8,14 @@
 #![no_std]
 #![no_main]
 
+#[cfg(any(
+    feature = "all",
+    feature = "unlit",
+    feature = "flat",
+    feature = "gouraud",
+    feature = "phong"
+))]
+mod m1;
 #[cfg(not(feature = "all"))]
 mod one;
 
@@ -78,31 +86,19 @@ where
 /// float-free default stages.
 #[cfg(feature = "all")]
 fn draw_3d(buf: &mut [u16]) -> u32 {
-    use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+    use rasterizer_core::math::{Fx16, Vec3};
     use rasterizer_core::mesh::PackedMesh;
     use rasterizer_core::pipeline::cull::{CullClockwise, NoCull};
     use rasterizer_core::pipeline::shading::{FlatLit, PhongLit, Unlit};
-    use rasterizer_core::pipeline::{
-        Banding, BinEntry, CachedVertex, Pipeline, Transforms, Viewport,
-    };
+    use rasterizer_core::pipeline::{Banding, BinEntry, CachedVertex, Pipeline, Viewport};
     use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
     use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 
-    let Ok(mesh) = PackedMesh::parse(black_box(MESH)) else {
+    let Ok(mesh) = PackedMesh::parse(black_box(m1::MESH)) else {
         return 0;
     };
     let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
-    let xf = Transforms {
-        model: Mat4::rotation_y(black_box(Angle::from_degrees(30))),
-        view: Mat4::look_at(p(0, 0, 3), p(0, 0, 0), p(0, 1, 0)).unwrap_or_default(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(4, 3),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap_or_default(),
-    };
+    let xf = m1::transforms();
     let mut lighting = Lighting::<Fx16, 2>::new(
         Material {
             ambient: Rgb888::new(9, 9, 9),
@@ -170,10 +166,6 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
     }
     drawn
 }
-
-/// A mesh converted on the host.
-#[cfg(feature = "all")]
-static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
 
 #[cfg(feature = "all")]
 #[unsafe(no_mangle)]

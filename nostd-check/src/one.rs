@@ -144,12 +144,10 @@ mod three_d {
     use super::{H, W};
     use core::hint::black_box;
     use embedded_graphics_core::pixelcolor::Rgb565;
-    use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+    use rasterizer_core::math::Fx16;
     use rasterizer_core::mesh::PackedMesh;
-    use rasterizer_core::pipeline::{Pipeline, Transforms, Viewport};
+    use rasterizer_core::pipeline::{Pipeline, Viewport};
 
-    /// The mesh, converted on the host.
-    static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
     /// Suzanne's vertices: the length of the vertex cache.
     #[cfg(feature = "cached")]
     const VERTICES: usize = 507;
@@ -200,6 +198,7 @@ mod three_d {
     #[cfg(not(feature = "unlit"))]
     fn shading() -> Sh {
         use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+        use rasterizer_core::math::Vec3;
         use rasterizer_core::shade::{Light, Lighting, Material, Specular};
         let mut lighting = Lighting::<Fx16, 1>::new(
             Material {
@@ -221,21 +220,10 @@ mod three_d {
 
     /// The M1 frame; returns the number of triangles drawn.
     pub fn draw() -> u32 {
-        let Ok(mesh) = PackedMesh::parse(black_box(MESH)) else {
+        let Ok(mesh) = PackedMesh::parse(black_box(crate::m1::MESH)) else {
             return 0;
         };
-        let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
-        let xf = Transforms {
-            model: Mat4::rotation_y(black_box(Angle::from_degrees(30))),
-            view: Mat4::look_at(p(0, 0, 3), p(0, 0, 0), p(0, 1, 0)).unwrap_or_default(),
-            projection: Mat4::perspective(
-                Angle::from_degrees(60),
-                Fx16::from_ratio(W.into(), H.into()),
-                Fx16::from_ratio(1, 10),
-                Fx16::from_int(100),
-            )
-            .unwrap_or_default(),
-        };
+        let xf = crate::m1::transforms();
         #[cfg(feature = "cull")]
         let cull = rasterizer_core::pipeline::cull::CullClockwise;
         #[cfg(not(feature = "cull"))]
