@@ -7,3 +7,4 @@ pub mod reference3d;
 pub mod scenefile;
 pub mod scenes;
 pub mod scenes3d;
+mod vec64;

@@ -20,7 +20,8 @@ pub type M4 = [[f64; 4]; 4];
 /// A homogeneous point.
 pub type V4 = [f64; 4];
 /// A 3D point or direction.
-pub type V3 = [f64; 3];
+pub use crate::vec64::V3;
+use crate::vec64::{add as add3, cross as cross3, dot as dot3, sub as sub3};
 
 /// The identity.
 pub fn identity() -> M4 {
@@ -106,22 +107,6 @@ pub fn rotation_z(rad: f64) -> M4 {
         [s, c, 0.0, 0.0],
         [0.0, 0.0, 1.0, 0.0],
         [0.0, 0.0, 0.0, 1.0],
-    ]
-}
-
-fn sub3(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot3(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross3(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
     ]
 }
 
@@ -446,10 +431,6 @@ fn draw_polygon(out: &mut RefRender, best: &mut [f64], scr: &[V3], area: f64, id
 
 // ---------------------------------------------------------------------------------------------
 // Lighting and the true Gouraud image.
-
-fn add3(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
 
 /// The channels of a colour as `f64`.
 fn channels(c: Rgb888) -> [f64; 3] {

@@ -27,6 +27,7 @@ pub use encode::{decode_normal, encode, quantise_normal, MeshData, Quantiser};
 pub use rust_source::{bytes_from_rust_source, is_rust_identifier, rust_source, static_name_for};
 pub use triangulate::{newell_normal, triangulate_polygon};
 
+use crate::vec64::{cross, dot, sub, V3 as P3};
 use indicatif::{ProgressBar, ProgressStyle};
 use rasterizer_core::mesh::{PackedMesh, MAX_COUNT};
 use std::collections::HashMap;
@@ -231,24 +232,6 @@ impl Progress {
             bar.finish_and_clear();
         }
     }
-}
-
-type P3 = [f64; 3];
-
-fn sub(a: P3, b: P3) -> P3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: P3, b: P3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: P3, b: P3) -> P3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// A normal's quanta packed into a key, tagged so it never equals a small index.

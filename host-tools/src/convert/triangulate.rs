@@ -8,24 +8,7 @@
 //! triangles without a panic: when no ear is found the most convex corner is clipped anyway, and a
 //! polygon with no area at all is fanned; triangles of no area are dropped later.
 
-/// A 3D point or vector.
-type P3 = [f64; 3];
-
-fn sub(a: P3, b: P3) -> P3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: P3, b: P3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: P3, b: P3) -> P3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
+use crate::vec64::{cross, dot, sub, V3 as P3};
 
 /// `v` scaled to unit length, or `None` for a zero or non-finite vector.
 pub(super) fn normalize(v: P3) -> Option<P3> {
