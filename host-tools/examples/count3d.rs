@@ -63,7 +63,7 @@ use rasterizer_core::math::Fx16;
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
 use rasterizer_core::pipeline::{
-    Banding, BinEntry, CachedVertex, Mesh, Pipeline, RenderStats, Viewport,
+    Banding, BinEntry, Mesh, Pipeline, RenderStats, VertexSlot, Viewport,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::target::Framebuffer;
@@ -74,6 +74,7 @@ use std::process::ExitCode;
 /// Every combination, in the order the script reports them.
 const COMBINATIONS: [&str; 17] = [
     "m1",
+    "m1_noscratch",
     "m1_nodepth",
     "m1_nocull",
     "m1_unlit",
@@ -81,14 +82,13 @@ const COMBINATIONS: [&str; 17] = [
     "m1_phong",
     "m1_unlit_nodepth_nocull",
     "m1_wireframe",
-    "m1_cached",
     "m1_depth_always",
     "m1_cull_keepall",
     "m1_band8",
     "m1_band16",
     "m1_band32",
     "m1_band240",
-    "m1_band16_cached",
+    "m1_band16_noscratch",
     "euc",
 ];
 
@@ -106,8 +106,11 @@ type Fb<'a> = Framebuffer<'a, Rgb565>;
 type Mesh3<'a> = Mesh<'a, Fx16, u32>;
 /// A 16.16 pipeline with 26.6 screen coordinates and affine interpolation.
 type Pipe<C, D, Sh> = Pipeline<Fx16, C, D, Sh, 6>;
+/// The vertex scratch of a shading model.
+type Scratch<'a, Sh> = &'a mut [VertexSlot<<Sh as Shading<Fx16>>::Stored>];
 /// A counted frame function.
-type FrameFn<C, D, Sh> = fn(&mut Pipe<C, D, Sh>, &mut Fb<'_>, &Mesh3<'_>) -> RenderStats;
+type FrameFn<C, D, Sh> =
+    for<'a> fn(&mut Pipe<C, D, Sh>, &mut Fb<'_>, &Mesh3<'_>, Scratch<'a, Sh>) -> RenderStats;
 
 /// The drawing of one frame, shared by the warm frame and the counted `frame_*` functions.
 #[inline(always)]
@@ -115,9 +118,10 @@ fn draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
     p: &mut Pipeline<Fx16, C, D, Sh, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, Sh>,
 ) -> RenderStats {
-    let Ok(stats) = p.draw(fb, mesh);
-    stats
+    p.draw(fb, mesh, scratch)
+        .expect("the depth buffer covers the frame")
 }
 
 // The counted frames: one per combination. `black_box(NAME)` makes each function's code distinct.
@@ -127,9 +131,21 @@ fn frame_m1(
     p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     black_box("frame_m1");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
+}
+
+#[inline(never)]
+fn frame_m1_noscratch(
+    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
+    fb: &mut Fb<'_>,
+    mesh: &Mesh3<'_>,
+    _scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
+) -> RenderStats {
+    black_box("frame_m1_noscratch");
+    draw(p, fb, mesh, &mut [])
 }
 
 #[inline(never)]
@@ -137,9 +153,10 @@ fn frame_m1_nodepth(
     p: &mut Pipeline<Fx16, CullClockwise, NoDepth, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     black_box("frame_m1_nodepth");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 #[inline(never)]
@@ -147,9 +164,10 @@ fn frame_m1_nocull(
     p: &mut Pipeline<Fx16, NoCull, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     black_box("frame_m1_nocull");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 #[inline(never)]
@@ -157,9 +175,10 @@ fn frame_m1_unlit(
     p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Unlit<Rgb565>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, Unlit<Rgb565>>,
 ) -> RenderStats {
     black_box("frame_m1_unlit");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 #[inline(never)]
@@ -167,9 +186,10 @@ fn frame_m1_flat(
     p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, FlatLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, FlatLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     black_box("frame_m1_flat");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 #[inline(never)]
@@ -177,9 +197,10 @@ fn frame_m1_phong(
     p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, PhongLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, PhongLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     black_box("frame_m1_phong");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 #[inline(never)]
@@ -187,9 +208,10 @@ fn frame_m1_unlit_nodepth_nocull(
     p: &mut Pipeline<Fx16, NoCull, NoDepth, Unlit<Rgb565>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, Unlit<Rgb565>>,
 ) -> RenderStats {
     black_box("frame_m1_unlit_nodepth_nocull");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 #[inline(never)]
@@ -197,21 +219,10 @@ fn frame_m1_wireframe(
     p: &mut Pipeline<Fx16, CullClockwise, NoDepth, Unlit<Rgb565>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, Unlit<Rgb565>>,
 ) -> RenderStats {
     black_box("frame_m1_wireframe");
-    let Ok(stats) = p.draw_wireframe(fb, mesh, Rgb565::WHITE);
-    stats
-}
-
-#[inline(never)]
-fn frame_m1_cached(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    cache: &mut [CachedVertex<Fx16, [i32; 3], 6>],
-) -> RenderStats {
-    black_box("frame_m1_cached");
-    let Ok(stats) = p.draw_cached(fb, mesh, cache);
+    let Ok(stats) = p.draw_wireframe(fb, mesh, scratch, Rgb565::WHITE);
     stats
 }
 
@@ -228,7 +239,7 @@ fn banded(
     mesh: &Mesh3<'_>,
     band: &mut [u16],
     bins: &mut [BinEntry],
-    cache: &mut [CachedVertex<Fx16, [i32; 3], 6>],
+    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     let banding = Banding {
         width: WIDTH,
@@ -238,7 +249,7 @@ fn banded(
         clear_depth: u16::MAX,
     };
     let out = fb.as_mut_slice();
-    let result = p.draw_banded(mesh, &banding, band, bins, cache, |b| {
+    let result = p.draw_banded(mesh, &banding, band, bins, scratch, |b| {
         let y0 = b.y0() as usize * WIDTH as usize;
         let data = b.framebuffer().as_slice();
         out[y0..y0 + data.len()].copy_from_slice(data);
@@ -255,10 +266,10 @@ macro_rules! band_frame {
             mesh: &Mesh3<'_>,
             band: &mut [u16],
             bins: &mut [BinEntry],
-            cache: &mut [CachedVertex<Fx16, [i32; 3], 6>],
+            scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
         ) -> RenderStats {
             black_box(stringify!($name));
-            banded(p, $rows, fb, mesh, band, bins, cache)
+            banded(p, $rows, fb, mesh, band, bins, scratch)
         }
     };
 }
@@ -267,16 +278,17 @@ band_frame!(frame_m1_band8, 8);
 band_frame!(frame_m1_band16, 16);
 band_frame!(frame_m1_band32, 32);
 band_frame!(frame_m1_band240, 240);
-band_frame!(frame_m1_band16_cached, 16);
+band_frame!(frame_m1_band16_noscratch, 16);
 
 #[inline(never)]
 fn frame_m1_depth_always(
     p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     black_box("frame_m1_depth_always");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 #[inline(never)]
@@ -284,9 +296,10 @@ fn frame_m1_cull_keepall(
     p: &mut Pipeline<Fx16, KeepAll, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
+    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
 ) -> RenderStats {
     black_box("frame_m1_cull_keepall");
-    draw(p, fb, mesh)
+    draw(p, fb, mesh, scratch)
 }
 
 /// Builds a pipeline, draws the warm frame (not counted), clears both buffers (not counted) and
@@ -303,10 +316,17 @@ where
     D: DepthTest,
     Sh: Shading<Fx16, Color = Rgb565>,
 {
-    let _ = draw(&mut p, fb, mesh);
+    // One slot per mesh vertex, allocated outside the counted frame (the caller's RAM).
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+    let _ = draw(&mut p, fb, mesh, &mut scratch);
     let Ok(()) = fb.clear(Rgb565::BLACK);
     clear_depth(&mut p.depth);
-    frame(&mut p, black_box(fb), black_box(mesh))
+    frame(
+        &mut p,
+        black_box(fb),
+        black_box(mesh),
+        black_box(&mut scratch),
+    )
 }
 
 fn zb(z: &mut [u16], compare: Compare) -> DepthBuffer<'_> {
@@ -357,7 +377,8 @@ fn compare(scene: Scene, loaded: &LoadedMesh, dir: Option<&Path>) -> ExitCode {
         zb(&mut zbuf, Compare::Less),
         GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
     );
-    let ours = draw(&mut p, &mut fb, &mesh);
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+    let ours = draw(&mut p, &mut fb, &mesh, &mut scratch);
     let euc = EucScene::new(loaded);
     let (mut color, mut depth) = EucScene::buffers();
     euc.render(&mut color, &mut depth);
@@ -495,6 +516,19 @@ fn main() -> ExitCode {
             clear_z,
             frame_m1,
         ),
+        "m1_noscratch" => run(
+            Pipeline::new(
+                &xf,
+                vp,
+                CullClockwise,
+                zb(&mut zbuf, Compare::Less),
+                gouraud(),
+            ),
+            &mut fb,
+            &mesh,
+            clear_z,
+            frame_m1_noscratch,
+        ),
         "m1_nodepth" => run(
             Pipeline::new(&xf, vp, CullClockwise, NoDepth, gouraud()),
             &mut fb,
@@ -551,28 +585,14 @@ fn main() -> ExitCode {
         ),
         "m1_wireframe" => {
             let mut p = Pipeline::new(&xf, vp, CullClockwise, NoDepth, unlit);
-            let Ok(_) = p.draw_wireframe(&mut fb, &mesh, Rgb565::WHITE);
+            let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+            let Ok(_) = p.draw_wireframe(&mut fb, &mesh, &mut scratch, Rgb565::WHITE);
             let Ok(()) = fb.clear(Rgb565::BLACK);
-            frame_m1_wireframe(&mut p, black_box(&mut fb), black_box(&mesh))
-        }
-        "m1_cached" => {
-            // One entry per mesh vertex, allocated outside the counted frame (the caller's RAM).
-            let mut cache = vec![CachedVertex::default(); mesh.positions.len()];
-            let mut p = Pipeline::new(
-                &xf,
-                vp,
-                CullClockwise,
-                zb(&mut zbuf, Compare::Less),
-                gouraud(),
-            );
-            let Ok(_) = p.draw_cached(&mut fb, &mesh, &mut cache);
-            let Ok(()) = fb.clear(Rgb565::BLACK);
-            p.depth.clear(u16::MAX);
-            frame_m1_cached(
+            frame_m1_wireframe(
                 &mut p,
                 black_box(&mut fb),
                 black_box(&mesh),
-                black_box(&mut cache),
+                black_box(&mut scratch),
             )
         }
         "m1_depth_always" => run(
@@ -596,19 +616,19 @@ fn main() -> ExitCode {
             frame_m1_cull_keepall,
         ),
         band if band.starts_with("m1_band") => {
-            let cached = band.ends_with("_cached");
+            let noscratch = band.ends_with("_noscratch");
             let rows: u32 = band
                 .trim_start_matches("m1_band")
-                .trim_end_matches("_cached")
+                .trim_end_matches("_noscratch")
                 .parse()
                 .unwrap_or(16);
-            // The band's colour and depth rows, the bins and (for _cached) the vertex cache are
-            // the caller's RAM, allocated outside the counted frame.
+            // The band's colour and depth rows, the bins and the vertex scratch (none for
+            // _noscratch) are the caller's RAM, allocated outside the counted frame.
             let mut band_buf = vec![0u16; (WIDTH * rows) as usize];
             let mut band_z = vec![u16::MAX; (WIDTH * rows) as usize];
             let mut bins = vec![BinEntry::default(); mesh.triangles.len()];
-            let mut cache =
-                vec![CachedVertex::default(); if cached { mesh.positions.len() } else { 0 }];
+            let slots = if noscratch { 0 } else { mesh.positions.len() };
+            let mut cache = vec![VertexSlot::EMPTY; slots];
             let mut p = Pipeline::new(
                 &xf,
                 vp,
@@ -616,11 +636,11 @@ fn main() -> ExitCode {
                 DepthBuffer::new(&mut band_z, WIDTH, rows, Compare::Less).expect("band depth"),
                 gouraud(),
             );
-            let frame = match (rows, cached) {
+            let frame = match (rows, noscratch) {
                 (8, _) => frame_m1_band8,
                 (32, _) => frame_m1_band32,
                 (240, _) => frame_m1_band240,
-                (_, true) => frame_m1_band16_cached,
+                (_, true) => frame_m1_band16_noscratch,
                 _ => frame_m1_band16,
             };
             let _ = banded(

@@ -25,7 +25,7 @@ use rasterizer_core::pipeline::cull::{CullClockwise, CullCounterClockwise};
 use rasterizer_core::pipeline::shading::{
     FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
 };
-use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::{AnyTarget, Framebuffer};
@@ -209,7 +209,9 @@ fn suzanne_wireframe(models: &Models, display: &mut Display) -> SceneResult {
             },
         );
         let color = Rgb565::from(Rgb888::new(120, 220, 160));
-        let Ok(stats) = p.draw_wireframe(fb, &models.suzanne.mesh(), color);
+        let mesh = models.suzanne.mesh();
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+        let Ok(stats) = p.draw_wireframe(fb, &mesh, &mut scratch, color);
         check_drawn("wireframe", stats.drawn)
     })
 }
@@ -223,7 +225,9 @@ where
         let viewport = Viewport::new(WIDTH, HEIGHT);
         let mut p =
             Pipeline::<_, _, _, _>::new(&m1_transforms(), viewport, CullClockwise, depth, shading);
-        let Ok(stats) = p.draw(fb, &models.suzanne.mesh());
+        let mesh = models.suzanne.mesh();
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+        let stats = p.draw(fb, &mesh, &mut scratch).map_err(|e| e.to_string())?;
         check_drawn("suzanne", stats.drawn)
     })
 }
@@ -394,7 +398,11 @@ pub fn draw_room_frame(
         depth,
         VertexColors::<Rgb888>::new(),
     );
-    let Ok(stats) = p.draw(&mut AnyTarget::new(display), &room.mesh());
+    let mesh = room.mesh();
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+    let stats = p
+        .draw(&mut AnyTarget::new(display), &mesh, &mut scratch)
+        .map_err(|e| e.to_string())?;
     check_drawn("room", stats.drawn)
 }
 
@@ -479,7 +487,11 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
             depth,
             VertexColors::<Rgb888>::new(),
         );
-        let Ok(stats) = p.draw(&mut target, &floor.mesh());
+        let mesh = floor.mesh();
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+        let stats = p
+            .draw(&mut target, &mesh, &mut scratch)
+            .map_err(|e| e.to_string())?;
         check_drawn("ground", stats.drawn)?;
         if stats.clipped == 0 {
             return Err("the ground should cross the near plane".into());
@@ -512,7 +524,13 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
                 depth,
                 PhongLit::<_, Rgb888, 2>::new(lighting.clone()),
             );
-            let Ok(stats) = p.draw(&mut target, &suzanne);
+            let stats = p
+                .draw(
+                    &mut target,
+                    &suzanne,
+                    &mut vec![VertexSlot::EMPTY; suzanne.positions.len()],
+                )
+                .map_err(|e| e.to_string())?;
             check_drawn("far suzanne", stats.drawn)?;
             continue;
         }
@@ -524,7 +542,13 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
             depth,
             GouraudLit::<_, Rgb888, 2>::new(lighting.clone()),
         );
-        let Ok(stats) = p.draw(&mut target, &suzanne);
+        let stats = p
+            .draw(
+                &mut target,
+                &suzanne,
+                &mut vec![VertexSlot::EMPTY; suzanne.positions.len()],
+            )
+            .map_err(|e| e.to_string())?;
         check_drawn("near suzanne", stats.drawn)?;
         if stats.clipped == 0 {
             return Err("the near Suzanne should cross the near plane".into());
@@ -541,7 +565,13 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
                 color: Rgb888::new(90, 20, 30),
             },
         );
-        let Ok(stats) = p.draw(&mut target, &suzanne);
+        let stats = p
+            .draw(
+                &mut target,
+                &suzanne,
+                &mut vec![VertexSlot::EMPTY; suzanne.positions.len()],
+            )
+            .map_err(|e| e.to_string())?;
         check_drawn("inside of near suzanne", stats.drawn)?;
     }
     Ok(())

@@ -587,7 +587,10 @@ pub struct FaceIds;
 impl<S: Scalar> Shading<S> for FaceIds {
     type Color = Rgb888;
     type Varyings = [i32; 1];
+    type Stored = [i32; 1];
     const NEEDS_WORLD: bool = false;
+    // A 24-bit id has no room for fractional bits; its plane is constant, so it needs none.
+    const FUSED_FRAC: u32 = 0;
     fn vertex(&mut self, v: &VertexIn<S>) -> [i32; 1] {
         [color_id(v.color) as i32]
     }

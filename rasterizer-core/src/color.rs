@@ -115,3 +115,44 @@ impl Channels for BinaryColor {
         BinaryColor::from(c[0] != 0)
     }
 }
+
+/// A colour the lit shaders of the 3D pipeline produce: the depth of each of its three colour
+/// channels, so that lit colours are interpolated at the target's own depth and each pixel is
+/// rounded once (not to 8 bits first and then again to the target's depth).
+///
+/// Implemented for the RGB colours of embedded-graphics (at their channel depths) and for the
+/// grey colours (8-bit RGB, turned into grey by their `From<Rgb888>`).
+pub trait ShadeColor: PixelColor {
+    /// The largest value of each of the three interpolated channels: `[31, 63, 31]` for
+    /// [`Rgb565`].
+    const MAX: [u8; 3];
+    /// The colour from the three channels, each at most its [`ShadeColor::MAX`].
+    fn from_shade(c: [u8; 3]) -> Self;
+}
+
+macro_rules! rgb_shade {
+    ($($t:ty),*) => {$(
+        impl ShadeColor for $t {
+            const MAX: [u8; 3] = [<$t>::MAX_R, <$t>::MAX_G, <$t>::MAX_B];
+            #[inline(always)]
+            fn from_shade(c: [u8; 3]) -> Self {
+                // `new` masks each channel to its width.
+                <$t>::new(c[0], c[1], c[2])
+            }
+        }
+    )*};
+}
+rgb_shade!(Rgb555, Bgr555, Rgb565, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+
+macro_rules! mono_shade {
+    ($($t:ty),*) => {$(
+        impl ShadeColor for $t {
+            const MAX: [u8; 3] = [255; 3];
+            #[inline(always)]
+            fn from_shade(c: [u8; 3]) -> Self {
+                <$t>::from(Rgb888::new(c[0], c[1], c[2]))
+            }
+        }
+    )*};
+}
+mono_shade!(Gray2, Gray4, Gray8);

@@ -37,6 +37,14 @@ pub enum SpanStart {
     /// carries the gradients' rounding times the distance from the first vertex. Falls back to
     /// [`SpanStart::Exact`] for triangles whose gradients are too large.
     Gradient,
+    /// The default: each plane is `K + gx px + gy py` over pixel coordinates in 32-bit wrapping
+    /// arithmetic, exact at an anchor pixel of the triangle with the gradients rounded to the
+    /// fractional bits, so a pixel's value is a function of its position alone (bands match the
+    /// whole frame) and a pixel `d` pixels from the anchor is within `(d + 1) / 2` units of the
+    /// last fractional bit of the exact plane. Depth, the values and the colour of each pixel
+    /// are computed in one loop, with the rounding folded into the span's start. Perspective-
+    /// correct interpolation uses [`SpanStart::Exact`] instead.
+    Wrapping,
 }
 
 /// A set of numeric knobs: the last generic parameter of [`crate::pipeline::Pipeline`].
@@ -51,14 +59,14 @@ pub trait Numerics {
     const SPANS: SpanStart;
 }
 
-/// The library's default: exact division, 16 fractional bits, exact span starts.
+/// The library's default: exact division, 16 fractional bits, wrapping span starts.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Standard;
 
 impl Numerics for Standard {
     const DIVIDE: Divide = Divide::Exact;
     const FRAC: u32 = 16;
-    const SPANS: SpanStart = SpanStart::Exact;
+    const SPANS: SpanStart = SpanStart::Wrapping;
 }
 
 /// A divide method as a type, for [`Custom`].
@@ -99,6 +107,9 @@ pub struct ExactSpans;
 /// [`SpanStart::Gradient`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct GradientSpans;
+/// [`SpanStart::Wrapping`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct WrappingSpans;
 
 impl SpanMethod for ExactSpans {
     const METHOD: SpanStart = SpanStart::Exact;
@@ -106,11 +117,14 @@ impl SpanMethod for ExactSpans {
 impl SpanMethod for GradientSpans {
     const METHOD: SpanStart = SpanStart::Gradient;
 }
+impl SpanMethod for WrappingSpans {
+    const METHOD: SpanStart = SpanStart::Wrapping;
+}
 
 /// Each knob chosen: `Custom<ReciprocalDivide, 12, GradientSpans>`. `FRAC` outside `4..=16` is
-/// clamped into it.
+/// clamped into it. The defaults are [`Standard`]'s.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct Custom<D = ExactDivide, const FRAC: u32 = 16, P = ExactSpans>(PhantomData<(D, P)>);
+pub struct Custom<D = ExactDivide, const FRAC: u32 = 16, P = WrappingSpans>(PhantomData<(D, P)>);
 
 impl<D: DivideMethod, const FRAC: u32, P: SpanMethod> Numerics for Custom<D, FRAC, P> {
     const DIVIDE: Divide = D::METHOD;

@@ -18,7 +18,7 @@ use rasterizer_core::numerics::{
 };
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise};
 use rasterizer_core::pipeline::shading::{GouraudLit, Unlit};
-use rasterizer_core::pipeline::{Mesh, Pipeline, RenderStats, Viewport};
+use rasterizer_core::pipeline::{Mesh, Pipeline, RenderStats, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::target::Framebuffer;
 use std::hint::black_box;
@@ -79,6 +79,7 @@ impl Knobs {
         match self.spans {
             SpanStart::Exact => "exact",
             SpanStart::Gradient => "gradient",
+            SpanStart::Wrapping => "wrapping",
         }
     }
 }
@@ -193,6 +194,7 @@ pub fn registry() -> Vec<Config> {
         entry!("frac8", "interpolation bits", Fx16, 6, false, 256, Frac<8>),
         entry!("frac4", "interpolation bits", Fx16, 6, false, 256, Frac<4>),
         entry!("gradient", "span starts", Fx16, 6, false, 256, Custom<ExactDivide, 16, GradientSpans>),
+        entry!("exact-spans", "span starts", Fx16, 6, false, 256, Custom<ExactDivide, 16, ExactSpans>),
         entry!("cheap", "combination", Fx16, 0, false, 16, Cheapest),
         entry!("cheap-24.8", "combination", Fx8, 0, false, 16, Cheapest),
         entry!("fine", "combination", Fx16, 8, true, 1024),
@@ -293,7 +295,9 @@ fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numeri
             colors: None,
             triangles: &def.tris,
         };
-        let Ok(_) = p.draw(&mut fb, &mesh);
+        let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
+        p.draw(&mut fb, &mesh, &mut scratch)
+            .map_err(|e| e.to_string())?;
     }
 
     // Triangle ids: each face painted with its id (three unshared corners per triangle). Ids and
@@ -327,7 +331,9 @@ fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numeri
             colors: Some(&face_col),
             triangles: &face_tri,
         };
-        let Ok(_) = p.draw(&mut fb, &mesh);
+        let mut scratch = vec![VertexSlot::EMPTY; face_pos.len()];
+        p.draw(&mut fb, &mesh, &mut scratch)
+            .map_err(|e| e.to_string())?;
     }
     let ids: Vec<Option<u32>> = ids_rgb
         .chunks_exact(3)
@@ -348,9 +354,9 @@ pub fn counted_frame<S: Scalar, const BITS: u32, const P: bool, Nu: Numerics>(
     p: &mut Pipeline<S, CullClockwise, DepthBuffer<'_>, GouraudLit<S, Rgb565, 1>, BITS, P, Nu>,
     fb: &mut Framebuffer<'_, Rgb565>,
     mesh: &Mesh<'_, S, u32>,
+    scratch: &mut [VertexSlot],
 ) -> RenderStats {
-    let Ok(stats) = p.draw(fb, mesh);
-    stats
+    p.draw(fb, mesh, scratch).unwrap_or_default()
 }
 
 fn count<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numerics>(
@@ -380,11 +386,18 @@ fn count<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numerics
         GouraudLit::<S, Rgb565, 1>::new(lighting::<S>(&def.camera)),
     )
     .with_numerics::<Nu>();
-    // The warm frame, then clear: neither is counted.
-    let Ok(_) = p.draw(&mut fb, &mesh);
+    // The warm frame, then clear: neither is counted. The scratch is the caller's RAM.
+    let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
+    p.draw(&mut fb, &mesh, &mut scratch)
+        .map_err(|e| e.to_string())?;
     let Ok(()) = fb.clear(Rgb565::BLACK);
     p.depth.clear(u16::MAX);
-    let stats = counted_frame(&mut p, black_box(&mut fb), black_box(&mesh));
+    let stats = counted_frame(
+        &mut p,
+        black_box(&mut fb),
+        black_box(&mesh),
+        black_box(&mut scratch),
+    );
     let checksum = fb
         .as_slice()
         .iter()

@@ -18,7 +18,9 @@ use rasterizer_core::pipeline::cull::{Cull, CullClockwise, CullCounterClockwise,
 use rasterizer_core::pipeline::shading::{
     FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
 };
-use rasterizer_core::pipeline::{Mesh, MeshSource, Pipeline, RenderStats, Transforms, Viewport};
+use rasterizer_core::pipeline::{
+    Mesh, MeshSource, Pipeline, RenderStats, Transforms, VertexSlot, Viewport,
+};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
@@ -295,7 +297,8 @@ fn by_depth<S: Real, M, C: Cull>(
             NoDepth,
             Unlit { color },
         );
-        let Ok(_) = p.draw_wireframe(target, mesh, color);
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+        let Ok(_) = p.draw_wireframe(target, mesh, &mut scratch, color);
         return;
     }
     if job.mesh.depth {
@@ -407,8 +410,9 @@ where
     if let Some(n) = job.normal_matrix {
         p.set_normal_matrix(n);
     }
-    let Ok(stats) = p.draw(target, mesh);
-    stats
+    // The depth buffer is made for the target, so it always covers the viewport within it.
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+    p.draw(target, mesh, &mut scratch).unwrap_or_default()
 }
 
 /// A colour of the scene file in the display's format.

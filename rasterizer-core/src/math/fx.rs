@@ -203,6 +203,50 @@ pub(crate) const fn isqrt_u64(v: u64) -> u64 {
     }
 }
 
+/// `(r, k)` with `r ≈ 2^k / sqrt(x)` for `x > 0`: `r` in `[2^30, 2^31]`, `k >= 31`, within a
+/// few units of the last bit of `r`. No division: a 192-entry table of the top bits and two
+/// Newton steps (`y' = y (3 - x y²) / 2`, each doubling the correct bits from about eight), so a
+/// normalisation costs multiplications only.
+#[inline]
+pub(crate) const fn rsqrt_u64(x: u64) -> (u64, u32) {
+    // m = x 2^e in [2^60, 2^62) with e even (e = -2 when x >= 2^62): sqrt(m) = sqrt(x) 2^(e/2).
+    let lz = x.leading_zeros();
+    let (m, half_e) = if lz >= 2 {
+        let e = (lz - 2) & !1;
+        (x << e, (e / 2) as i32)
+    } else {
+        (x >> 2, -1)
+    };
+    // y ≈ 2^61 / sqrt(m), in (2^30, 2^31], from the table by the top eight bits of m (64..255).
+    let mut y = (RSQRT_TABLE[(m >> 54) as usize - 64] as u64) << 15;
+    let mut i = 0;
+    while i < 2 {
+        // t = m y² / 2^122 in 2.30 (at most 2^30: Newton's steps stay below the root); then
+        // y' = y (3 - t) / 2.
+        let yy = (y * y) >> 30;
+        let t = ((m >> 30) * yy) >> 32;
+        y = (y * ((3u64 << 30) - t)) >> 31;
+        i += 1;
+    }
+    // 2^61 / sqrt(m) = 2^(61 - e/2) / sqrt(x).
+    (y, (61 - half_e) as u32)
+}
+
+/// `2^46 / sqrt((t + 1/2) 2^54)` for `64 <= t < 256` (entry `t - 64`), rounded down so that
+/// Newton's steps start below the root: the reciprocal root at the middle of each interval of
+/// the top eight bits, with 16 significant bits.
+const RSQRT_TABLE: [u16; 192] = {
+    let mut out = [0u16; 192];
+    let mut t = 64;
+    while t < 256 {
+        // sqrt((2t + 1) 2^53) = sqrt((2t + 1) 2^53), an integer root; 2^46 / that.
+        let root = isqrt_u64((2 * t as u64 + 1) << 53);
+        out[t - 64] = ((1u64 << 46) / (root + 1)) as u16;
+        t += 1;
+    }
+    out
+};
+
 /// `ceil(16 sqrt(t + 1))` for `t < 256`: [`isqrt_u64`]'s first estimate.
 const ROOT_TABLE: [u16; 256] = {
     let mut t = [0u16; 256];
@@ -312,6 +356,27 @@ mod tests {
             }
         }
         lo as u64
+    }
+
+    #[test]
+    fn rsqrt_is_close() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut worst = 0.0f64;
+        for i in 0..300_000u64 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = if i < 200 {
+                i + 1
+            } else {
+                (x >> (x % 64)).max(1)
+            };
+            let (r, k) = super::rsqrt_u64(v);
+            assert!((1 << 30..=1 << 31).contains(&r), "{v}: {r}");
+            let exact = 2f64.powi(k as i32) / (v as f64).sqrt();
+            worst = worst.max((r as f64 - exact).abs());
+        }
+        assert!(worst <= 3.0, "worst error {worst} units");
     }
 
     #[test]

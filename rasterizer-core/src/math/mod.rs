@@ -64,6 +64,8 @@ pub trait Scalar:
     fn raw_bits(self) -> Option<i64> {
         None
     }
+    /// The fractional bits of [`Scalar::raw_bits`]' integers (0 for a floating-point format).
+    const RAW_FRAC: u32 = 0;
     /// `round(num * scale / (den * div))` as an integer (0 when `den * div <= 0`), the perspective
     /// divide and viewport in one step. `|scale|, |div| < 2^31`. Exact for fixed point: the only
     /// error is the final rounding, halves up.
@@ -130,22 +132,19 @@ impl<const F: u32> Scalar for Fx<F> {
         Fx::from_bits(fx::isqrt_u64(sq).min(i32::MAX as u64) as i32)
     }
 
+    #[inline]
     fn normalize3(x: Self, y: Self, z: Self) -> Option<(Self, Self, Self)> {
         let (x, y, z) = (x.to_bits(), y.to_bits(), z.to_bits());
         let sq = square_sum(x, y, z);
         if sq == 0 {
             return None;
         }
-        // Scale the squared length into [2^60, 2^62) by an even shift 2k, so its root has 30 to 31
-        // significant bits however short the vector: len = sqrt(sq) 2^k. Each component is then
-        // v 2^(k+F) / len; |v| <= sqrt(sq) keeps v 2^k below 2^31, so the dividend fits i64 for
-        // F <= 30. Cost: one 64-bit square root (Newton, a few divisions) and three divisions.
-        let k = sq.leading_zeros().saturating_sub(2) / 2;
-        let len = fx::isqrt_u64(sq << (2 * k)) as i64;
-        let unit = |v: i32| {
-            let n = (v as i64) << (k + F);
-            Fx::saturate((2 * n + len).div_euclid(2 * len))
-        };
+        // One reciprocal square root, r ≈ 2^k / sqrt(sq) (k >= 31 >= F + 1), then a product per
+        // component: v 2^F / sqrt(sq) = v r 2^(F - k), |v r| < 2^62. The root keeps 29 bits
+        // however short the vector, so tiny vectors keep their direction.
+        let (r, k) = fx::rsqrt_u64(sq);
+        let sh = k - F;
+        let unit = |v: i32| Fx::saturate((i64::from(v) * r as i64 + (1 << (sh - 1))) >> sh);
         Some((unit(x), unit(y), unit(z)))
     }
 
@@ -182,6 +181,8 @@ impl<const F: u32> Scalar for Fx<F> {
     fn raw_bits(self) -> Option<i64> {
         Some(i64::from(self.to_bits()))
     }
+
+    const RAW_FRAC: u32 = F;
 
     fn to_scaled_int(self, bits: u32) -> i32 {
         let v = self.to_bits() as i64;

@@ -5,30 +5,43 @@
 //! is a zero-sized type whose methods are empty, so a frame without depth, culling or lighting
 //! compiles none of that code and keeps none of its state. Geometry runs in any
 //! [`crate::math::Scalar`] (16.16 by default); everything after the perspective divide is integer.
+//!
+//! Every draw call runs each triangle through one front end (fetch, transform once per vertex
+//! into the caller's [`VertexSlot`] scratch, trivial rejection, culling); the filled, banded and
+//! wireframe paths differ only in what they do with the triangles it lets through. With the
+//! default numerics a visible triangle is drawn by the fused span loop of
+//! [`crate::raster::interp`]'s sibling `fused` module: depth test, interpolation and colour in one
+//! loop per span.
 
+mod band;
 pub mod cull;
 pub mod shading;
+pub mod vertex;
+
+pub use band::{BandError, Banding, BinEntry};
+pub use vertex::{Packed, Stored, VertexSlot};
 
 use crate::clip::polygon::{
     clip_segment, clip_triangle, outcode, trivially_outside, ClipVertex, Outcode,
 };
-use crate::geom::SubPoint;
+use crate::geom::{PixelRect, SubPoint};
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
-use crate::numerics::{reciprocal, Divide, Numerics, Standard};
-use crate::raster::edge::row_at_or_below;
+use crate::numerics::{reciprocal, Divide, Numerics, SpanStart, Standard};
+use crate::raster::fused::{fill_fused, FusedColor};
 use crate::raster::interp::{fill_triangle_interp_with, DepthTest, ScreenVertex};
 use crate::raster::line::draw_line;
-use crate::target::{Band, ClipTo, Framebuffer, Storage, Surface};
+use crate::shade::MAX_VARYINGS;
+use crate::target::{ClipTo, Surface};
 use cull::Cull;
-use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::RgbColor;
 use embedded_graphics_core::primitives::Rectangle;
 use shading::{Shading, VertexIn};
+use vertex::{OUTSIDE, UNSEEN, X_MIN};
 
-/// The sub-pixel bits of screen coordinates a [`Pipeline`] (and its [`CachedVertex`]) has unless
-/// told otherwise: 6, so 26.6 (`docs/ACCURACY.md` measures the choice).
+/// The sub-pixel bits of screen coordinates a [`Pipeline`] has unless told otherwise: 6, so
+/// 26.6 (`docs/ACCURACY.md` measures the choice).
 pub const DEFAULT_BITS: u32 = 6;
 
 /// An index into a mesh's vertex arrays.
@@ -190,98 +203,6 @@ pub struct RenderStats {
     pub drawn: u32,
 }
 
-/// One vertex's work, kept for the other triangles that share it ([`Pipeline::draw_cached`]).
-///
-/// Its size is the RAM a cached draw needs per mesh vertex: 40 bytes for 16.16 with three
-/// varyings (Gouraud), so 20 KB for Suzanne's 507 vertices.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct CachedVertex<S, V, const BITS: u32 = DEFAULT_BITS> {
-    clip: Vec4<S>,
-    screen: SubPoint<BITS>,
-    z: u16,
-    code: Outcode,
-    /// 0: nothing yet; 1: transformed (and projected when inside); 2: also shaded.
-    state: u8,
-    var: V,
-}
-
-/// A visible triangle's place in a banded frame ([`Pipeline::draw_banded`]): 12 bytes a triangle.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct BinEntry {
-    triangle: u32,
-    first: u32,
-    last: u32,
-}
-
-impl BinEntry {
-    /// An empty entry, for initialising a `static` array of bins.
-    pub const ZERO: BinEntry = BinEntry {
-        triangle: 0,
-        first: 0,
-        last: 0,
-    };
-}
-
-/// How a frame is cut into bands ([`Pipeline::draw_banded`]).
-#[derive(Debug, Clone, Copy)]
-pub struct Banding<C> {
-    /// Screen width in pixels.
-    pub width: u32,
-    /// Screen height in pixels.
-    pub height: u32,
-    /// Rows per band (the last band may have fewer).
-    pub rows: u32,
-    /// The colour each band starts from.
-    pub background: C,
-    /// The depth each band's depth buffer starts from (65535 for [`Compare::Less`]).
-    ///
-    /// [`Compare::Less`]: crate::raster::interp::Compare::Less
-    pub clear_depth: u16,
-}
-
-/// Why a banded draw could not start.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BandError {
-    /// Zero rows per band, or a zero height.
-    NoRows,
-    /// A screen size the framebuffer cannot have.
-    BadSize {
-        /// Width.
-        width: u32,
-        /// Height.
-        height: u32,
-    },
-    /// The band buffer is shorter than one band.
-    BandBufferTooSmall {
-        /// Words one band needs.
-        needed: usize,
-        /// Words given.
-        actual: usize,
-    },
-    /// More visible triangles than bins.
-    TooFewBins {
-        /// Visible triangles.
-        needed: usize,
-        /// Bins given.
-        actual: usize,
-    },
-}
-
-impl core::fmt::Display for BandError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::NoRows => write!(f, "a band needs at least one row"),
-            Self::BadSize { width, height } => write!(f, "bad screen size {width}x{height}"),
-            Self::BandBufferTooSmall { needed, actual } => {
-                write!(f, "band buffer has {actual} words, a band needs {needed}")
-            }
-            Self::TooFewBins { needed, actual } => {
-                write!(f, "{needed} visible triangles but only {actual} bins")
-            }
-        }
-    }
-}
-
 /// The transforms of a draw call.
 #[derive(Debug, Clone, Copy)]
 pub struct Transforms<S> {
@@ -291,6 +212,38 @@ pub struct Transforms<S> {
     pub view: Mat4<S>,
     /// View to clip space (e.g. [`Mat4::perspective`]).
     pub projection: Mat4<S>,
+}
+
+/// Why a draw call stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DrawError<E> {
+    /// The target reported an error.
+    Target(E),
+    /// The depth buffer does not cover the pixels the pipeline draws (the viewport within the
+    /// target): nothing is drawn.
+    DepthTooSmall {
+        /// The pixels the draw needs depths for.
+        needed: Rectangle,
+    },
+}
+
+impl<E> From<E> for DrawError<E> {
+    fn from(e: E) -> Self {
+        Self::Target(e)
+    }
+}
+
+impl<E: core::fmt::Debug> core::fmt::Display for DrawError<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Target(e) => write!(f, "the target failed: {e:?}"),
+            Self::DepthTooSmall { needed } => write!(
+                f,
+                "the depth buffer does not cover the {}x{} pixels at ({}, {}) the draw needs",
+                needed.size.width, needed.size.height, needed.top_left.x, needed.top_left.y
+            ),
+        }
+    }
 }
 
 /// A configured pipeline: transforms, viewport and the compile-time choice of stages.
@@ -318,6 +271,8 @@ pub struct Pipeline<
     model: Mat4<S>,
     normal_matrix: Mat4<S>,
     viewport: Viewport,
+    /// The shader takes model-space positions and normals this frame.
+    model_space: bool,
     /// The culling stage.
     pub cull: C,
     /// The depth stage.
@@ -325,6 +280,23 @@ pub struct Pipeline<
     /// The shading stage.
     pub shading: Sh,
     _numerics: core::marker::PhantomData<N>,
+}
+
+/// What the front end made of a triangle.
+enum Front<S, const BITS: u32> {
+    /// Nothing to draw (already counted).
+    Skip,
+    /// Every vertex inside the clip volume's guard band: projected, facing the right way.
+    Inside {
+        idx: [usize; 3],
+        v: [(SubPoint<BITS>, u16); 3],
+    },
+    /// Needs clipping in homogeneous space.
+    Clip {
+        idx: [usize; 3],
+        clip: [Vec4<S>; 3],
+        codes: [Outcode; 3],
+    },
 }
 
 impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool> Pipeline<S, C, D, Sh, BITS, PERSPECTIVE>
@@ -353,6 +325,7 @@ where
             model: transforms.model,
             normal_matrix: transforms.model,
             viewport,
+            model_space: false,
             cull,
             depth,
             shading,
@@ -380,6 +353,7 @@ where
             model: self.model,
             normal_matrix: self.normal_matrix,
             viewport: self.viewport,
+            model_space: false,
             cull: self.cull,
             depth: self.depth,
             shading: self.shading,
@@ -467,7 +441,64 @@ where
         }
     }
 
-    /// The world-space data of a vertex the shader may read.
+    /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`.
+    #[inline]
+    fn geometry(&self, p: Vec3<S>) -> (i32, i32, u16) {
+        let clip = self.mvp.transform_point(p);
+        let code = outcode(&clip);
+        if code != 0 {
+            return (OUTSIDE, i32::from(code), 0);
+        }
+        let (s, z) = self.project(&clip);
+        (s.x.max(X_MIN), s.y, z)
+    }
+
+    /// Vertex `i`'s [`Pipeline::geometry`], from its slot when the scratch has one.
+    #[inline(always)]
+    fn slot_geometry<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        i: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> (i32, i32, u16) {
+        match scratch.get_mut(i) {
+            Some(s) => {
+                if s.x == UNSEEN {
+                    (s.x, s.y, s.z) = self.geometry(mesh.position(i));
+                }
+                (s.x, s.y, s.z)
+            }
+            None => self.geometry(mesh.position(i)),
+        }
+    }
+
+    /// Vertex `i`'s shader values, from its slot when the scratch has one (always through their
+    /// packed form, so a short scratch draws the same pixels).
+    #[inline(always)]
+    fn slot_values<M: MeshSource<S>>(
+        &mut self,
+        mesh: &M,
+        i: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> Sh::Varyings {
+        use vertex::{Packed, Stored};
+        match scratch.get_mut(i) {
+            Some(s) => {
+                if s.st.is_empty() {
+                    let vin = self.vertex_in(mesh, i);
+                    s.st = Sh::Stored::pack(&self.shading.vertex(&vin));
+                }
+                s.st.unpack()
+            }
+            None => {
+                let vin = self.vertex_in(mesh, i);
+                Sh::Stored::pack(&self.shading.vertex(&vin)).unpack()
+            }
+        }
+    }
+
+    /// The data of a vertex the shader may read: in model space when the shader lights there this
+    /// frame, in world space otherwise.
     #[inline(always)]
     fn vertex_in<M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
         let color = mesh.color(i).unwrap_or(Rgb888::WHITE);
@@ -478,278 +509,193 @@ where
                 color,
             };
         }
-        let position = self.model.transform_point(mesh.position(i)).xyz();
-        let normal = match mesh.normal(i) {
-            Some(n) => self.normal_matrix.transform_dir(n),
-            None => Vec3::default(),
-        };
+        let normal = mesh.normal(i).unwrap_or_default();
+        if self.model_space {
+            return VertexIn {
+                position: mesh.position(i),
+                normal,
+                color,
+            };
+        }
         VertexIn {
-            position,
-            normal,
+            position: self.model.transform_point(mesh.position(i)).xyz(),
+            normal: self.normal_matrix.transform_dir(normal),
             color,
         }
     }
 
-    /// Draws a mesh filled with the pipeline's shading, depth test and culling.
-    ///
-    /// Each triangle transforms and shades its three vertices, so a vertex shared by six triangles
-    /// is processed six times; [`Pipeline::draw_cached`] trades RAM for that work.
-    pub fn draw<T, M>(&mut self, target: &mut T, mesh: &M) -> Result<RenderStats, T::Error>
-    where
-        T: Surface<Color = Sh::Color>,
-        M: MeshSource<S>,
-    {
-        self.draw_with(
-            &mut ClipTo::new(target, self.viewport.rectangle()),
-            mesh,
-            &mut [],
-        )
-    }
-
-    /// Draws a mesh like [`Pipeline::draw`], processing each vertex at most once: `cache` holds
-    /// one [`CachedVertex`] per mesh vertex (its contents on entry do not matter). Vertices beyond
-    /// the cache's length are processed per triangle, so a short cache is slower, never wrong.
-    pub fn draw_cached<T, M>(
-        &mut self,
-        target: &mut T,
-        mesh: &M,
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
-    ) -> Result<RenderStats, T::Error>
-    where
-        T: Surface<Color = Sh::Color>,
-        M: MeshSource<S>,
-    {
-        for c in cache.iter_mut() {
-            c.state = 0;
-        }
-        self.draw_with(
-            &mut ClipTo::new(target, self.viewport.rectangle()),
-            mesh,
-            cache,
-        )
-    }
-
-    /// A vertex's clip-space position and outcode, from the cache when it has them.
-    #[inline(always)]
-    fn clip_of<M: MeshSource<S>>(
-        &self,
-        mesh: &M,
-        i: usize,
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
-    ) -> (Vec4<S>, Outcode) {
-        if let Some(c) = cache.get_mut(i) {
-            if c.state == 0 {
-                c.clip = self.mvp.transform_point(mesh.position(i));
-                c.code = outcode(&c.clip);
-                if c.code == 0 {
-                    (c.screen, c.z) = self.project(&c.clip);
-                }
-                c.state = 1;
-            }
-            return (c.clip, c.code);
-        }
-        let clip = self.mvp.transform_point(mesh.position(i));
-        (clip, outcode(&clip))
-    }
-
-    /// A vertex's shader values, from the cache when it has them.
-    #[inline(always)]
-    fn var_of<M: MeshSource<S>>(
-        &mut self,
-        mesh: &M,
-        i: usize,
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
-    ) -> Sh::Varyings {
-        if let Some(c) = cache.get_mut(i) {
-            if c.state < 2 {
-                let vin = self.vertex_in(mesh, i);
-                c.var = self.shading.vertex(&vin);
-                c.state = 2;
-            }
-            return c.var;
-        }
-        let vin = self.vertex_in(mesh, i);
-        self.shading.vertex(&vin)
-    }
-
     /// The shader values of a triangle's three vertices. A lit shader on a mesh without normals
-    /// gets the face normal (the cross product of the edges in world space) at all three, which
-    /// depends on the face, so those values are never cached.
+    /// gets the face normal (the cross product of the edges) at all three, which depends on the
+    /// face, so those values are never kept in the scratch.
     #[inline(always)]
-    fn face_vars<M: MeshSource<S>>(
+    fn face_values<M: MeshSource<S>>(
         &mut self,
         mesh: &M,
         idx: [usize; 3],
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+        scratch: &mut [VertexSlot<Sh::Stored>],
     ) -> [Sh::Varyings; 3] {
         if Sh::NEEDS_WORLD && !mesh.has_normals() {
-            let mut vin = idx.map(|i| self.vertex_in(mesh, i));
+            let mut vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
             let e1 = vin[1].position - vin[0].position;
             let normal = e1.cross(vin[2].position - vin[0].position);
             for v in &mut vin {
                 v.normal = normal;
             }
-            return vin.map(|v| self.shading.vertex(&v));
+            return [0, 1, 2].map(|k| self.shading.vertex(&vin[k]));
         }
-        idx.map(|i| self.var_of(mesh, i, cache))
+        [
+            self.slot_values(mesh, idx[0], scratch),
+            self.slot_values(mesh, idx[1], scratch),
+            self.slot_values(mesh, idx[2], scratch),
+        ]
     }
 
-    fn draw_with<T, M>(
-        &mut self,
-        target: &mut T,
-        mesh: &M,
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
-    ) -> Result<RenderStats, T::Error>
-    where
-        T: Surface<Color = Sh::Color>,
-        M: MeshSource<S>,
-    {
-        let mut stats = RenderStats {
-            triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
-            ..RenderStats::default()
-        };
-        for t in 0..mesh.triangle_count() {
-            self.draw_triangle(target, mesh, t, cache, &mut stats)?;
-        }
-        Ok(stats)
+    /// Starts a frame: the shader learns the space it lights in, and the scratch's slots for the
+    /// mesh's vertices are marked unused.
+    fn begin<M: MeshSource<S>>(&mut self, mesh: &M, scratch: &mut [VertexSlot<Sh::Stored>]) {
+        // Model-space lighting needs normals carried by the model matrix itself.
+        let model = (self.normal_matrix == self.model).then_some(&self.model);
+        self.model_space = self.shading.begin_frame(model);
+        let n = scratch.len().min(mesh.vertex_count());
+        vertex::reset(&mut scratch[..n]);
     }
 
-    /// The signed doubled area of a convex polygon of screen points.
-    fn polygon_area(points: impl Iterator<Item = SubPoint<BITS>> + Clone) -> i64 {
-        let mut it = points.clone();
-        let Some(a) = it.next() else { return 0 };
-        let mut area = 0i64;
-        let mut prev: Option<SubPoint<BITS>> = None;
-        for c in it {
-            if let Some(b) = prev {
-                area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
-                    - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
-            }
-            prev = Some(c);
-        }
-        area
+    /// The viewport's edges in sub-pixel units: left, top, right, bottom.
+    #[inline(always)]
+    fn edges(&self) -> [i64; 4] {
+        let vp = &self.viewport;
+        let (x, y) = (i64::from(vp.x) << BITS, i64::from(vp.y) << BITS);
+        [
+            x,
+            y,
+            x + (i64::from(vp.width) << BITS),
+            y + (i64::from(vp.height) << BITS),
+        ]
     }
 
-    /// The rows triangle `t` can touch once it is clipped, or why it draws nothing (counted in
-    /// `stats`). Geometry only: no shading.
-    fn triangle_rows<M: MeshSource<S>>(
-        &mut self,
+    /// The front end shared by every draw call: fetches triangle `t`, transforms its vertices
+    /// (once a frame each, through the scratch), rejects it when it lies outside the view or
+    /// faces away, counting why in `stats`. A triangle of zero area on screen is culled, unless
+    /// `keep_flat` (the wireframe draws it as a line).
+    #[inline(always)]
+    fn front<M: MeshSource<S>>(
+        &self,
         mesh: &M,
         t: usize,
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+        scratch: &mut [VertexSlot<Sh::Stored>],
         stats: &mut RenderStats,
-    ) -> Option<(i64, i64)> {
+        keep_flat: bool,
+    ) -> Front<S, BITS> {
         let idx = mesh.triangle(t);
-        if idx.iter().any(|&i| i >= mesh.vertex_count()) {
+        let n = mesh.vertex_count();
+        if idx[0] >= n || idx[1] >= n || idx[2] >= n {
             stats.invalid += 1;
-            return None;
+            return Front::Skip;
         }
-        let vc = idx.map(|i| self.clip_of(mesh, i, cache));
-        let clip = vc.map(|(p, _)| p);
-        let codes = vc.map(|(_, c)| c);
-        if trivially_outside(&clip, codes) {
-            stats.outside += 1;
-            return None;
-        }
-        let mut ys: heapless::Vec<SubPoint<BITS>, { crate::clip::polygon::MAX_CLIPPED }> =
-            heapless::Vec::new();
-        if codes.iter().all(|&c| c == 0) {
-            for k in 0..3 {
-                let p = match cache.get(idx[k]) {
-                    Some(c) => c.screen,
-                    None => self.project(&clip[k]).0,
-                };
-                let _ = ys.push(p);
-            }
-        } else {
-            stats.clipped += 1;
-            let tri = clip.map(|pos| ClipVertex {
-                pos,
-                var: [0i32; 0],
-            });
-            let poly = clip_triangle(&tri, codes);
-            if poly.len() < 3 {
+        let a = self.slot_geometry(mesh, idx[0], scratch);
+        let b = self.slot_geometry(mesh, idx[1], scratch);
+        let c = self.slot_geometry(mesh, idx[2], scratch);
+        if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
+            let clip = idx.map(|i| self.mvp.transform_point(mesh.position(i)));
+            let codes = clip.map(|p| outcode(&p));
+            if trivially_outside(&clip, codes) {
                 stats.outside += 1;
-                return None;
+                return Front::Skip;
             }
-            for v in &poly {
-                let _ = ys.push(self.project(&v.pos).0);
-            }
+            return Front::Clip { idx, clip, codes };
         }
-        let area = Self::polygon_area(ys.iter().copied());
-        if area == 0 || !self.cull.keep(area) {
+        // Off the viewport on one side (the screen planes are stricter than the guard band).
+        let [l, top, r, bottom] = self.edges();
+        let xs = [a.0, b.0, c.0].map(i64::from);
+        let ys = [a.1, b.1, c.1].map(i64::from);
+        if xs.iter().all(|&x| x < l)
+            || xs.iter().all(|&x| x > r)
+            || ys.iter().all(|&y| y < top)
+            || ys.iter().all(|&y| y > bottom)
+        {
+            stats.outside += 1;
+            return Front::Skip;
+        }
+        let area = (xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0]);
+        let keep = if area == 0 {
+            keep_flat
+        } else {
+            self.cull.keep(area)
+        };
+        if !keep {
             stats.culled += 1;
-            return None;
+            return Front::Skip;
         }
-        stats.drawn += 1;
-        let top = ys.iter().map(|p| p.y).min().unwrap_or(0);
-        let bottom = ys.iter().map(|p| p.y).max().unwrap_or(0);
-        let s = 1i64 << BITS;
-        Some((
-            row_at_or_below(i64::from(top), s),
-            row_at_or_below(i64::from(bottom), s),
-        ))
+        Front::Inside {
+            idx,
+            v: [
+                (SubPoint::new(a.0, a.1), a.2),
+                (SubPoint::new(b.0, b.1), b.2),
+                (SubPoint::new(c.0, c.1), c.2),
+            ],
+        }
     }
 
-    /// Draws triangle `t` of `mesh`, counting what happened in `stats`.
-    fn draw_triangle<T, M>(
+    /// Draws a triangle the front end let through, counting it as drawn.
+    #[inline(always)]
+    fn draw_front<T, M>(
         &mut self,
         target: &mut T,
         mesh: &M,
-        t: usize,
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
+        front: Front<S, BITS>,
+        scratch: &mut [VertexSlot<Sh::Stored>],
         stats: &mut RenderStats,
     ) -> Result<(), T::Error>
     where
         T: Surface<Color = Sh::Color>,
         M: MeshSource<S>,
     {
-        let idx = mesh.triangle(t);
-        if idx.iter().any(|&i| i >= mesh.vertex_count()) {
-            stats.invalid += 1;
-            return Ok(());
-        }
-        let vc = idx.map(|i| self.clip_of(mesh, i, cache));
-        let clip = vc.map(|(p, _)| p);
-        let codes = vc.map(|(_, c)| c);
-        if trivially_outside(&clip, codes) {
-            stats.outside += 1;
-            return Ok(());
-        }
-        if codes.iter().all(|&c| c == 0) {
-            // The common case: project first, so culled triangles are never shaded.
-            let projected = [0, 1, 2].map(|k| match cache.get(idx[k]) {
-                Some(c) => (c.screen, c.z),
-                None => self.project(&clip[k]),
-            });
-            let area = Self::polygon_area(projected.iter().map(|(p, _)| *p));
-            if area == 0 || !self.cull.keep(area) {
-                stats.culled += 1;
-                return Ok(());
+        match front {
+            Front::Skip => Ok(()),
+            Front::Inside { idx, v } => {
+                if Sh::NEEDS_FACE {
+                    let vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
+                    self.shading.face(&vin);
+                }
+                let var = self.face_values(mesh, idx, scratch);
+                let sv = [0, 1, 2].map(|k| ScreenVertex {
+                    p: v[k].0,
+                    z: v[k].1,
+                    var: var[k],
+                    q: if PERSPECTIVE {
+                        Self::q(&self.mvp.transform_point(mesh.position(idx[k])))
+                    } else {
+                        0
+                    },
+                });
+                stats.drawn += 1;
+                self.raster(target, &sv)
             }
-            if Sh::NEEDS_FACE {
-                let vin = idx.map(|i| self.vertex_in(mesh, i));
-                self.shading.face(&vin);
+            Front::Clip { idx, clip, codes } => {
+                self.draw_clipped(target, mesh, idx, clip, codes, scratch, stats)
             }
-            let var = self.face_vars(mesh, idx, cache);
-            let sv = [0, 1, 2].map(|k| ScreenVertex {
-                p: projected[k].0,
-                z: projected[k].1,
-                var: var[k],
-                q: Self::q(&clip[k]),
-            });
-            let shading = &self.shading;
-            fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
-                target,
-                &mut self.depth,
-                sv,
-                |v| shading.pixel(v),
-            )?;
-            stats.drawn += 1;
-            return Ok(());
         }
+    }
+
+    /// Clips a triangle in homogeneous space and draws what is left, as a fan.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn draw_clipped<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        idx: [usize; 3],
+        clip: [Vec4<S>; 3],
+        codes: [Outcode; 3],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
         stats.clipped += 1;
-        let var = self.face_vars(mesh, idx, cache);
+        let var = self.face_values(mesh, idx, scratch);
         let tri = [0, 1, 2].map(|k| ClipVertex {
             pos: clip[k],
             var: var[k],
@@ -773,153 +719,106 @@ where
             });
         }
         // The clipped polygon is convex: its total signed area decides its facing.
-        let area = Self::polygon_area(screen.iter().map(|v| v.p));
+        let area = polygon_area(screen.iter().map(|v| v.p));
         if area == 0 || !self.cull.keep(area) {
             stats.culled += 1;
             return Ok(());
         }
         if Sh::NEEDS_FACE {
-            let vin = idx.map(|i| self.vertex_in(mesh, i));
+            let vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
             self.shading.face(&vin);
         }
-        let shading = &self.shading;
         for k in 1..screen.len() - 1 {
-            let t = [screen[0], screen[k], screen[k + 1]];
-            fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
-                target,
-                &mut self.depth,
-                t,
-                |v| shading.pixel(v),
-            )?;
+            self.raster(target, &[screen[0], screen[k], screen[k + 1]])?;
         }
         stats.drawn += 1;
         Ok(())
     }
 
-    /// Draws a mesh one horizontal band at a time, for a microcontroller that cannot hold a whole
-    /// frame: each band is drawn into `band` (a buffer of `banding.rows` rows) and handed to
-    /// `on_band` (where firmware starts the transfer to the display), then reused for the next.
+    /// Rasterizes one screen triangle with the pipeline's depth test and shading: through the
+    /// fused span loop ([`SpanStart::Wrapping`], affine), or the exact interpolator otherwise.
+    #[inline(always)]
+    fn raster<T>(
+        &mut self,
+        target: &mut T,
+        sv: &[ScreenVertex<Sh::Varyings, BITS>; 3],
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+    {
+        let shading = &self.shading;
+        if N::SPANS == SpanStart::Wrapping && !PERSPECTIVE {
+            let area = PixelRect::from_rectangle(&self.viewport.rectangle());
+            if area.is_empty() {
+                return Ok(());
+            }
+            let fv = sv.map(|v| (v.p, v.z, v.var));
+            fill_fused::<_, _, _, _, BITS>(
+                target,
+                &mut self.depth,
+                &fv,
+                &area,
+                Sh::FUSED_FRAC,
+                Sh::FUSED_OFFSET,
+                N::FRAC,
+                ShaderColor::<S, Sh>(shading, core::marker::PhantomData),
+            )
+        } else {
+            fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
+                target,
+                &mut self.depth,
+                *sv,
+                |v| shading.pixel(v),
+            )
+        }
+    }
+
+    /// Draws a mesh filled with the pipeline's shading, depth test and culling.
     ///
-    /// The pipeline's depth stage must hold `banding.rows` rows too (a [`DepthBuffer`] of
-    /// `width` x `rows`); it is cleared to `banding.clear_depth` before each band. Triangles are
-    /// binned once per frame (`bins` holds one entry per visible triangle), so each band draws
-    /// only the triangles that touch it, in mesh order; finding them is one test per bin and band
-    /// (about 9,000 for M1's 613 visible triangles in 15 bands, far below the drawing). `cache` is
-    /// as in [`Pipeline::draw_cached`] (may be empty: vertices shared across bands are then
-    /// processed again). The pixels are exactly those of a whole-frame [`Pipeline::draw`] of the same scene,
-    /// for any band height.
-    ///
-    /// [`DepthBuffer`]: crate::raster::interp::DepthBuffer
+    /// `scratch` holds one [`VertexSlot`] per mesh vertex (its contents on entry do not matter):
+    /// each vertex is transformed, projected and shaded once, by the first triangle that needs it.
+    /// A vertex beyond the scratch's length is processed again by every triangle that uses it
+    /// (about six times for a closed mesh): a short scratch, even an empty one, is slower, never
+    /// wrong, and draws the same pixels.
     ///
     /// # Errors
-    /// [`BandError`] for a band buffer of the wrong size, zero rows, or too few bins (nothing is
-    /// drawn then).
-    pub fn draw_banded<Px, M, F>(
+    /// [`DrawError::DepthTooSmall`] when the depth stage does not cover the viewport within the
+    /// target (nothing is drawn); [`DrawError::Target`] when the target fails.
+    pub fn draw<T, M>(
         &mut self,
+        target: &mut T,
         mesh: &M,
-        banding: &Banding<Px>,
-        band: &mut [Px::Word],
-        bins: &mut [BinEntry],
-        cache: &mut [CachedVertex<S, Sh::Varyings, BITS>],
-        mut on_band: F,
-    ) -> Result<RenderStats, BandError>
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> Result<RenderStats, DrawError<T::Error>>
     where
-        Px: Storage,
-        Sh: Shading<S, Color = Px>,
+        T: Surface<Color = Sh::Color>,
         M: MeshSource<S>,
-        F: FnMut(&Band<'_, Px>),
     {
-        let (width, height, rows) = (banding.width, banding.height, banding.rows);
-        if rows == 0 || height == 0 {
-            return Err(BandError::NoRows);
+        let target = &mut ClipTo::new(target, self.viewport.rectangle());
+        let needed = target.clip_area();
+        if needed.size.width > 0 && needed.size.height > 0 && !self.depth.covers(&needed) {
+            return Err(DrawError::DepthTooSmall { needed });
         }
-        let needed = Framebuffer::<Px>::required_len(width, rows.min(height))
-            .ok_or(BandError::BadSize { width, height })?;
-        if band.len() < needed {
-            return Err(BandError::BandBufferTooSmall {
-                needed,
-                actual: band.len(),
-            });
-        }
-        for c in cache.iter_mut() {
-            c.state = 0;
-        }
-        // Bin: each visible triangle's first and last band.
+        self.begin(mesh, scratch);
         let mut stats = RenderStats {
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
-        let mut count = 0usize;
-        let mut wanted = 0usize;
         for t in 0..mesh.triangle_count() {
-            let Some((top, bottom)) = self.triangle_rows(mesh, t, cache, &mut stats) else {
-                continue;
-            };
-            let (top, bottom) = (top.max(0), bottom.min(i64::from(height)));
-            if top >= bottom {
-                continue;
-            }
-            wanted += 1;
-            if let Some(slot) = bins.get_mut(count) {
-                *slot = BinEntry {
-                    triangle: t as u32,
-                    first: (top / i64::from(rows)) as u32,
-                    last: ((bottom - 1) / i64::from(rows)) as u32,
-                };
-                count += 1;
-            }
-        }
-        if wanted > bins.len() {
-            return Err(BandError::TooFewBins {
-                needed: wanted,
-                actual: bins.len(),
-            });
-        }
-        // The bins stay in mesh order, and each band scans them for the triangles that touch it:
-        // the order a whole-frame draw has, for a test per bin and band. (Keeping a window sorted
-        // by first band and then by triangle cost M1 in 16-row bands 11 % of its frame.) `lo`
-        // skips the leading bins that ended above the band.
-        let bins = &bins[..count];
-        let mut lo = 0usize;
-        let mut scratch = RenderStats::default();
-        let bands = height.div_ceil(rows);
-        for b in 0..bands {
-            while bins.get(lo).is_some_and(|e| e.last < b) {
-                lo += 1;
-            }
-            let y0 = b * rows;
-            let h = rows.min(height - y0);
-            let len = Framebuffer::<Px>::required_len(width, h).unwrap_or(0);
-            let Ok(mut fb) = Framebuffer::<Px>::new(&mut band[..len], width, h) else {
-                return Err(BandError::BadSize { width, height });
-            };
-            let _ = DrawTarget::clear(&mut fb, banding.background);
-            self.depth.start_band(y0 as i32, banding.clear_depth);
-            let mut strip = Band::new(fb, y0 as i32);
-            {
-                let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
-                for e in bins[lo..].iter().filter(|e| e.first <= b && b <= e.last) {
-                    let Ok(()) = self.draw_triangle(
-                        &mut target,
-                        mesh,
-                        e.triangle as usize,
-                        cache,
-                        &mut scratch,
-                    );
-                }
-            }
-            on_band(&strip);
+            let front = self.front(mesh, t, scratch, &mut stats, false);
+            self.draw_front(target, mesh, front, scratch, &mut stats)?;
         }
         Ok(stats)
     }
 
     /// Draws a mesh's edges in one colour, clipped in homogeneous space (nothing behind the camera
     /// is drawn) and then to the target. Culling applies, so a closed mesh shows only its front
-    /// edges; there is no depth test.
+    /// edges; there is no depth test. `scratch` is as in [`Pipeline::draw`].
     pub fn draw_wireframe<T, M>(
         &mut self,
         target: &mut T,
         mesh: &M,
+        scratch: &mut [VertexSlot<Sh::Stored>],
         color: T::Color,
     ) -> Result<RenderStats, T::Error>
     where
@@ -927,59 +826,78 @@ where
         M: MeshSource<S>,
     {
         let target = &mut ClipTo::new(target, self.viewport.rectangle());
+        self.begin(mesh, scratch);
         let mut stats = RenderStats {
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
-        let n = mesh.vertex_count();
+        let px = |p: SubPoint<BITS>| Point::new(p.x >> BITS, p.y >> BITS);
         for t in 0..mesh.triangle_count() {
-            let idx = mesh.triangle(t);
-            if idx.iter().any(|&i| i >= n) {
-                stats.invalid += 1;
-                continue;
-            }
-            let clip = idx.map(|i| self.mvp.transform_point(mesh.position(i)));
-            let codes = clip.map(|p| outcode(&p));
-            if trivially_outside(&clip, codes) {
-                stats.outside += 1;
-                continue;
-            }
-            if codes.iter().any(|&c| c != 0) {
-                stats.clipped += 1;
-            }
-            // Facing from the clipped polygon's area, as for filled triangles.
-            let tri = clip.map(|pos| ClipVertex {
-                pos,
-                var: [0i32; 0],
-            });
-            let poly = clip_triangle(&tri, codes);
-            if poly.len() < 3 {
-                stats.outside += 1;
-                continue;
-            }
-            let corners: heapless::Vec<SubPoint<BITS>, { crate::clip::polygon::MAX_CLIPPED }> =
-                poly.iter().map(|v| self.project(&v.pos).0).collect();
-            let mut area = 0i64;
-            for k in 1..corners.len() - 1 {
-                let (a, b, c) = (corners[0], corners[k], corners[k + 1]);
-                area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
-                    - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
-            }
-            if area != 0 && !self.cull.keep(area) {
-                stats.culled += 1;
-                continue;
-            }
-            // The visible part of each of the triangle's own edges; the pixel of a point is the one
-            // that contains it.
-            for k in 0..3 {
-                if let Some((a, b)) = clip_segment(clip[k], clip[(k + 1) % 3]) {
-                    let (pa, pb) = (self.project(&a).0, self.project(&b).0);
-                    let px = |p: SubPoint<BITS>| Point::new(p.x >> BITS, p.y >> BITS);
-                    draw_line(target, px(pa), px(pb), color)?;
+            match self.front(mesh, t, scratch, &mut stats, true) {
+                Front::Skip => {}
+                Front::Inside { v, .. } => {
+                    for k in 0..3 {
+                        draw_line(target, px(v[k].0), px(v[(k + 1) % 3].0), color)?;
+                    }
+                    stats.drawn += 1;
+                }
+                Front::Clip { clip, codes, .. } => {
+                    if codes.iter().any(|&c| c != 0) {
+                        stats.clipped += 1;
+                    }
+                    // Facing from the clipped polygon's area, as for filled triangles.
+                    let tri = clip.map(|pos| ClipVertex {
+                        pos,
+                        var: [0i32; 0],
+                    });
+                    let poly = clip_triangle(&tri, codes);
+                    if poly.len() < 3 {
+                        stats.outside += 1;
+                        continue;
+                    }
+                    let area = polygon_area(poly.iter().map(|v| self.project(&v.pos).0));
+                    if area != 0 && !self.cull.keep(area) {
+                        stats.culled += 1;
+                        continue;
+                    }
+                    // The visible part of each of the triangle's own edges; the pixel of a point
+                    // is the one that contains it.
+                    for k in 0..3 {
+                        if let Some((a, b)) = clip_segment(clip[k], clip[(k + 1) % 3]) {
+                            let (pa, pb) = (self.project(&a).0, self.project(&b).0);
+                            draw_line(target, px(pa), px(pb), color)?;
+                        }
+                    }
+                    stats.drawn += 1;
                 }
             }
-            stats.drawn += 1;
         }
         Ok(stats)
     }
+}
+
+/// A shader as the fused span loop's colour source.
+struct ShaderColor<'a, S, Sh>(&'a Sh, core::marker::PhantomData<S>);
+
+impl<S: Scalar, Sh: Shading<S>> FusedColor<Sh::Color> for ShaderColor<'_, S, Sh> {
+    #[inline(always)]
+    fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
+        self.0.pixel_fused(acc)
+    }
+}
+
+/// The signed doubled area of a convex polygon of screen points.
+fn polygon_area<const BITS: u32>(points: impl Iterator<Item = SubPoint<BITS>> + Clone) -> i64 {
+    let mut it = points.clone();
+    let Some(a) = it.next() else { return 0 };
+    let mut area = 0i64;
+    let mut prev: Option<SubPoint<BITS>> = None;
+    for c in it {
+        if let Some(b) = prev {
+            area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
+                - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
+        }
+        prev = Some(c);
+    }
+    area
 }

@@ -5,8 +5,10 @@
 //! triangle; [`GouraudLit`] once per vertex and interpolates the colour; [`PhongLit`] interpolates the
 //! normal and the position and lights every pixel.
 
-use crate::math::{Scalar, Vec3};
-use crate::shade::{Lighting, Varyings};
+use super::vertex::Stored;
+use crate::color::ShadeColor;
+use crate::math::{Mat4, Scalar, Vec3};
+use crate::shade::{Lighting, Varyings, MAX_VARYINGS};
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::{PixelColor, RgbColor};
 
@@ -27,17 +29,84 @@ pub trait Shading<S: Scalar> {
     type Color: PixelColor;
     /// The values it interpolates across a triangle.
     type Varyings: Varyings;
+    /// What the vertex scratch keeps of them ([`super::VertexSlot`]).
+    type Stored: Stored<Self::Varyings>;
     /// The shader reads world positions and normals (the pipeline skips them otherwise).
     const NEEDS_WORLD: bool;
     /// The shader does work per triangle in [`Shading::face`] (the pipeline skips the call and
     /// the world data it needs otherwise).
     const NEEDS_FACE: bool = false;
+    /// Called when a draw starts, with the model matrix when normals follow it (no
+    /// [`super::Pipeline::set_normal_matrix`]). A shader that can light in model space (with its
+    /// lights and eye moved there once) returns true; the pipeline then hands it model-space
+    /// positions and normals, saving their transforms per vertex. The default returns false:
+    /// world space.
+    fn begin_frame(&mut self, _model: Option<&Mat4<S>>) -> bool {
+        false
+    }
     /// Per vertex: the values to interpolate.
     fn vertex(&mut self, v: &VertexIn<S>) -> Self::Varyings;
     /// Once per visible triangle, before its pixels.
     fn face(&mut self, _vertices: &[VertexIn<S>; 3]) {}
     /// Per pixel: the colour from the interpolated values.
     fn pixel(&self, v: &Self::Varyings) -> Self::Color;
+    /// Fractional bits the default path's fused span loop gives each value as it steps across a
+    /// triangle (at most 16). Every value times `2^FUSED_FRAC` must fit an `i32`, or a `u32` for
+    /// values that are never negative.
+    const FUSED_FRAC: u32 = 16;
+    /// Added to every value (in units of `2^-FUSED_FRAC`) where a span starts: half a unit by
+    /// default, so that a shift by `FUSED_FRAC` rounds.
+    const FUSED_OFFSET: u32 = (1 << Self::FUSED_FRAC) >> 1;
+    /// Per pixel in the fused span loop: `acc[i]` is value `i` times `2^FUSED_FRAC`, plus
+    /// [`Shading::FUSED_OFFSET`], wrapping. By default each value is shifted back (rounded) and
+    /// handed to [`Shading::pixel`].
+    #[inline(always)]
+    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> Self::Color {
+        let mut v = Self::Varyings::default();
+        for (out, a) in v.as_mut_slice().iter_mut().zip(acc) {
+            *out = (*a as i32) >> Self::FUSED_FRAC;
+        }
+        self.pixel(&v)
+    }
+}
+
+/// Fractional bits of a channel of largest value `max` as the colour shaders interpolate it: as
+/// many as keep `max + 1/2` below `2^16`.
+const fn channel_frac(max: u8) -> u32 {
+    8 + max.leading_zeros()
+}
+
+/// A colour's three channels at the target's depth, each with [`channel_frac`] fractional bits
+/// and half a step added (so the fused loop's shift rounds), from `num[c] / den` 8-bit steps.
+#[inline(always)]
+fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3] {
+    let mut out = [0i32; 3];
+    for c in 0..3 {
+        let f = channel_frac(C::MAX[c]);
+        // num <= 255 den, so the product stays below 2^40 den.
+        let n = num[c] * u64::from(C::MAX[c]) << f;
+        let d = den * 255;
+        out[c] = ((n + d / 2) / d) as i32 + (1 << (f - 1));
+    }
+    out
+}
+
+/// An 8-bit lit colour at the target's depth, rounded.
+#[inline(always)]
+fn from_rgb888<C: ShadeColor>(c: Rgb888) -> C {
+    let ch = |v: u8, max: u8| ((u32::from(v) * u32::from(max) + 127) / 255) as u8;
+    C::from_shade([
+        ch(c.r(), C::MAX[0]),
+        ch(c.g(), C::MAX[1]),
+        ch(c.b(), C::MAX[2]),
+    ])
+}
+
+/// The colour from interpolated [`target_channels`] (each shifted back by `shift` bits first).
+#[inline(always)]
+fn from_target<C: ShadeColor>(v: [u32; 3], shift: u32) -> C {
+    let ch = |c: usize| (v[c] >> (shift + channel_frac(C::MAX[c]))) as u8;
+    C::from_shade([ch(0), ch(1), ch(2)])
 }
 
 /// One colour, no lighting.
@@ -50,6 +119,7 @@ pub struct Unlit<C> {
 impl<S: Scalar, C: PixelColor> Shading<S> for Unlit<C> {
     type Color = C;
     type Varyings = [i32; 0];
+    type Stored = [i32; 0];
     const NEEDS_WORLD: bool = false;
     #[inline(always)]
     fn vertex(&mut self, _: &VertexIn<S>) -> [i32; 0] {
@@ -76,30 +146,24 @@ impl<C> VertexColors<C> {
     }
 }
 
-/// Channels in 8.8 fixed point, as interpolated.
-#[inline(always)]
-fn rgb_fine(c: [u32; 3]) -> [i32; 3] {
-    c.map(|v| v as i32)
-}
-
-/// An 8.8 channel triple back to a colour, rounded and clamped.
-#[inline(always)]
-fn from_fine<C: From<Rgb888>>(v: &[i32; 3]) -> C {
-    let ch = |x: i32| ((x + 128) >> 8).clamp(0, 255) as u8;
-    C::from(Rgb888::new(ch(v[0]), ch(v[1]), ch(v[2])))
-}
-
-impl<S: Scalar, C: PixelColor + From<Rgb888>> Shading<S> for VertexColors<C> {
+/// The colour shaders' values: the three channels at the target's depth ([`target_channels`]).
+impl<S: Scalar, C: ShadeColor> Shading<S> for VertexColors<C> {
     type Color = C;
     type Varyings = [i32; 3];
+    type Stored = [u16; 3];
     const NEEDS_WORLD: bool = false;
+    const FUSED_OFFSET: u32 = 0;
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> [i32; 3] {
-        rgb_fine([v.color.r(), v.color.g(), v.color.b()].map(|c| u32::from(c) << 8))
+        target_channels::<C>([v.color.r(), v.color.g(), v.color.b()].map(u64::from), 1)
     }
     #[inline(always)]
     fn pixel(&self, v: &[i32; 3]) -> C {
-        from_fine(v)
+        from_target(v.map(|x| x.max(0) as u32), 0)
+    }
+    #[inline(always)]
+    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
+        from_target([acc[0], acc[1], acc[2]], <Self as Shading<S>>::FUSED_FRAC)
     }
 }
 
@@ -108,22 +172,26 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>> Shading<S> for VertexColors<C> {
 pub struct FlatLit<S, C, const N: usize> {
     /// The lights, material and eye.
     pub lighting: Lighting<S, N>,
+    /// This frame's lighting in model space, when the model matrix allows it.
+    frame: Option<Lighting<S, N>>,
     color: C,
 }
 
-impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> FlatLit<S, C, N> {
+impl<S: Scalar, C: ShadeColor, const N: usize> FlatLit<S, C, N> {
     /// The shader.
     pub fn new(lighting: Lighting<S, N>) -> Self {
         Self {
             lighting,
-            color: C::from(Rgb888::BLACK),
+            frame: None,
+            color: C::from_shade([0; 3]),
         }
     }
 }
 
-impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for FlatLit<S, C, N> {
+impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
     type Color = C;
     type Varyings = [i32; 0];
+    type Stored = [i32; 0];
     const NEEDS_WORLD: bool = true;
     const NEEDS_FACE: bool = true;
     #[inline(always)]
@@ -135,7 +203,12 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for Fla
         // The centroid, for point lights and the specular term.
         let third = S::from_ratio(1, 3);
         let centre = (v[0].position + v[1].position + v[2].position).scale(third);
-        self.color = C::from(self.lighting.shade(centre, normal));
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        self.color = from_rgb888(lighting.shade(centre, normal));
+    }
+    fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
+        self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        self.frame.is_some()
     }
     #[inline(always)]
     fn pixel(&self, _: &[i32; 0]) -> C {
@@ -148,6 +221,8 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for Fla
 pub struct GouraudLit<S, C, const N: usize> {
     /// The lights, material and eye.
     pub lighting: Lighting<S, N>,
+    /// This frame's lighting in model space, when the model matrix allows it.
+    frame: Option<Lighting<S, N>>,
     _c: core::marker::PhantomData<C>,
 }
 
@@ -156,22 +231,34 @@ impl<S: Scalar, C, const N: usize> GouraudLit<S, C, N> {
     pub fn new(lighting: Lighting<S, N>) -> Self {
         Self {
             lighting,
+            frame: None,
             _c: core::marker::PhantomData,
         }
     }
 }
 
-impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for GouraudLit<S, C, N> {
+impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N> {
     type Color = C;
     type Varyings = [i32; 3];
+    type Stored = [u16; 3];
     const NEEDS_WORLD: bool = true;
+    const FUSED_OFFSET: u32 = 0;
+    fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
+        self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        self.frame.is_some()
+    }
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> [i32; 3] {
-        rgb_fine(self.lighting.shade_fine(v.position, v.normal))
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        target_channels::<C>(lighting.shade_sums(v.position, v.normal), 255 << 16)
     }
     #[inline(always)]
     fn pixel(&self, v: &[i32; 3]) -> C {
-        from_fine(v)
+        from_target(v.map(|x| x.max(0) as u32), 0)
+    }
+    #[inline(always)]
+    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
+        from_target([acc[0], acc[1], acc[2]], <Self as Shading<S>>::FUSED_FRAC)
     }
 }
 
@@ -181,6 +268,8 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for Gou
 pub struct PhongLit<S, C, const N: usize> {
     /// The lights, material and eye.
     pub lighting: Lighting<S, N>,
+    /// This frame's lighting in model space, when the model matrix allows it.
+    frame: Option<Lighting<S, N>>,
     _c: core::marker::PhantomData<C>,
 }
 
@@ -189,15 +278,21 @@ impl<S: Scalar, C, const N: usize> PhongLit<S, C, N> {
     pub fn new(lighting: Lighting<S, N>) -> Self {
         Self {
             lighting,
+            frame: None,
             _c: core::marker::PhantomData,
         }
     }
 }
 
-impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for PhongLit<S, C, N> {
+impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> {
     type Color = C;
     type Varyings = [i32; 6];
+    type Stored = [i32; 6];
     const NEEDS_WORLD: bool = true;
+    fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
+        self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        self.frame.is_some()
+    }
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> [i32; 6] {
         // Unit normals keep the interpolated normal's scale even across a long triangle.
@@ -210,6 +305,7 @@ impl<S: Scalar, C: PixelColor + From<Rgb888>, const N: usize> Shading<S> for Pho
         let f = |i: usize| S::from_fx16_bits(v[i]);
         let normal = Vec3::new(f(0), f(1), f(2));
         let position = Vec3::new(f(3), f(4), f(5));
-        C::from(self.lighting.shade(position, normal))
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        from_rgb888(lighting.shade(position, normal))
     }
 }

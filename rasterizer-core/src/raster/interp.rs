@@ -12,6 +12,7 @@ use crate::raster::edge::row_at_or_below;
 use crate::raster::triangle::setup::{walk_spans, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::Surface;
+use embedded_graphics_core::primitives::Rectangle;
 
 /// How a depth buffer compares a new depth with the stored one; 0 is nearest, 65535 farthest.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -36,8 +37,9 @@ pub enum Compare {
 }
 
 impl Compare {
+    /// Whether a new depth passes against the stored one.
     #[inline(always)]
-    fn pass(self, new: u16, old: u16) -> bool {
+    pub fn pass(self, new: u16, old: u16) -> bool {
         match self {
             Compare::Less => new < old,
             Compare::LessEqual => new <= old,
@@ -72,6 +74,19 @@ pub trait DepthTest {
     ) -> Result<(), E>
     where
         F: FnMut(u32, u32) -> Result<(), E>;
+    /// The stored depths of row `y`, columns `x ..`: at most `len` of them, fewer (or none)
+    /// where the buffer ends. The fused span loop of the 3D pipeline tests and stores through it.
+    fn depth_row(&mut self, _y: i32, _x: i32, _len: u32) -> &mut [u16] {
+        &mut []
+    }
+    /// The comparison a new depth must pass against the stored one.
+    fn comparison(&self) -> Compare {
+        Compare::Always
+    }
+    /// Whether the test holds a depth for every pixel of `area` (one without a buffer does).
+    fn covers(&self, _area: &Rectangle) -> bool {
+        true
+    }
 }
 
 /// No depth test: every pixel passes and no depth is computed.
@@ -164,6 +179,32 @@ impl DepthTest for DepthBuffer<'_> {
     fn start_band(&mut self, y0: i32, clear: u16) {
         self.origin_y = y0;
         self.buf.fill(clear);
+    }
+
+    #[inline(always)]
+    fn depth_row(&mut self, y: i32, x: i32, len: u32) -> &mut [u16] {
+        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips).
+        let y = y.wrapping_sub(self.origin_y);
+        if y < 0 || y as u32 >= self.height || x < 0 || x as u32 >= self.width {
+            return &mut [];
+        }
+        let len = len.min(self.width - x as u32) as usize;
+        let start = y as usize * self.width as usize + x as usize;
+        self.buf.get_mut(start..start + len).unwrap_or_default()
+    }
+
+    #[inline(always)]
+    fn comparison(&self) -> Compare {
+        self.compare
+    }
+
+    fn covers(&self, area: &Rectangle) -> bool {
+        let r = PixelRect::from_rectangle(area);
+        let y0 = i64::from(self.origin_y);
+        r.x0 >= 0
+            && r.x1 <= i64::from(self.width)
+            && r.y0 >= y0
+            && r.y1 <= y0 + i64::from(self.height)
     }
 
     #[inline(always)]
@@ -693,7 +734,7 @@ where
 
 /// Whether the triangle's span walk yields a span: out of line, one copy for every target.
 #[inline(never)]
-fn covers_a_pixel(t: &Sorted, s: i64, clip: &PixelRect) -> bool {
+pub(crate) fn covers_a_pixel(t: &Sorted, s: i64, clip: &PixelRect) -> bool {
     struct Probe(bool);
     impl SpanSink for Probe {
         type Error = ();

@@ -4,6 +4,7 @@
 //! reach the target, and hands the target whole spans where the primitive has them.
 
 pub(crate) mod edge;
+pub(crate) mod fused;
 pub mod interp;
 pub mod line;
 pub mod point;

@@ -64,8 +64,8 @@
 //! most 16 squarings and 16 products (`u32 × u32 → u64`); six `u32 × u32 → u64` multiply-adds; and
 //! three divisions by a constant at the end.
 
-use crate::math::fx::isqrt_u64;
-use crate::math::{Scalar, Vec3};
+use crate::math::fx::rsqrt_u64;
+use crate::math::{Mat4, Scalar, Vec3};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use heapless::Vec;
 
@@ -159,17 +159,60 @@ pub struct Lighting<S, const N: usize> {
     ambient: Rgb888,
     specular: Specular,
     eye: Vec3<S>,
+    /// What each light contributes independently of the point lit, kept up to date with the
+    /// lights and the material.
+    terms: Vec<LightTerms, N>,
+    /// `Ma La` per channel, in the units of the sums.
+    ambient_sum: [u64; 3],
+}
+
+/// A light's terms that do not depend on the point lit: a directional light's unit direction in
+/// 2.30, and the colour products `Md Lc` and `Ms Lc` per channel.
+#[derive(Debug, Clone, Copy, Default)]
+struct LightTerms {
+    direction: [i64; 3],
+    diffuse: [u32; 3],
+    specular: [u32; 3],
 }
 
 impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// No lights yet; `ambient` is the colour of the ambient light.
     pub fn new(material: Material, ambient: Rgb888, specular: Specular, eye: Vec3<S>) -> Self {
-        Self {
+        let mut out = Self {
             lights: Vec::new(),
             material,
             ambient,
             specular,
             eye,
+            terms: Vec::new(),
+            ambient_sum: [0; 3],
+        };
+        out.prepare();
+        out
+    }
+
+    /// Recomputes the terms that do not depend on the point lit.
+    fn prepare(&mut self) {
+        let m = &self.material;
+        let (ma, la) = (channels(m.ambient), channels(self.ambient));
+        self.ambient_sum = [0, 1, 2].map(|c| u64::from(ma[c] * la[c]) << 16);
+        let (md, ms) = (channels(m.diffuse), channels(m.specular));
+        self.terms.clear();
+        for light in &self.lights {
+            let (direction, color) = match *light {
+                Light::Directional { direction, color } => (
+                    [direction.x, direction.y, direction.z].map(|c| i64::from(c.to_scaled_int(30))),
+                    color,
+                ),
+                Light::Point { color, .. } => ([0; 3], color),
+            };
+            let lc = channels(color);
+            // One entry per light, so the push cannot fail.
+            let _ = self.terms.push(LightTerms {
+                direction,
+                diffuse: [0, 1, 2].map(|c| md[c] * lc[c]),
+                specular: [0, 1, 2].map(|c| ms[c] * lc[c]),
+            });
         }
     }
 
@@ -186,7 +229,9 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             },
             Light::Point { .. } => light,
         };
-        self.lights.push(stored).map_err(|_| light)
+        self.lights.push(stored).map_err(|_| light)?;
+        self.prepare();
+        Ok(())
     }
 
     /// The lights, directional ones with unit directions.
@@ -202,6 +247,59 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// Replaces the material (for example between objects).
     pub fn set_material(&mut self, material: Material) {
         self.material = material;
+        self.prepare();
+    }
+
+    /// The same lighting with its lights and eye carried into the space of a model whose matrix
+    /// is `model`: lighting a model-space point and normal with the result gives what lighting
+    /// the world-space ones with `self` gives, up to rounding. This holds for a similarity (a
+    /// rotation or reflection, a uniform scale and a translation, with `(0, 0, 0, 1)` as the last
+    /// row), which keeps every angle; for any other matrix, or a scale outside `1/4 ..= 32`
+    /// (where the format would carry the moved eye and lights too coarsely), `None`.
+    ///
+    /// The 3D pipeline lights in model space this way when it can, which saves transforming
+    /// each vertex's position and normal to world space.
+    pub fn in_model_space(&self, model: &Mat4<S>) -> Option<Self> {
+        let m = &model.m;
+        if m[3] != [S::ZERO, S::ZERO, S::ZERO, S::ONE] {
+            return None;
+        }
+        let col = |c: usize| Vec3::new(m[0][c], m[1][c], m[2][c]);
+        let (c0, c1, c2) = (col(0), col(1), col(2));
+        // A similarity s R has columns of one length s, at right angles: M^T M = s^2 I.
+        let g = [c0.dot(c0), c1.dot(c1), c2.dot(c2)];
+        let s2 = (g[0] + g[1] + g[2]) * S::from_ratio(1, 3);
+        if s2 < S::from_ratio(1, 16) || s2 > S::from_int(1024) {
+            return None;
+        }
+        let tol = s2 * S::from_ratio(1, 4096);
+        let off = [c0.dot(c1), c0.dot(c2), c1.dot(c2)];
+        if g.iter().any(|&x| (x - s2).abs() > tol) || off.iter().any(|&x| x.abs() > tol) {
+            return None;
+        }
+        // M^-1 (p - t) = M^T (p - t) / s^2; a direction needs only M^T, as it is normalised.
+        let t = Vec3::new(m[0][3], m[1][3], m[2][3]);
+        let transpose = |d: Vec3<S>| Vec3::new(c0.dot(d), c1.dot(d), c2.dot(d));
+        let back = |p: Vec3<S>| {
+            let d = transpose(p - t);
+            Vec3::new(d.x / s2, d.y / s2, d.z / s2)
+        };
+        let mut out = self.clone();
+        out.eye = back(self.eye);
+        for light in out.lights.iter_mut() {
+            *light = match *light {
+                Light::Directional { direction, color } => Light::Directional {
+                    direction: transpose(direction).normalize()?,
+                    color,
+                },
+                Light::Point { position, color } => Light::Point {
+                    position: back(position),
+                    color,
+                },
+            };
+        }
+        out.prepare();
+        Some(out)
     }
 
     /// The lit colour of the surface point `position` with normal `normal`, 8 bits per channel,
@@ -226,8 +324,87 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         [ch(0), ch(1), ch(2)]
     }
 
+    /// The lit colour unrounded: channel `c` is `sums[c] / (255 · 2^16)` 8-bit steps, at most
+    /// 255 ([`shade`](Self::shade) and [`shade_fine`](Self::shade_fine) round these).
+    pub fn shade_sums(&self, position: Vec3<S>, normal: Vec3<S>) -> [u64; 3] {
+        self.sum(position, normal)
+    }
+
     /// Per channel, the lit colour times `255 · 2^16`, clamped to `255` times that.
+    #[inline]
     fn sum(&self, position: Vec3<S>, normal: Vec3<S>) -> [u64; 3] {
+        if let (Some(p), Some(n)) = (raw3(position), raw3(normal)) {
+            return self.sum_raw(p, n);
+        }
+        self.sum_scalar(position, normal)
+    }
+
+    /// [`Lighting::sum`] for a fixed-point format, on the raw integers: unit vectors in 2.30
+    /// from one reciprocal square root each, cosines as exact `i64` sums of products.
+    fn sum_raw(&self, position: [i64; 3], normal: [i64; 3]) -> [u64; 3] {
+        let mut sum = self.ambient_sum;
+        let Some(n) = unit30_near(normal, S::RAW_FRAC) else {
+            return clamp(sum);
+        };
+        let shininess = self.material.shininess;
+        let needs_view =
+            self.specular != Specular::None && shininess != 0 && !self.lights.is_empty();
+        let view = if needs_view {
+            let eye = raw3(self.eye).unwrap_or_default();
+            unit30([0, 1, 2].map(|i| eye[i] - position[i]))
+        } else {
+            None
+        };
+        let nv = match (self.specular, view) {
+            (Specular::Phong, Some(v)) => dot30(n, v),
+            _ => 0,
+        };
+        for (light, terms) in self.lights.iter().zip(&self.terms) {
+            let l = match *light {
+                Light::Directional { .. } => terms.direction,
+                Light::Point { position: at, .. } => {
+                    let at = raw3(at).unwrap_or_default();
+                    match unit30([0, 1, 2].map(|i| at[i] - position[i])) {
+                        Some(l) => l,
+                        None => continue,
+                    }
+                }
+            };
+            let nl = dot30(n, l);
+            if nl <= 0 {
+                continue;
+            }
+            let diffuse = ((nl + (1 << 13)) >> 14).min(i64::from(ONE16)) as u32;
+            let specular = match (self.specular, view) {
+                (Specular::None, _) => 0,
+                (_, _) if shininess == 0 => ONE16,
+                (_, None) => 0,
+                (Specular::Phong, Some(v)) => phong(nl, nv, dot30(l, v), shininess),
+                (Specular::BlinnPhong, Some(v)) => {
+                    // N·H = N·h / |h| with h = L + V, |h| from a reciprocal square root.
+                    let h = [l[0] + v[0], l[1] + v[1], l[2] + v[2]];
+                    let a = dot30(n, h);
+                    let hh = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]) as u64;
+                    if a <= 0 || hh == 0 {
+                        0
+                    } else {
+                        // |a| <= 2^31 and r <= 2^31: a r / 2^k is N·H, shifted to 2.30.
+                        let (r, k) = rsqrt_u64(hh);
+                        let nh = ((a as u64 * r) >> (k - 30)).min(u64::from(ONE30)) as u32;
+                        to_q16(pow30(nh, shininess))
+                    }
+                }
+            };
+            for c in 0..3 {
+                sum[c] += u64::from(terms.diffuse[c]) * u64::from(diffuse)
+                    + u64::from(terms.specular[c]) * u64::from(specular);
+            }
+        }
+        clamp(sum)
+    }
+
+    /// [`Lighting::sum`] for a floating-point format.
+    fn sum_scalar(&self, position: Vec3<S>, normal: Vec3<S>) -> [u64; 3] {
         let m = &self.material;
         let ma = channels(m.ambient);
         let la = channels(self.ambient);
@@ -285,6 +462,64 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         }
         clamp(sum)
     }
+}
+
+/// The raw integers of a fixed-point vector.
+#[inline(always)]
+fn raw3<S: Scalar>(v: Vec3<S>) -> Option<[i64; 3]> {
+    Some([v.x.raw_bits()?, v.y.raw_bits()?, v.z.raw_bits()?])
+}
+
+/// The unit vector along `v` in 2.30 (`2^30` is one), or `None` for the zero vector: one
+/// reciprocal square root and three products.
+#[inline(always)]
+fn unit30(v: [i64; 3]) -> Option<[i64; 3]> {
+    let big = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
+    if big == 0 {
+        return None;
+    }
+    // Components below 2^31 keep the sum of the squares within u64; only the direction counts.
+    let shift = (64 - big.leading_zeros()).saturating_sub(31);
+    let v = v.map(|c| c >> shift);
+    let sq = v
+        .iter()
+        .map(|&c| c.unsigned_abs() * c.unsigned_abs())
+        .sum::<u64>();
+    if sq == 0 {
+        return None;
+    }
+    // c / |v| = c r / 2^k, in 2.30: c r >> (k - 30), |c r| < 2^62.
+    let (r, k) = rsqrt_u64(sq);
+    let r = r as i64;
+    Some(v.map(|c| (c * r + (1 << (k - 31))) >> (k - 30)))
+}
+
+/// [`unit30`] for a vector whose components have `frac` fractional bits, taking a shortcut
+/// when it is already of unit length within `2^-12` (a mesh normal): one Newton step of the
+/// reciprocal square root from 1, `(3 - |v|²) / 2`, then within `2^-25` of the exact root.
+#[inline(always)]
+fn unit30_near(v: [i64; 3], frac: u32) -> Option<[i64; 3]> {
+    if frac <= 24 {
+        let one = 1i64 << (2 * frac);
+        // |v|² - 1 in units of 2^-2frac; components of a near-unit vector are below 2^25.
+        let small = v.iter().all(|c| c.unsigned_abs() < 1 << (frac + 1));
+        if small {
+            let d = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - one;
+            if d.unsigned_abs() < (one >> 12) as u64 {
+                // r = (3 - |v|²) / 2 = 1 - d / 2, in 2.30 (d / 2 in units of 2^-2frac).
+                let r = (1i64 << 30) - (d >> (2 * frac - 29));
+                let sh = frac;
+                return Some(v.map(|c| (c * r + (1 << (sh - 1))) >> sh));
+            }
+        }
+    }
+    unit30(v)
+}
+
+/// The dot product of two 2.30 vectors, in 2.30.
+#[inline(always)]
+fn dot30(a: [i64; 3], b: [i64; 3]) -> i64 {
+    (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + (1 << 29)) >> 30
 }
 
 /// The three channels as `u32`.
@@ -347,18 +582,14 @@ fn blinn<S: Scalar>(n: Vec3<S>, h: Vec3<S>, s: u16) -> u32 {
     let (hx, hy, hz) = (c(h.x), c(h.y), c(h.z));
     // N·h in 0.56, about 2^57 at most; h·h in 0.56, about 2^58 at most.
     let a = c(n.x) * hx + c(n.y) * hy + c(n.z) * hz;
-    let hh = hx * hx + hy * hy + hz * hz;
-    // h·h in 0.26, N·h in 0.28, so (N·h)² / h·h = (N·H)² in 0.30; a <= 0 means N·H <= 0.
-    let hh = ((hh + (1 << 29)) >> 30) as u64;
+    let hh = (hx * hx + hy * hy + hz * hz) as u64;
     if a <= 0 || hh == 0 {
         return 0;
     }
+    // N·h in 0.28 (below 2^30) times r / 2^k ≈ 1 / sqrt(h·h) in units of 2^-28: N·H in 0.30
+    // is (N·h) r / 2^(k - 30), the product below 2^61.
     let a = ((a + (1 << 27)) >> 28) as u64;
-    let h2 = ((a * a + hh / 2) / hh).min(u64::from(ONE30)) as u32;
-    let mut p = pow30(h2, s >> 1);
-    if s & 1 != 0 {
-        // N·H = sqrt((N·H)²) in 0.30, rounded down.
-        p = mul30(p, isqrt_u64(u64::from(h2) << 30) as u32);
-    }
-    to_q16(p)
+    let (r, k) = rsqrt_u64(hh);
+    let nh = ((a * r) >> (k - 30)).min(u64::from(ONE30)) as u32;
+    to_q16(pow30(nh, s))
 }

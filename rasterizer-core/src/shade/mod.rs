@@ -10,6 +10,8 @@ pub use light::{Light, Lighting, Material, Specular};
 /// Values a shader interpolates across a triangle: `[i32; N]` for `N` values, at most
 /// [`MAX_VARYINGS`]. Their meaning and fixed-point scale are the shader's own.
 pub trait Varyings: Copy + Default + core::fmt::Debug {
+    /// How many values there are.
+    const LEN: usize;
     /// The values.
     fn as_slice(&self) -> &[i32];
     /// The values, mutably.
@@ -24,6 +26,7 @@ impl<const N: usize> Varyings for [i32; N]
 where
     [i32; N]: Default,
 {
+    const LEN: usize = N;
     #[inline]
     fn as_slice(&self) -> &[i32] {
         self

@@ -4,7 +4,7 @@
 //! [`BinaryColor`] rows). Spans become `slice::fill` or a tight loop; line walks step a buffer index
 //! instead of recomputing `y * width + x` per pixel.
 
-use super::Surface;
+use super::{DepthSpan, Surface};
 use crate::raster::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{OriginDimensions, Size};
@@ -82,6 +82,21 @@ pub trait Storage: PixelColor {
     fn shade<F: FnMut() -> Self>(row: &mut [Self::Word], x: usize, len: usize, mut shade: F) {
         for i in x..x + len {
             Self::set(row, i, shade());
+        }
+    }
+    /// Sets pixels `x ..` of a row, one for each entry of `depth`, to the colours `shade` returns
+    /// for them (`None` leaves a pixel as it is), left to right.
+    #[inline(always)]
+    fn shade_depth<F: DepthSpan<Self>>(
+        row: &mut [Self::Word],
+        x: usize,
+        depth: &mut [u16],
+        mut shade: F,
+    ) {
+        for (i, d) in depth.iter_mut().enumerate() {
+            if let Some(c) = shade.pixel(i, d) {
+                Self::set(row, x + i, c);
+            }
         }
     }
     /// Fills pixels `x .. x + len` of row `y` of the whole buffer (`stride` words per row).
@@ -205,6 +220,16 @@ impl Storage for Rgb565 {
     fn shade<F: FnMut() -> Self>(row: &mut [u16], x: usize, len: usize, mut shade: F) {
         for w in &mut row[x..x + len] {
             *w = RawU16::from(shade()).into_inner();
+        }
+    }
+    #[inline(always)]
+    fn shade_depth<F: DepthSpan<Self>>(row: &mut [u16], x: usize, depth: &mut [u16], mut shade: F) {
+        // One loop over both rows: the zip needs no bounds check per pixel.
+        let end = x + depth.len();
+        for (i, (w, d)) in row[x..end].iter_mut().zip(depth).enumerate() {
+            if let Some(c) = shade.pixel(i, d) {
+                *w = RawU16::from(c).into_inner();
+            }
         }
     }
     #[inline]
@@ -554,6 +579,18 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     }
 
     #[inline(always)]
+    fn shade_span_depth_in_clip<F: DepthSpan<C>>(
+        &mut self,
+        x: i32,
+        y: i32,
+        depth: &mut [u16],
+        shade: F,
+    ) -> Result<(), Self::Error> {
+        C::shade_depth(self.row_mut(y as usize), x as usize, depth, shade);
+        Ok(())
+    }
+
+    #[inline(always)]
     fn draw_line_points_in_clip(
         &mut self,
         points: LinePoints,
@@ -663,6 +700,18 @@ impl<C: Storage> Surface for Band<'_, C> {
         shade: F,
     ) -> Result<(), Self::Error> {
         self.fb.shade_span_in_clip(x, y - self.y0, len, shade)
+    }
+
+    #[inline(always)]
+    fn shade_span_depth_in_clip<F: DepthSpan<C>>(
+        &mut self,
+        x: i32,
+        y: i32,
+        depth: &mut [u16],
+        shade: F,
+    ) -> Result<(), Self::Error> {
+        self.fb
+            .shade_span_depth_in_clip(x, y - self.y0, depth, shade)
     }
 
     #[inline(always)]

@@ -87,6 +87,28 @@ pub trait Surface: DrawTarget {
         self.shade_span(x, y, len, shade)
     }
 
+    /// Draws pixels of row `y` from column `x` on, one for each entry of `depth`, left to right:
+    /// `shade` gets the pixel's depth entry (it runs the depth test and stores the new depth) and
+    /// returns its colour, or `None` to leave the pixel as it is. The 3D pipeline's fused span
+    /// loop; the span lies inside [`Surface::clip_area`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn shade_span_depth_in_clip<F: DepthSpan<Self::Color>>(
+        &mut self,
+        x: i32,
+        y: i32,
+        depth: &mut [u16],
+        mut shade: F,
+    ) -> Result<(), Self::Error> {
+        self.draw_iter(depth.iter_mut().enumerate().filter_map(|(i, d)| {
+            shade
+                .pixel(i, d)
+                .map(|c| Pixel(Point::new(x.wrapping_add(i as i32), y), c))
+        }))
+    }
+
     /// [`Surface::draw_line_points`] for a walk known to lie inside [`Surface::clip_area`].
     ///
     /// # Panics
@@ -108,6 +130,15 @@ pub trait Surface: DrawTarget {
     ) -> Result<(), Self::Error> {
         self.draw_iter(points.map(|p| Pixel(p, color)))
     }
+}
+
+/// The per-pixel work of a span with a depth test ([`Surface::shade_span_depth_in_clip`]): a
+/// type of its own rather than a closure, so that it is always inlined into the target's loop.
+pub trait DepthSpan<C> {
+    /// The colour of pixel `i` of the span (called for `i = 0, 1, ...` in turn), given its
+    /// stored depth (which it updates when the pixel passes), or `None` to leave the pixel as it
+    /// is.
+    fn pixel(&mut self, i: usize, depth: &mut u16) -> Option<C>;
 }
 
 /// Lets any embedded-graphics `DrawTarget` (a display driver, `SimulatorDisplay`, `MockDisplay`) be
@@ -251,6 +282,17 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
         shade: F,
     ) -> Result<(), Self::Error> {
         self.inner.shade_span_in_clip(x, y, len, shade)
+    }
+
+    #[inline(always)]
+    fn shade_span_depth_in_clip<F: DepthSpan<Self::Color>>(
+        &mut self,
+        x: i32,
+        y: i32,
+        depth: &mut [u16],
+        shade: F,
+    ) -> Result<(), Self::Error> {
+        self.inner.shade_span_depth_in_clip(x, y, depth, shade)
     }
 
     #[inline(always)]

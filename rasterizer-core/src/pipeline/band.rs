@@ -1,0 +1,308 @@
+//! Band rendering: a frame drawn one horizontal strip at a time, for firmware without room for a
+//! whole frame.
+
+use super::{Front, MeshSource, Pipeline, RenderStats, VertexSlot};
+use crate::clip::polygon::clip_triangle;
+use crate::clip::polygon::ClipVertex;
+use crate::math::Scalar;
+use crate::numerics::Numerics;
+use crate::pipeline::cull::Cull;
+use crate::pipeline::shading::Shading;
+use crate::raster::edge::row_at_or_below;
+use crate::raster::interp::DepthTest;
+use crate::target::{Band, ClipTo, Framebuffer, Storage};
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
+
+/// A visible triangle's place in a banded frame ([`Pipeline::draw_banded`]): 4 bytes a triangle.
+///
+/// Entries are kept in mesh order, each holding the distance to the previous entry's triangle
+/// (so any mesh size fits 16 bits: a gap beyond 65,535 triangles takes filler entries) and the
+/// first and last band it touches (in groups of bands when a frame has more than 256).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BinEntry {
+    step: u16,
+    first: u8,
+    last: u8,
+}
+
+impl BinEntry {
+    /// An empty entry, for initialising a `static` array of bins.
+    pub const ZERO: BinEntry = BinEntry {
+        step: 0,
+        first: 0,
+        last: 0,
+    };
+    /// A filler: moves the triangle index on by 65,535 and touches no band.
+    const FILLER: BinEntry = BinEntry {
+        step: u16::MAX,
+        first: 1,
+        last: 0,
+    };
+}
+
+/// How a frame is cut into bands ([`Pipeline::draw_banded`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Banding<C> {
+    /// Screen width in pixels.
+    pub width: u32,
+    /// Screen height in pixels.
+    pub height: u32,
+    /// Rows per band (the last band may have fewer).
+    pub rows: u32,
+    /// The colour each band starts from.
+    pub background: C,
+    /// The depth each band's depth buffer starts from (65535 for [`Compare::Less`]).
+    ///
+    /// [`Compare::Less`]: crate::raster::interp::Compare::Less
+    pub clear_depth: u16,
+}
+
+/// Why a banded draw could not start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BandError {
+    /// Zero rows per band, or a zero height.
+    NoRows,
+    /// A screen size the framebuffer cannot have.
+    BadSize {
+        /// Width.
+        width: u32,
+        /// Height.
+        height: u32,
+    },
+    /// The band buffer is shorter than one band.
+    BandBufferTooSmall {
+        /// Words one band needs.
+        needed: usize,
+        /// Words given.
+        actual: usize,
+    },
+    /// More visible triangles than bins.
+    TooFewBins {
+        /// Bins the frame needs.
+        needed: usize,
+        /// Bins given.
+        actual: usize,
+    },
+    /// The depth stage does not cover a band's pixels within the viewport (a depth buffer of
+    /// `width` x `rows` does).
+    DepthTooSmall {
+        /// The pixels of the first band the draw needs depths for.
+        needed: Rectangle,
+    },
+}
+
+impl core::fmt::Display for BandError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::NoRows => write!(f, "a band needs at least one row"),
+            Self::BadSize { width, height } => write!(f, "bad screen size {width}x{height}"),
+            Self::BandBufferTooSmall { needed, actual } => {
+                write!(f, "band buffer has {actual} words, a band needs {needed}")
+            }
+            Self::TooFewBins { needed, actual } => {
+                write!(
+                    f,
+                    "the frame needs {needed} bins but only {actual} were given"
+                )
+            }
+            Self::DepthTooSmall { needed } => write!(
+                f,
+                "the depth buffer does not cover the {}x{} pixels at ({}, {}) a band needs",
+                needed.size.width, needed.size.height, needed.top_left.x, needed.top_left.y
+            ),
+        }
+    }
+}
+
+impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool, N>
+    Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, N>
+where
+    S: Scalar,
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<S>,
+    N: Numerics,
+{
+    /// The rows triangle `t` can touch once it is clipped, or `None` when it draws nothing
+    /// (counted in `stats`). Geometry only: no shading.
+    fn triangle_rows<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        t: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+    ) -> Option<(i64, i64)> {
+        let (top, bottom) = match self.front(mesh, t, scratch, stats, false) {
+            Front::Skip => return None,
+            Front::Inside { v, .. } => {
+                let ys = v.map(|(p, _)| p.y);
+                (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]))
+            }
+            Front::Clip { clip, codes, .. } => {
+                stats.clipped += 1;
+                let tri = clip.map(|pos| ClipVertex {
+                    pos,
+                    var: [0i32; 0],
+                });
+                let poly = clip_triangle(&tri, codes);
+                if poly.len() < 3 {
+                    stats.outside += 1;
+                    return None;
+                }
+                let mut ps: heapless::Vec<_, { crate::clip::polygon::MAX_CLIPPED }> =
+                    heapless::Vec::new();
+                for v in &poly {
+                    let _ = ps.push(self.project(&v.pos).0);
+                }
+                let area = super::polygon_area(ps.iter().copied());
+                if area == 0 || !self.cull.keep(area) {
+                    stats.culled += 1;
+                    return None;
+                }
+                let ys = ps.iter().map(|p| p.y);
+                (ys.clone().min().unwrap_or(0), ys.max().unwrap_or(0))
+            }
+        };
+        stats.drawn += 1;
+        let s = 1i64 << BITS;
+        Some((
+            row_at_or_below(i64::from(top), s),
+            row_at_or_below(i64::from(bottom), s),
+        ))
+    }
+
+    /// Draws a mesh one horizontal band at a time, for a microcontroller that cannot hold a whole
+    /// frame: each band is drawn into `band` (a buffer of `banding.rows` rows) and handed to
+    /// `on_band` (where firmware starts the transfer to the display), then reused for the next.
+    ///
+    /// The pipeline's depth stage must hold `banding.rows` rows too (a [`DepthBuffer`] of
+    /// `width` x `rows`); it is cleared to `banding.clear_depth` before each band. Triangles are
+    /// binned once per frame (`bins` holds one [`BinEntry`] per visible triangle, plus a filler
+    /// for every gap of 65,535 triangles without one), so each band draws only the triangles that
+    /// touch it, in mesh order. `scratch` is as in [`Pipeline::draw`]: with a slot per vertex,
+    /// each vertex is transformed and shaded once a frame, however many bands use it. The pixels
+    /// are exactly those of a whole-frame [`Pipeline::draw`] of the same scene, for any band
+    /// height.
+    ///
+    /// [`DepthBuffer`]: crate::raster::interp::DepthBuffer
+    ///
+    /// # Errors
+    /// [`BandError`] for a band buffer or depth stage too small for a band, zero rows, or too
+    /// few bins (nothing is drawn then).
+    pub fn draw_banded<Px, M, F>(
+        &mut self,
+        mesh: &M,
+        banding: &Banding<Px>,
+        band: &mut [Px::Word],
+        bins: &mut [BinEntry],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        mut on_band: F,
+    ) -> Result<RenderStats, BandError>
+    where
+        Px: Storage,
+        Sh: Shading<S, Color = Px>,
+        M: MeshSource<S>,
+        F: FnMut(&Band<'_, Px>),
+    {
+        let (width, height, rows) = (banding.width, banding.height, banding.rows);
+        if rows == 0 || height == 0 {
+            return Err(BandError::NoRows);
+        }
+        let needed = Framebuffer::<Px>::required_len(width, rows.min(height))
+            .ok_or(BandError::BadSize { width, height })?;
+        if band.len() < needed {
+            return Err(BandError::BandBufferTooSmall {
+                needed,
+                actual: band.len(),
+            });
+        }
+        // Every band's depth entries: checked on the first (the others have the same rows).
+        self.depth.start_band(0, banding.clear_depth);
+        let first = Rectangle::new(Point::zero(), Size::new(width, rows.min(height)))
+            .intersection(&self.viewport.rectangle());
+        if first.size.width > 0 && first.size.height > 0 && !self.depth.covers(&first) {
+            return Err(BandError::DepthTooSmall { needed: first });
+        }
+        self.begin(mesh, scratch);
+        let mut stats = RenderStats {
+            triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
+            ..RenderStats::default()
+        };
+        let bands = height.div_ceil(rows);
+        // Bands per unit of an entry's first and last, so that a u8 holds any band.
+        let group = i64::from(bands.div_ceil(256));
+        let band_rows = i64::from(rows) * group;
+        let mut count = 0usize;
+        let mut wanted = 0usize;
+        let mut prev = 0usize;
+        let mut push = |entry: BinEntry| {
+            wanted += 1;
+            if let Some(slot) = bins.get_mut(count) {
+                *slot = entry;
+                count += 1;
+            }
+        };
+        for t in 0..mesh.triangle_count() {
+            let Some((top, bottom)) = self.triangle_rows(mesh, t, scratch, &mut stats) else {
+                continue;
+            };
+            let (top, bottom) = (top.max(0), bottom.min(i64::from(height)));
+            if top >= bottom {
+                continue;
+            }
+            while t - prev > usize::from(u16::MAX) {
+                push(BinEntry::FILLER);
+                prev += usize::from(u16::MAX);
+            }
+            push(BinEntry {
+                step: (t - prev) as u16,
+                first: (top / band_rows) as u8,
+                last: ((bottom - 1) / band_rows) as u8,
+            });
+            prev = t;
+        }
+        if wanted > bins.len() {
+            return Err(BandError::TooFewBins {
+                needed: wanted,
+                actual: bins.len(),
+            });
+        }
+        // Each band scans the entries (in mesh order, the order a whole-frame draw has) for the
+        // triangles that touch it; `lo` skips the leading ones that ended above the band.
+        let bins = &bins[..count];
+        let (mut lo, mut lo_t) = (0usize, 0usize);
+        let mut scratch_stats = RenderStats::default();
+        for b in 0..bands {
+            let unit = (i64::from(b) / group) as u8;
+            while let Some(e) = bins.get(lo).filter(|e| e.last < unit || e.first > e.last) {
+                lo_t += usize::from(e.step);
+                lo += 1;
+            }
+            let y0 = b * rows;
+            let h = rows.min(height - y0);
+            let len = Framebuffer::<Px>::required_len(width, h).unwrap_or(0);
+            let Ok(mut fb) = Framebuffer::<Px>::new(&mut band[..len], width, h) else {
+                return Err(BandError::BadSize { width, height });
+            };
+            let _ = DrawTarget::clear(&mut fb, banding.background);
+            self.depth.start_band(y0 as i32, banding.clear_depth);
+            let mut strip = Band::new(fb, y0 as i32);
+            {
+                let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
+                let mut t = lo_t;
+                for e in &bins[lo..] {
+                    t += usize::from(e.step);
+                    if e.first <= unit && unit <= e.last {
+                        let front = self.front(mesh, t, scratch, &mut scratch_stats, false);
+                        let Ok(()) =
+                            self.draw_front(&mut target, mesh, front, scratch, &mut scratch_stats);
+                    }
+                }
+            }
+            on_band(&strip);
+        }
+        Ok(stats)
+    }
+}

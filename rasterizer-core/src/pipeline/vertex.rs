@@ -1,0 +1,113 @@
+//! The vertex scratch: each mesh vertex transformed, projected and shaded at most once a frame.
+//!
+//! A draw call takes a slice of [`VertexSlot`]s from the caller, one per mesh vertex. The first
+//! triangle that uses a vertex fills its slot with the projected screen position (26.6 by
+//! default) and depth; the first visible triangle that uses it adds the shader's values, packed
+//! ([`Packed`]: three `u16` channels for the colour shaders, so a Gouraud slot is 16 bytes).
+//! Vertices beyond the slice's length are processed again by every triangle that uses them: a
+//! short scratch is slower, never wrong.
+
+/// What a [`VertexSlot`] keeps of a vertex's shader values, with a value meaning "not shaded
+/// yet".
+pub trait Packed: Copy + core::fmt::Debug {
+    /// Not shaded yet.
+    const EMPTY: Self;
+    /// True for [`Packed::EMPTY`] (a value a shader may also produce is only recomputed).
+    fn is_empty(&self) -> bool;
+}
+
+/// A packed form of the shader values `V`.
+pub trait Stored<V>: Packed {
+    /// Packs values.
+    fn pack(v: &V) -> Self;
+    /// The values back.
+    fn unpack(&self) -> V;
+}
+
+impl<const N: usize> Packed for [i32; N] {
+    const EMPTY: Self = [i32::MIN; N];
+    #[inline(always)]
+    fn is_empty(&self) -> bool {
+        self.first() == Some(&i32::MIN)
+    }
+}
+
+/// Any values, kept as they are.
+impl<const N: usize> Stored<[i32; N]> for [i32; N] {
+    #[inline(always)]
+    fn pack(v: &[i32; N]) -> Self {
+        *v
+    }
+    #[inline(always)]
+    fn unpack(&self) -> [i32; N] {
+        *self
+    }
+}
+
+impl Packed for [u16; 3] {
+    const EMPTY: Self = [u16::MAX; 3];
+    #[inline(always)]
+    fn is_empty(&self) -> bool {
+        self[0] == u16::MAX
+    }
+}
+
+/// Three values in `0 ..= 65534` (the colour shaders' channels), in six bytes.
+impl Stored<[i32; 3]> for [u16; 3] {
+    #[inline(always)]
+    fn pack(v: &[i32; 3]) -> Self {
+        v.map(|c| c.clamp(0, 65534) as u16)
+    }
+    #[inline(always)]
+    fn unpack(&self) -> [i32; 3] {
+        self.map(i32::from)
+    }
+}
+
+/// Marks a slot whose vertex has not been transformed this frame.
+pub(crate) const UNSEEN: i32 = i32::MIN;
+/// Marks a slot whose vertex lies outside the clip volume's guard band (its outcode is in `y`).
+pub(crate) const OUTSIDE: i32 = i32::MIN + 1;
+/// The smallest screen x a projected vertex keeps, above the two marks (far outside the guard
+/// band, so it never draws anyway).
+pub(crate) const X_MIN: i32 = i32::MIN + 2;
+
+/// One mesh vertex's work for the frame: its screen position and depth, and its packed shader
+/// values. `St` is the shading model's [`crate::pipeline::shading::Shading::Stored`]: `[u16; 3]`
+/// (16 bytes a slot) for Gouraud and vertex colours, `[i32; 0]` (12 bytes) for unlit and flat
+/// shading, `[i32; 6]` (36 bytes) for Phong.
+///
+/// Make the scratch with [`VertexSlot::EMPTY`] (`[VertexSlot::EMPTY; 507]`); a draw call resets
+/// the slots it uses, so their contents between frames do not matter.
+#[derive(Debug, Clone, Copy)]
+pub struct VertexSlot<St = [u16; 3]> {
+    pub(crate) x: i32,
+    pub(crate) y: i32,
+    pub(crate) z: u16,
+    pub(crate) st: St,
+}
+
+impl<St: Packed> VertexSlot<St> {
+    /// An unused slot.
+    pub const EMPTY: Self = Self {
+        x: UNSEEN,
+        y: 0,
+        z: 0,
+        st: St::EMPTY,
+    };
+}
+
+impl<St: Packed> Default for VertexSlot<St> {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+/// Marks every slot of a scratch as unused: the start of a frame.
+#[inline]
+pub(crate) fn reset<St: Packed>(scratch: &mut [VertexSlot<St>]) {
+    for s in scratch {
+        s.x = UNSEEN;
+        s.st = St::EMPTY;
+    }
+}

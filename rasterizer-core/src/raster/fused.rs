@@ -1,0 +1,339 @@
+//! The fused span loop of the default 3D path: depth test, interpolated values and colour of each
+//! pixel in one loop, in 32-bit wrapping arithmetic.
+//!
+//! Coverage is exactly that of [`crate::raster::triangle::fill_triangle`] (the same span walk).
+//! Each interpolated value (a shader's values, and depth) is a plane over the pixel grid,
+//! `K + gx px + gy py` modulo 2^32, with `K`, `gx` and `gy` fixed per triangle: a pixel's value is
+//! a function of its position alone, so a band render equals the whole frame to the bit, and a
+//! span starts with two multiplications per plane.
+//!
+//! The plane is exact at an anchor pixel (the pixel of the triangle's top vertex, moved into the
+//! viewport when that vertex lies outside it) and the gradients are rounded to the value's
+//! fractional bits, so a pixel `dx, dy` pixels from the anchor is within `(|dx| + |dy| + 1) / 2`
+//! units of the last fractional bit of the exact plane: less than half a unit of the value itself
+//! for any viewport up to 32767 pixels a side. Half a unit is added to `K`, so a pixel's value is
+//! one shift away (rounded to nearest, halves up). The exact value at a covered pixel centre is a
+//! mix of the three vertices' values; with the half-unit offset and that error bound it never
+//! leaves `0 .. 2^32` for values and depths the vertices hold in `0 ..= 2^(32 - FRAC) - 1`, so the
+//! wrapping arithmetic needs no clamp per pixel.
+
+use crate::geom::{PixelRect, SubPoint};
+use crate::raster::edge::row_at_or_below;
+use crate::raster::interp::{covers_a_pixel, Compare, DepthTest};
+use crate::raster::triangle::setup::{walk_spans, Sorted, SpanSink};
+use crate::shade::{Varyings, MAX_VARYINGS};
+use crate::target::{DepthSpan, Surface};
+
+/// One plane: the value at pixel `(px, py)` is `k + gx px + gy py`, wrapping.
+#[derive(Debug, Clone, Copy, Default)]
+struct Plane32 {
+    k: u32,
+    gx: u32,
+    gy: u32,
+}
+
+impl Plane32 {
+    /// The value at the pixel `(x, y)`.
+    #[inline(always)]
+    fn at(&self, x: i32, y: i32) -> u32 {
+        self.k
+            .wrapping_add(self.gx.wrapping_mul(x as u32))
+            .wrapping_add(self.gy.wrapping_mul(y as u32))
+    }
+}
+
+/// The triangle's shape as the planes need it: edge vectors from the top vertex, the sign and
+/// size of the doubled area, and the anchor pixel with its centre's offset from the top vertex.
+struct Shape {
+    /// `v1 - v0` and `v2 - v0` in sub-pixel units.
+    e1: (i64, i64),
+    e2: (i64, i64),
+    /// The sign of the doubled area, folded into each plane's numerators.
+    sign: i64,
+    /// The doubled area's magnitude: the divisor of every gradient, never zero.
+    cross: i64,
+    /// The anchor pixel.
+    anchor: (i64, i64),
+    /// Its centre minus `v0`, in sub-pixel units.
+    offset: (i64, i64),
+    /// Every product of the set-up fits `i64` (edges below 2^28 sub-pixels and the anchor on
+    /// the top vertex's own pixel); otherwise the planes are set up in `i128`.
+    narrow: bool,
+}
+
+/// `round(n / d)` for `d > 0`, halves up.
+#[inline(always)]
+fn round_div(n: i64, d: i64) -> i64 {
+    (n + (d >> 1)).div_euclid(d)
+}
+
+/// `round(n / d)` for `d > 0`, halves up, in `i128`.
+fn round_div_wide(n: i128, d: i128) -> i128 {
+    (n + (d >> 1)).div_euclid(d)
+}
+
+impl Shape {
+    /// The plane through the values `f` at the sorted vertices, with `frac` fractional bits and
+    /// `offset` (units of the last fractional bit) added: the rounding folded into the start.
+    #[inline(always)]
+    fn plane<const BITS: u32>(&self, f: [i64; 3], frac: u32, offset: u32) -> Plane32 {
+        let (d1, d2) = (f[1] - f[0], f[2] - f[0]);
+        // The value changes by a / cross per sub-pixel step in x and b / cross in y.
+        let a = self.sign * (d1 * self.e2.1 - d2 * self.e1.1);
+        let b = self.sign * (d2 * self.e1.0 - d1 * self.e2.0);
+        // Below this, a << (BITS + frac) and (a dx + b dy) << frac (|dx|, |dy| <= 2^BITS) stay
+        // below 2^62.
+        let limit = 1i64 << (60 - BITS - frac);
+        let (fa, gx, gy) = if self.narrow && a.abs() < limit && b.abs() < limit {
+            let gx = round_div(a << (BITS + frac), self.cross);
+            let gy = round_div(b << (BITS + frac), self.cross);
+            let n = (a * self.offset.0 + b * self.offset.1) << frac;
+            let fa = (f[0] << frac) + round_div(n, self.cross);
+            (fa, gx, gy)
+        } else {
+            self.plane_wide::<BITS>(f[0], a, b, frac)
+        };
+        let (ax, ay) = (self.anchor.0 as u32, self.anchor.1 as u32);
+        let (gx, gy) = (gx as u32, gy as u32);
+        Plane32 {
+            k: (fa as u32)
+                .wrapping_add(offset)
+                .wrapping_sub(gx.wrapping_mul(ax))
+                .wrapping_sub(gy.wrapping_mul(ay)),
+            gx,
+            gy,
+        }
+    }
+
+    /// [`Shape::plane`] for large triangles or a far anchor: the same values, in `i128`. Only the
+    /// low 32 bits of each result matter.
+    #[inline(never)]
+    #[cold]
+    fn plane_wide<const BITS: u32>(&self, f0: i64, a: i64, b: i64, frac: u32) -> (i64, i64, i64) {
+        let (a, b, d) = (i128::from(a), i128::from(b), i128::from(self.cross));
+        let gx = round_div_wide(a << (BITS + frac), d);
+        let gy = round_div_wide(b << (BITS + frac), d);
+        let n = (a * i128::from(self.offset.0) + b * i128::from(self.offset.1)) << frac;
+        let fa = (i128::from(f0) << frac) + round_div_wide(n, d);
+        // Truncating keeps the low bits, all the wrapping arithmetic needs.
+        (fa as i64, gx as i64, gy as i64)
+    }
+}
+
+/// What the fused loop asks of a shader: the colour of a pixel from its values, each
+/// `value 2^vfrac + voffset` (see [`fill_fused`]).
+pub(crate) trait FusedColor<C> {
+    /// The pixel's colour.
+    fn color(&self, acc: &[u32; MAX_VARYINGS]) -> C;
+}
+
+/// The pixels of one span with a depth test: each pixel's depth, test and values, stepped
+/// across the span. `LESS` is the usual test, known at compile time.
+struct DepthPixels<'p, P, V, const LESS: bool> {
+    acc: [u32; MAX_VARYINGS],
+    step: [u32; MAX_VARYINGS],
+    z: u32,
+    dz: u32,
+    zfrac: u32,
+    compare: Compare,
+    pixel: &'p P,
+    _v: core::marker::PhantomData<V>,
+}
+
+impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
+    for DepthPixels<'_, P, V, LESS>
+{
+    #[inline(always)]
+    fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
+        // Only depth steps with every pixel; the values of a pixel that passes are computed from
+        // its index (most pixels of a dense mesh fail the test).
+        let nz = (self.z >> self.zfrac) as u16;
+        self.z = self.z.wrapping_add(self.dz);
+        let pass = if LESS {
+            nz < *stored
+        } else {
+            self.compare.pass(nz, *stored)
+        };
+        if !pass {
+            return None;
+        }
+        *stored = nz;
+        let mut acc = self.acc;
+        for k in 0..V::LEN.min(MAX_VARYINGS) {
+            acc[k] = acc[k].wrapping_add(self.step[k].wrapping_mul(i as u32));
+        }
+        Some(self.pixel.color(&acc))
+    }
+}
+
+/// The span sink of one triangle.
+struct Fused<'a, S: Surface, D, V, P> {
+    surface: &'a mut S,
+    depth: &'a mut D,
+    pixel: P,
+    values: [Plane32; MAX_VARYINGS],
+    z: Plane32,
+    zfrac: u32,
+    less: bool,
+    compare: Compare,
+    _v: core::marker::PhantomData<V>,
+}
+
+impl<S, D, V, P> SpanSink for Fused<'_, S, D, V, P>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<S::Color>,
+{
+    type Error = S::Error;
+
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
+        let n = V::LEN.min(MAX_VARYINGS);
+        let mut acc = [0u32; MAX_VARYINGS];
+        let mut step = [0u32; MAX_VARYINGS];
+        for k in 0..n {
+            acc[k] = self.values[k].at(x0, row);
+            step[k] = self.values[k].gx;
+        }
+        let pixel = &self.pixel;
+        let len = (x1 - x0) as u32;
+        if !D::ENABLED {
+            if n == 0 {
+                return self
+                    .surface
+                    .fill_span_in_clip(x0, row, len, pixel.color(&acc));
+            }
+            return self.surface.shade_span_in_clip(x0, row, len, || {
+                let c = pixel.color(&acc);
+                for k in 0..n {
+                    acc[k] = acc[k].wrapping_add(step[k]);
+                }
+                c
+            });
+        }
+        let zrow = self.depth.depth_row(row, x0, len);
+        if zrow.is_empty() {
+            return Ok(());
+        }
+        let (z, dz, zfrac, compare) = (self.z.at(x0, row), self.z.gx, self.zfrac, self.compare);
+        if self.less {
+            let pixels = DepthPixels::<P, V, true> {
+                acc,
+                step,
+                z,
+                dz,
+                zfrac,
+                compare,
+                pixel,
+                _v: core::marker::PhantomData,
+            };
+            self.surface.shade_span_depth_in_clip(x0, row, zrow, pixels)
+        } else {
+            let pixels = DepthPixels::<P, V, false> {
+                acc,
+                step,
+                z,
+                dz,
+                zfrac,
+                compare,
+                pixel,
+                _v: core::marker::PhantomData,
+            };
+            self.surface.shade_span_depth_in_clip(x0, row, zrow, pixels)
+        }
+    }
+}
+
+/// A screen vertex of the fused path: sub-pixel position, depth (0 nearest) and the shader's
+/// values.
+pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
+
+/// Fills a triangle with a depth test and interpolated values through the fused span loop.
+///
+/// The shader's values get `vfrac` fractional bits and `voffset` added (`pixel` receives each
+/// pixel's values as `value 2^vfrac + voffset`, wrapping); depth gets `zfrac` (at most 16) and is
+/// rounded to whole steps. `area` (not empty) is the rectangle the anchors are kept in: the
+/// viewport, the same for every band.
+#[inline(always)]
+pub(crate) fn fill_fused<S, D, V, P, const BITS: u32>(
+    surface: &mut S,
+    depth: &mut D,
+    vertices: &[FusedVertex<V, BITS>; 3],
+    area: &PixelRect,
+    vfrac: u32,
+    voffset: u32,
+    zfrac: u32,
+    pixel: P,
+) -> Result<(), S::Error>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<S::Color>,
+{
+    let Some(t) = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0]) else {
+        return Ok(());
+    };
+    let [v0, v1, v2] = t.v;
+    let s = 1i64 << BITS;
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    // A triangle between two rows or two columns of pixel centres, or outside the clip area,
+    // covers no pixel: skip the set-up. Conservative: the span walk decides coverage exactly.
+    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+    let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
+    let cols = row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
+    if rows.is_empty() || cols.is_empty() {
+        return Ok(());
+    }
+    // With at most four pixel centres in reach, the span walk first says whether the triangle
+    // covers any, before the planes are set up.
+    let centres = (rows.end - rows.start).saturating_mul(cols.end - cols.start);
+    if centres <= 4 && !covers_a_pixel(&t, s, &clip) {
+        return Ok(());
+    }
+    let e1 = (v1.0 - v0.0, v1.1 - v0.1);
+    let e2 = (v2.0 - v0.0, v2.1 - v0.1);
+    let own = (v0.0 >> BITS, v0.1 >> BITS);
+    let anchor = (
+        own.0.max(area.x0).min(area.x1 - 1),
+        own.1.max(area.y0).min(area.y1 - 1),
+    );
+    let small = |e: i64| e.abs() < 1 << 28;
+    let shape = Shape {
+        e1,
+        e2,
+        sign: t.cross.signum(),
+        cross: t.cross.abs(),
+        anchor,
+        offset: (anchor.0 * s + s / 2 - v0.0, anchor.1 * s + s / 2 - v0.1),
+        narrow: anchor == own && small(e1.0) && small(e1.1) && small(e2.0) && small(e2.1),
+    };
+    let [o0, o1, o2] = t.order;
+    let n = V::LEN.min(MAX_VARYINGS);
+    let mut values = [Plane32::default(); MAX_VARYINGS];
+    for (k, p) in values.iter_mut().enumerate().take(n) {
+        let f = |o: usize| i64::from(vertices[o].2.as_slice()[k]);
+        *p = shape.plane::<BITS>([f(o0), f(o1), f(o2)], vfrac, voffset);
+    }
+    let z = if D::ENABLED {
+        let f = |o: usize| i64::from(vertices[o].1);
+        shape.plane::<BITS>([f(o0), f(o1), f(o2)], zfrac, (1 << zfrac) >> 1)
+    } else {
+        Plane32::default()
+    };
+    let compare = depth.comparison();
+    let mut sink = Fused::<S, D, V, P> {
+        surface,
+        depth,
+        pixel,
+        values,
+        z,
+        zfrac,
+        less: compare == Compare::Less,
+        compare,
+        _v: core::marker::PhantomData,
+    };
+    walk_spans(&t, s, &clip, &mut sink)
+}
