@@ -66,6 +66,11 @@ pub trait Scalar:
     }
     /// The fractional bits of [`Scalar::raw_bits`]' integers (0 for a floating-point format).
     const RAW_FRAC: u32 = 0;
+    /// The value of a raw integer, for a fixed-point format (the inverse of
+    /// [`Scalar::raw_bits`], saturating); zero for a floating-point format, which has none.
+    fn from_raw(_bits: i64) -> Self {
+        Self::ZERO
+    }
     /// `round(num * scale / (den * div))` as an integer (0 when `den * div <= 0`), the perspective
     /// divide and viewport in one step. `|scale|, |div| < 2^31`. Exact for fixed point: the only
     /// error is the final rounding, halves up.
@@ -183,6 +188,11 @@ impl<const F: u32> Scalar for Fx<F> {
     }
 
     const RAW_FRAC: u32 = F;
+
+    #[inline(always)]
+    fn from_raw(bits: i64) -> Self {
+        Fx::saturate(bits)
+    }
 
     fn to_scaled_int(self, bits: u32) -> i32 {
         let v = self.to_bits() as i64;

@@ -27,7 +27,7 @@ use crate::clip::polygon::{
 use crate::geom::{PixelRect, SubPoint};
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
 use crate::numerics::{reciprocal, Divide, Numerics, SpanStart, Standard};
-use crate::raster::fused::{fill_fused, FusedColor};
+use crate::raster::fused::{fill_fused, FusedColor, FusedVertex};
 use crate::raster::interp::{fill_triangle_interp_with, DepthTest, ScreenVertex};
 use crate::raster::line::draw_line;
 use crate::shade::MAX_VARYINGS;
@@ -38,7 +38,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::RgbColor;
 use embedded_graphics_core::primitives::Rectangle;
 use shading::{Shading, VertexIn};
-use vertex::{OUTSIDE, UNSEEN, X_MIN};
+use vertex::{OUTSIDE, X_MIN};
 
 /// The sub-pixel bits of screen coordinates a [`Pipeline`] has unless told otherwise: 6, so
 /// 26.6 (`docs/ACCURACY.md` measures the choice).
@@ -268,9 +268,15 @@ pub struct Pipeline<
     N = Standard,
 > {
     mvp: Mat4<S>,
+    /// The MVP's raw integers, for a fixed-point format whose entries are small enough to
+    /// transform a vertex without checks ([`RawMvp`]).
+    raw: Option<RawMvp>,
     model: Mat4<S>,
     normal_matrix: Mat4<S>,
     viewport: Viewport,
+    /// The viewport's pixels, and its edges in sub-pixel units (left, top, right, bottom).
+    area: PixelRect,
+    edges: [i64; 4],
     /// The shader takes model-space positions and normals this frame.
     model_space: bool,
     /// The culling stage.
@@ -280,6 +286,30 @@ pub struct Pipeline<
     /// The shading stage.
     pub shading: Sh,
     _numerics: core::marker::PhantomData<N>,
+}
+
+/// A fixed-point MVP as raw integers, for the vertex transform's fast path: with every entry
+/// below `2^29` in magnitude and every coordinate below `2^31`, each sum of products stays below
+/// `2^62`, so a vertex is transformed without overflow checks or saturation. Results of `2^29` or
+/// more take the checked path (the clipper's), so both paths agree on every vertex they share.
+#[derive(Debug, Clone, Copy)]
+struct RawMvp {
+    m: [[i64; 4]; 4],
+    /// The clipper's smallest `w`, raw.
+    w_min: i64,
+}
+
+impl RawMvp {
+    fn new<S: Scalar>(mvp: &Mat4<S>) -> Option<Self> {
+        let mut m = [[0i64; 4]; 4];
+        for (row, out) in mvp.m.iter().zip(&mut m) {
+            for (v, o) in row.iter().zip(out.iter_mut()) {
+                *o = v.raw_bits().filter(|b| b.unsigned_abs() < 1 << 29)?;
+            }
+        }
+        let w_min = S::from_fx16_bits(1 << (16 - crate::clip::polygon::W_MIN_SHIFT)).raw_bits()?;
+        Some(Self { m, w_min })
+    }
 }
 
 /// What the front end made of a triangle.
@@ -321,10 +351,13 @@ where
             .then(&transforms.view)
             .then(&transforms.projection);
         Self {
+            raw: RawMvp::new(&mvp),
             mvp,
             model: transforms.model,
             normal_matrix: transforms.model,
             viewport,
+            area: PixelRect::from_rectangle(&viewport.rectangle()),
+            edges: viewport_edges::<BITS>(&viewport),
             model_space: false,
             cull,
             depth,
@@ -350,9 +383,12 @@ where
     pub fn with_numerics<M: Numerics>(self) -> Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, M> {
         Pipeline {
             mvp: self.mvp,
+            raw: self.raw,
             model: self.model,
             normal_matrix: self.normal_matrix,
             viewport: self.viewport,
+            area: self.area,
+            edges: self.edges,
             model_space: false,
             cull: self.cull,
             depth: self.depth,
@@ -444,6 +480,46 @@ where
     /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`.
     #[inline]
     fn geometry(&self, p: Vec3<S>) -> (i32, i32, u16) {
+        if let (Some(raw), Some(px), Some(py), Some(pz)) =
+            (&self.raw, p.x.raw_bits(), p.y.raw_bits(), p.z.raw_bits())
+        {
+            // The same sums and rounding as `Mat4::transform_point`, without its overflow checks.
+            let f = S::RAW_FRAC;
+            let row = |r: &[i64; 4]| {
+                (r[0] * px + r[1] * py + r[2] * pz + (r[3] << f) + ((1 << f) >> 1)) >> f
+            };
+            let [x, y, z, w] = [
+                row(&raw.m[0]),
+                row(&raw.m[1]),
+                row(&raw.m[2]),
+                row(&raw.m[3]),
+            ];
+            let g = i64::from(crate::clip::polygon::GUARD);
+            let big = 1 << 29;
+            let inside = x.abs() < big
+                && y.abs() < big
+                && z.abs() < big
+                && w < big
+                && w >= raw.w_min
+                && z + w >= 0
+                && w - z >= 0
+                && x + g * w >= 0
+                && g * w - x >= 0
+                && y + g * w >= 0
+                && g * w - y >= 0;
+            if !inside {
+                // The outcode itself is only needed by the clipper, which computes its own.
+                return (OUTSIDE, 1, 0);
+            }
+            let clip = Vec4::new(
+                S::from_raw(x),
+                S::from_raw(y),
+                S::from_raw(z),
+                S::from_raw(w),
+            );
+            let (s, z) = self.project(&clip);
+            return (s.x.max(X_MIN), s.y, z);
+        }
         let clip = self.mvp.transform_point(p);
         let code = outcode(&clip);
         if code != 0 {
@@ -453,7 +529,8 @@ where
         (s.x.max(X_MIN), s.y, z)
     }
 
-    /// Vertex `i`'s [`Pipeline::geometry`], from its slot when the scratch has one.
+    /// Vertex `i`'s [`Pipeline::geometry`], from its slot when the scratch has one (filled when
+    /// the frame began).
     #[inline(always)]
     fn slot_geometry<M: MeshSource<S>>(
         &self,
@@ -461,13 +538,8 @@ where
         i: usize,
         scratch: &mut [VertexSlot<Sh::Stored>],
     ) -> (i32, i32, u16) {
-        match scratch.get_mut(i) {
-            Some(s) => {
-                if s.x == UNSEEN {
-                    (s.x, s.y, s.z) = self.geometry(mesh.position(i));
-                }
-                (s.x, s.y, s.z)
-            }
+        match scratch.get(i) {
+            Some(s) => (s.x, s.y, s.z),
             None => self.geometry(mesh.position(i)),
         }
     }
@@ -556,26 +628,18 @@ where
         // Model-space lighting needs normals carried by the model matrix itself.
         let model = (self.normal_matrix == self.model).then_some(&self.model);
         self.model_space = self.shading.begin_frame(model);
+        // Every vertex with a slot is transformed now, in one tight loop: the triangles then only
+        // read their slots.
         let n = scratch.len().min(mesh.vertex_count());
-        vertex::reset(&mut scratch[..n]);
+        for (i, s) in scratch[..n].iter_mut().enumerate() {
+            (s.x, s.y, s.z) = self.geometry(mesh.position(i));
+            s.st = <Sh::Stored as vertex::Packed>::EMPTY;
+        }
     }
 
-    /// The viewport's edges in sub-pixel units: left, top, right, bottom.
-    #[inline(always)]
-    fn edges(&self) -> [i64; 4] {
-        let vp = &self.viewport;
-        let (x, y) = (i64::from(vp.x) << BITS, i64::from(vp.y) << BITS);
-        [
-            x,
-            y,
-            x + (i64::from(vp.width) << BITS),
-            y + (i64::from(vp.height) << BITS),
-        ]
-    }
-
-    /// The front end shared by every draw call: fetches triangle `t`, transforms its vertices
-    /// (once a frame each, through the scratch), rejects it when it lies outside the view or
-    /// faces away, counting why in `stats`. A triangle of zero area on screen is culled, unless
+    /// The front end shared by every draw call: fetches triangle `t`, reads its vertices (each
+    /// transformed once a frame, through the scratch), rejects it when it faces away or lies
+    /// outside the view, counting why in `stats`. A triangle of zero area on screen is culled, unless
     /// `keep_flat` (the wireframe draws it as a line).
     #[inline(always)]
     fn front<M: MeshSource<S>>(
@@ -604,18 +668,8 @@ where
             }
             return Front::Clip { idx, clip, codes };
         }
-        // Off the viewport on one side (the screen planes are stricter than the guard band).
-        let [l, top, r, bottom] = self.edges();
         let xs = [a.0, b.0, c.0].map(i64::from);
         let ys = [a.1, b.1, c.1].map(i64::from);
-        if xs.iter().all(|&x| x < l)
-            || xs.iter().all(|&x| x > r)
-            || ys.iter().all(|&y| y < top)
-            || ys.iter().all(|&y| y > bottom)
-        {
-            stats.outside += 1;
-            return Front::Skip;
-        }
         let area = (xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0]);
         let keep = if area == 0 {
             keep_flat
@@ -624,6 +678,14 @@ where
         };
         if !keep {
             stats.culled += 1;
+            return Front::Skip;
+        }
+        // Off the viewport on one side (the screen planes are stricter than the guard band).
+        let [l, top, r, bottom] = self.edges;
+        let (x_lo, x_hi) = (xs[0].min(xs[1]).min(xs[2]), xs[0].max(xs[1]).max(xs[2]));
+        let (y_lo, y_hi) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
+        if x_hi < l || x_lo > r || y_hi < top || y_lo > bottom {
+            stats.outside += 1;
             return Front::Skip;
         }
         Front::Inside {
@@ -658,17 +720,21 @@ where
                     self.shading.face(&vin);
                 }
                 let var = self.face_values(mesh, idx, scratch);
+                stats.drawn += 1;
+                if Self::FUSED {
+                    let fv = [
+                        (v[0].0, v[0].1, var[0]),
+                        (v[1].0, v[1].1, var[1]),
+                        (v[2].0, v[2].1, var[2]),
+                    ];
+                    return self.raster_fused(target, &fv);
+                }
                 let sv = [0, 1, 2].map(|k| ScreenVertex {
                     p: v[k].0,
                     z: v[k].1,
                     var: var[k],
-                    q: if PERSPECTIVE {
-                        Self::q(&self.mvp.transform_point(mesh.position(idx[k])))
-                    } else {
-                        0
-                    },
+                    q: Self::q(&self.mvp.transform_point(mesh.position(idx[k]))),
                 });
-                stats.drawn += 1;
                 self.raster(target, &sv)
             }
             Front::Clip { idx, clip, codes } => {
@@ -735,8 +801,37 @@ where
         Ok(())
     }
 
+    /// Whether visible triangles take the fused span loop ([`SpanStart::Wrapping`], affine).
+    const FUSED: bool = matches!(N::SPANS, SpanStart::Wrapping) && !PERSPECTIVE;
+
+    /// Rasterizes one screen triangle through the fused span loop.
+    #[inline(always)]
+    fn raster_fused<T>(
+        &mut self,
+        target: &mut T,
+        fv: &[FusedVertex<Sh::Varyings, BITS>; 3],
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+    {
+        if self.area.is_empty() {
+            return Ok(());
+        }
+        fill_fused::<_, _, _, _, BITS>(
+            target,
+            &mut self.depth,
+            fv,
+            &self.area,
+            Sh::FUSED_FRAC,
+            Sh::FUSED_OFFSET,
+            N::FRAC,
+            ShaderColor::<S, Sh>(&self.shading, core::marker::PhantomData),
+        )
+    }
+
     /// Rasterizes one screen triangle with the pipeline's depth test and shading: through the
-    /// fused span loop ([`SpanStart::Wrapping`], affine), or the exact interpolator otherwise.
+    /// fused span loop, or the exact interpolator ([`SpanStart::Exact`], [`SpanStart::Gradient`]
+    /// or perspective-correct).
     #[inline(always)]
     fn raster<T>(
         &mut self,
@@ -747,22 +842,9 @@ where
         T: Surface<Color = Sh::Color>,
     {
         let shading = &self.shading;
-        if N::SPANS == SpanStart::Wrapping && !PERSPECTIVE {
-            let area = PixelRect::from_rectangle(&self.viewport.rectangle());
-            if area.is_empty() {
-                return Ok(());
-            }
+        if Self::FUSED {
             let fv = sv.map(|v| (v.p, v.z, v.var));
-            fill_fused::<_, _, _, _, BITS>(
-                target,
-                &mut self.depth,
-                &fv,
-                &area,
-                Sh::FUSED_FRAC,
-                Sh::FUSED_OFFSET,
-                N::FRAC,
-                ShaderColor::<S, Sh>(shading, core::marker::PhantomData),
-            )
+            self.raster_fused(target, &fv)
         } else {
             fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
                 target,
@@ -874,6 +956,17 @@ where
         }
         Ok(stats)
     }
+}
+
+/// The viewport's edges in sub-pixel units: left, top, right, bottom.
+fn viewport_edges<const BITS: u32>(vp: &Viewport) -> [i64; 4] {
+    let (x, y) = (i64::from(vp.x) << BITS, i64::from(vp.y) << BITS);
+    [
+        x,
+        y,
+        x + (i64::from(vp.width) << BITS),
+        y + (i64::from(vp.height) << BITS),
+    ]
 }
 
 /// A shader as the fused span loop's colour source.

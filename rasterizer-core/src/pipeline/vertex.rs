@@ -102,12 +102,3 @@ impl<St: Packed> Default for VertexSlot<St> {
         Self::EMPTY
     }
 }
-
-/// Marks every slot of a scratch as unused: the start of a frame.
-#[inline]
-pub(crate) fn reset<St: Packed>(scratch: &mut [VertexSlot<St>]) {
-    for s in scratch {
-        s.x = UNSEEN;
-        s.st = St::EMPTY;
-    }
-}

@@ -7,10 +7,11 @@
 //! a function of its position alone, so a band render equals the whole frame to the bit, and a
 //! span starts with two multiplications per plane.
 //!
-//! The plane is exact at an anchor pixel (the pixel of the triangle's top vertex, moved into the
-//! viewport when that vertex lies outside it) and the gradients are rounded to the value's
-//! fractional bits, so a pixel `dx, dy` pixels from the anchor is within `(|dx| + |dy| + 1) / 2`
-//! units of the last fractional bit of the exact plane: less than half a unit of the value itself
+//! The plane is anchored at a pixel (the pixel of the triangle's top vertex, moved into the
+//! viewport when that vertex lies outside it), within one unit of the last fractional bit there,
+//! and the gradients are rounded to the value's fractional bits, so a pixel `dx, dy` pixels from
+//! the anchor is within `(|dx| + |dy|) / 2 + 1` units of the last fractional bit of the exact
+//! plane: less than half a unit of the value itself
 //! for any viewport up to 32767 pixels a side. Half a unit is added to `K`, so a pixel's value is
 //! one shift away (rounded to nearest, halves up). The exact value at a covered pixel centre is a
 //! mix of the three vertices' values; with the half-unit offset and that error bound it never
@@ -45,11 +46,10 @@ impl Plane32 {
 /// The triangle's shape as the planes need it: edge vectors from the top vertex, the sign and
 /// size of the doubled area, and the anchor pixel with its centre's offset from the top vertex.
 struct Shape {
-    /// `v1 - v0` and `v2 - v0` in sub-pixel units.
+    /// `v1 - v0` and `v2 - v0` in sub-pixel units, times the sign of the doubled area (so that
+    /// every gradient divides by its magnitude).
     e1: (i64, i64),
     e2: (i64, i64),
-    /// The sign of the doubled area, folded into each plane's numerators.
-    sign: i64,
     /// The doubled area's magnitude: the divisor of every gradient, never zero.
     cross: i64,
     /// The anchor pixel.
@@ -79,16 +79,18 @@ impl Shape {
     fn plane<const BITS: u32>(&self, f: [i64; 3], frac: u32, offset: u32) -> Plane32 {
         let (d1, d2) = (f[1] - f[0], f[2] - f[0]);
         // The value changes by a / cross per sub-pixel step in x and b / cross in y.
-        let a = self.sign * (d1 * self.e2.1 - d2 * self.e1.1);
-        let b = self.sign * (d2 * self.e1.0 - d1 * self.e2.0);
-        // Below this, a << (BITS + frac) and (a dx + b dy) << frac (|dx|, |dy| <= 2^BITS) stay
-        // below 2^62.
+        let a = d1 * self.e2.1 - d2 * self.e1.1;
+        let b = d2 * self.e1.0 - d1 * self.e2.0;
+        // Below this, a << (BITS + frac) and the gradients times the anchor's offset (at most
+        // half a pixel) stay below 2^62.
         let limit = 1i64 << (60 - BITS - frac);
         let (fa, gx, gy) = if self.narrow && a.abs() < limit && b.abs() < limit {
             let gx = round_div(a << (BITS + frac), self.cross);
             let gy = round_div(b << (BITS + frac), self.cross);
-            let n = (a * self.offset.0 + b * self.offset.1) << frac;
-            let fa = (f[0] << frac) + round_div(n, self.cross);
+            // The anchor lies within half a pixel of v0: its value from the rounded gradients is
+            // within one unit of the last bit, with no division.
+            let n = gx * self.offset.0 + gy * self.offset.1;
+            let fa = (f[0] << frac) + ((n + ((1 << BITS) >> 1)) >> BITS);
             (fa, gx, gy)
         } else {
             self.plane_wide::<BITS>(f[0], a, b, frac)
@@ -256,7 +258,9 @@ pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
 /// pixel's values as `value 2^vfrac + voffset`, wrapping); depth gets `zfrac` (at most 16) and is
 /// rounded to whole steps. `area` (not empty) is the rectangle the anchors are kept in: the
 /// viewport, the same for every band.
-#[inline(always)]
+// One copy per pipeline type, called from both the inside and the clipped path: the set-up is
+// per triangle, so the call costs little, and the code is not duplicated.
+#[inline(never)]
 pub(crate) fn fill_fused<S, D, V, P, const BITS: u32>(
     surface: &mut S,
     depth: &mut D,
@@ -293,8 +297,9 @@ where
     if centres <= 4 && !covers_a_pixel(&t, s, &clip) {
         return Ok(());
     }
-    let e1 = (v1.0 - v0.0, v1.1 - v0.1);
-    let e2 = (v2.0 - v0.0, v2.1 - v0.1);
+    let sign = t.cross.signum();
+    let e1 = (sign * (v1.0 - v0.0), sign * (v1.1 - v0.1));
+    let e2 = (sign * (v2.0 - v0.0), sign * (v2.1 - v0.1));
     let own = (v0.0 >> BITS, v0.1 >> BITS);
     let anchor = (
         own.0.max(area.x0).min(area.x1 - 1),
@@ -304,7 +309,6 @@ where
     let shape = Shape {
         e1,
         e2,
-        sign: t.cross.signum(),
         cross: t.cross.abs(),
         anchor,
         offset: (anchor.0 * s + s / 2 - v0.0, anchor.1 * s + s / 2 - v0.1),

@@ -183,13 +183,14 @@ impl DepthTest for DepthBuffer<'_> {
 
     #[inline(always)]
     fn depth_row(&mut self, y: i32, x: i32, len: u32) -> &mut [u16] {
-        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips).
-        let y = y.wrapping_sub(self.origin_y);
-        if y < 0 || y as u32 >= self.height || x < 0 || x as u32 >= self.width {
+        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips); a
+        // negative row or column wraps to a large one.
+        let (row, col) = (y.wrapping_sub(self.origin_y) as u32, x as u32);
+        if row >= self.height || col >= self.width {
             return &mut [];
         }
-        let len = len.min(self.width - x as u32) as usize;
-        let start = y as usize * self.width as usize + x as usize;
+        let len = len.min(self.width - col) as usize;
+        let start = row as usize * self.width as usize + col as usize;
         self.buf.get_mut(start..start + len).unwrap_or_default()
     }
 

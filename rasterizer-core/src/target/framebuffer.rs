@@ -586,7 +586,12 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         depth: &mut [u16],
         shade: F,
     ) -> Result<(), Self::Error> {
-        C::shade_depth(self.row_mut(y as usize), x as usize, depth, shade);
+        C::shade_depth(
+            &mut self.buf[y as usize * self.stride..],
+            x as usize,
+            depth,
+            shade,
+        );
         Ok(())
     }
 
