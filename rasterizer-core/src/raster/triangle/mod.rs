@@ -93,6 +93,9 @@ where
         2 * (hi - lo).unsigned_abs() + 2 * s as u64
     };
     let (ex, ey) = (extent(xs), extent(ys));
+    // Bounds, with M = 2^(21 + BITS) <= 2^29 the guard band in raw units: vertex differences
+    // <= 2M = 2^30, so den = |cross| <= 2^60 (the doubled area of a triangle inside a square of
+    // side 2M) and 2 den <= 2^61.
     let den = t.cross.unsigned_abs();
     let sign = t.cross.signum();
     let mut g = Gouraud {
@@ -101,6 +104,7 @@ where
         v0,
         den,
         den2: NonZeroU64::new(2 * den).unwrap_or(NonZeroU64::MIN),
+        c0: c[0],
         a: [0; 4],
         b: [0; 4],
         base: [0; 4],
@@ -126,8 +130,9 @@ where
         };
         g.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
         // c0 (2 den) folds the base colour into the numerator, which is then never negative at a
-        // pixel inside the triangle.
-        let base = u64::from(c[0][i]) * 2 * den;
+        // pixel inside the triangle. It reaches 2^8 * 2^61 = 2^69, past u64: saturated here, where
+        // it only chooses `wide` (and is stored only when narrow); the wide path forms it in i128.
+        let base = u64::from(c[0][i]).saturating_mul(g.den2.get());
         g.base[i] = base as i64;
         let bound = g.a[i]
             .unsigned_abs()
@@ -155,9 +160,11 @@ struct Gouraud<'a, S: Surface> {
     den: u64,
     /// `2 den`, never zero (the triangle has area).
     den2: NonZeroU64,
+    /// The first vertex's channels.
+    c0: [u8; 4],
     a: [i64; 4],
     b: [i64; 4],
-    /// `c0 * 2 den`.
+    /// `c0 * 2 den`; meaningful only when not `wide`.
     base: [i64; 4],
     step: [i32; 4],
     /// The plane numerators need `i128` (a triangle of millions of pixels).
@@ -180,9 +187,11 @@ where
         for i in 0..S::Color::COUNT {
             // The exact value at an inside pixel lies in the vertex colours' range, so its 16.16
             // rounding does too: no clamping. Unless `wide`, the numerator is below 2^62 and not
-            // negative, and the division is unsigned (no sign or overflow fix-ups).
+            // negative, and the division is unsigned (no sign or overflow fix-ups). Wide: |dx2|,
+            // |dy2| <= 2^31 + 2s at a centre inside the triangle, |a|, |b| < 2^39 and the base
+            // below 2^69, so |f| < 2^72 and f 2^16 < 2^88.
             let v = if self.wide {
-                let f = i128::from(self.base[i])
+                let f = i128::from(self.c0[i]) * i128::from(self.den2.get())
                     + i128::from(self.a[i]) * i128::from(dx2)
                     + i128::from(self.b[i]) * i128::from(dy2);
                 round_div(f << FRAC, self.den).clamp(0, 255 << FRAC) as i32
