@@ -7,7 +7,7 @@
 use super::Surface;
 use crate::raster::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{OriginDimensions, Size};
+use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::prelude::PixelColor;
@@ -30,7 +30,8 @@ pub enum FramebufferError {
         /// Words the slice has.
         actual: usize,
     },
-    /// Width or height is zero or larger than [`MAX_DIMENSION`].
+    /// Width or height is zero or larger than [`MAX_DIMENSION`], or (on a 16-bit target) the
+    /// buffer's length overflows `usize`.
     BadSize {
         /// The width asked for.
         width: u32,
@@ -244,7 +245,8 @@ impl Storage for Gray8 {
 impl Storage for Rgb888 {
     type Word = u8;
     fn row_words(width: usize) -> usize {
-        width * 3
+        // Saturating: no slice is usize::MAX bytes long, so a 16-bit target rejects such a width.
+        width.saturating_mul(3)
     }
     #[inline]
     fn set(row: &mut [u8], x: usize, color: Self) {
@@ -320,10 +322,13 @@ pub struct Framebuffer<'a, C: Storage> {
 
 impl<'a, C: Storage> Framebuffer<'a, C> {
     /// Words a `width` x `height` framebuffer of this format needs, or `None` if the size is out of
-    /// range (zero, or above [`MAX_DIMENSION`]).
+    /// range (zero, or above [`MAX_DIMENSION`]) or its length overflows `usize` (16-bit targets).
     pub fn required_len(width: u32, height: u32) -> Option<usize> {
         let valid = (1..=MAX_DIMENSION).contains(&width) && (1..=MAX_DIMENSION).contains(&height);
-        valid.then(|| C::row_words(width as usize) * height as usize)
+        // At most 98,301 x 32,767 words: below 2^32, so checked only for 16-bit targets.
+        valid
+            .then(|| C::row_words(width as usize).checked_mul(height as usize))
+            .flatten()
     }
 
     /// A framebuffer over `buf`, which must hold exactly [`Self::required_len`] words.
@@ -369,7 +374,7 @@ impl<'a, C: Storage> Framebuffer<'a, C> {
     }
 
     /// The colour of a pixel, or `None` outside the buffer.
-    pub fn pixel(&self, p: embedded_graphics_core::geometry::Point) -> Option<C> {
+    pub fn pixel(&self, p: Point) -> Option<C> {
         let (x, y) = self.index(p.x, p.y)?;
         Some(C::get(&self.buf[y * self.stride..(y + 1) * self.stride], x))
     }
@@ -413,9 +418,13 @@ impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
         I: IntoIterator<Item = C>,
     {
         let area_px = crate::geom::PixelRect::from_rectangle(area);
+        // An empty area takes no colours; without this, zero columns over 2^32 rows would loop.
+        if area_px.is_empty() {
+            return Ok(());
+        }
         let mut colors = colors.into_iter();
         // Rows below the buffer can hold no visible pixel: stop there, so a huge area with an
-        // endless colour iterator still ends.
+        // endless colour iterator still ends. Above the buffer, every step takes a colour.
         for y in area_px.y0..area_px.y1.min(i64::from(self.height)) {
             for x in area_px.x0..area_px.x1 {
                 let Some(color) = colors.next() else {
@@ -469,10 +478,7 @@ impl<C: Storage> Framebuffer<'_, C> {
     #[cold]
     #[inline(never)]
     fn fill_span_clipped(&mut self, x: i32, y: i32, len: u32, color: C) {
-        let area = Rectangle::new(
-            embedded_graphics_core::geometry::Point::new(x, y),
-            Size::new(len, 1),
-        );
+        let area = Rectangle::new(Point::new(x, y), Size::new(len, 1));
         let Ok(()) = self.fill_solid(&area, color);
     }
 
@@ -517,10 +523,7 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
             Ok(())
         } else {
             // Every colour is still taken, in order; only the pixels inside are stored.
-            let area = Rectangle::new(
-                embedded_graphics_core::geometry::Point::new(x, y),
-                Size::new(len, 1),
-            );
+            let area = Rectangle::new(Point::new(x, y), Size::new(len, 1));
             self.fill_contiguous(
                 &area,
                 core::iter::repeat_with(&mut shade).take(len as usize),
