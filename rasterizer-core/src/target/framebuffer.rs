@@ -584,7 +584,8 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
 
 /// One horizontal strip of a screen rendered into a small buffer: a [`Framebuffer`] of `rows`
 /// rows that stands for screen rows `y0 .. y0 + rows`. Drawing uses screen coordinates; the clip
-/// area is the strip, so everything outside it is dropped.
+/// area is the strip, so everything outside it is dropped. Any `y0` is accepted; rows that would
+/// lie past `i32::MAX` stand for no screen row and are never drawn.
 #[derive(Debug)]
 pub struct Band<'a, C: Storage> {
     fb: Framebuffer<'a, C>,
@@ -610,10 +611,10 @@ impl<'a, C: Storage> Band<'a, C> {
 
 impl<C: Storage> embedded_graphics_core::geometry::Dimensions for Band<'_, C> {
     fn bounding_box(&self) -> Rectangle {
-        Rectangle::new(
-            embedded_graphics_core::geometry::Point::new(0, self.y0),
-            Size::new(self.fb.width, self.fb.height),
-        )
+        // Ends at i32::MAX at most, so embedded-graphics' own rectangle methods are safe on it.
+        let room = i64::from(i32::MAX) - i64::from(self.y0) + 1;
+        let rows = i64::from(self.fb.height).min(room) as u32;
+        Rectangle::new(Point::new(0, self.y0), Size::new(self.fb.width, rows))
     }
 }
 
@@ -625,20 +626,31 @@ impl<C: Storage> DrawTarget for Band<'_, C> {
     where
         I: IntoIterator<Item = Pixel<C>>,
     {
+        // A row too far from the band for the difference to fit i32 is certainly outside it.
         let y0 = self.y0;
         self.fb.draw_iter(
-            pixels.into_iter().map(|Pixel(p, c)| {
-                Pixel(p - embedded_graphics_core::geometry::Point::new(0, y0), c)
-            }),
+            pixels
+                .into_iter()
+                .filter_map(|Pixel(p, c)| Some(Pixel(Point::new(p.x, p.y.checked_sub(y0)?), c))),
         )
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
-        let shifted = Rectangle::new(
-            area.top_left - embedded_graphics_core::geometry::Point::new(0, self.y0),
-            area.size,
-        );
-        self.fb.fill_solid(&shifted, color)
+        // Shifted in i64: the area's rows may lie anywhere relative to the band.
+        let mut r = crate::geom::PixelRect::from_rectangle(area);
+        r.y0 -= i64::from(self.y0);
+        r.y1 -= i64::from(self.y0);
+        let rows = crate::geom::PixelRect {
+            x0: 0,
+            y0: 0,
+            x1: i64::from(self.fb.width),
+            y1: i64::from(self.fb.height),
+        };
+        let r = r.intersection(&rows);
+        if r.is_empty() {
+            return Ok(());
+        }
+        self.fb.fill_solid(&r.to_rectangle(), color)
     }
 
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
@@ -649,7 +661,11 @@ impl<C: Storage> DrawTarget for Band<'_, C> {
 impl<C: Storage> Surface for Band<'_, C> {
     #[inline(always)]
     fn fill_span(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
-        self.fb.fill_span(x, y.wrapping_sub(self.y0), len, color)
+        // Not wrapping: a row 2^32 away would land inside the band.
+        match y.checked_sub(self.y0) {
+            Some(y) => self.fb.fill_span(x, y, len, color),
+            None => Ok(()),
+        }
     }
 
     #[inline(always)]
@@ -676,17 +692,14 @@ impl<C: Storage> Surface for Band<'_, C> {
         len: u32,
         shade: F,
     ) -> Result<(), Self::Error> {
-        self.fb.shade_span(x, y - self.y0, len, shade)
+        match y.checked_sub(self.y0) {
+            Some(y) => self.fb.shade_span(x, y, len, shade),
+            None => Ok(()),
+        }
     }
 
     fn draw_line_points(&mut self, points: LinePoints, color: C) -> Result<(), Self::Error> {
         // A line walk carries screen rows; shift each point (lines are not the band fast path).
-        let y0 = self.y0;
-        self.fb.draw_iter(points.map(|p| {
-            Pixel(
-                p - embedded_graphics_core::geometry::Point::new(0, y0),
-                color,
-            )
-        }))
+        self.draw_iter(points.map(|p| Pixel(p, color)))
     }
 }
