@@ -1,14 +1,20 @@
-//! Rectangles at the integer limits: `ClipTo`, `Band` and `Framebuffer` fills. For any `i32`
-//! origin and `u32` size nothing panics (tests build with overflow checks) and every primitive
-//! draws exactly its pixels inside the rectangle and the target, none outside.
+//! Rectangles at the integer limits: `ClipTo`, `Band`, `Framebuffer` fills and the viewport's clip
+//! rectangle. For any `i32` origin and `u32` size nothing panics (tests build with overflow
+//! checks) and every primitive draws exactly its pixels inside the rectangle and the target, none
+//! outside.
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point, Size};
-use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 use proptest::prelude::*;
 use rasterizer_core::geom::SubPoint;
+use rasterizer_core::math::{Fx16, Mat4, Vec3};
+use rasterizer_core::pipeline::cull::NoCull;
+use rasterizer_core::pipeline::shading::Unlit;
+use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, Viewport};
+use rasterizer_core::raster::interp::NoDepth;
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
@@ -343,5 +349,100 @@ proptest! {
         let n = (u64::from(r.size.width) * 3).min(4096) as usize;
         fb.fill_contiguous(&r, core::iter::repeat_n(Rgb565::WHITE, n)).unwrap();
         prop_assert!(lit(&buf, 0).is_subset(&set(meet(screen, cells(&r)))));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The viewport
+
+fn quad_pipeline(vp: Viewport) -> Pipeline<Fx16, NoCull, NoDepth, Unlit<Rgb888>> {
+    let t = Transforms {
+        model: Mat4::identity(),
+        view: Mat4::identity(),
+        projection: Mat4::identity(),
+    };
+    Pipeline::new(
+        &t,
+        vp,
+        NoCull,
+        NoDepth,
+        Unlit {
+            color: Rgb888::WHITE,
+        },
+    )
+}
+
+/// Draws a quad over most of normalised device space into a 64 x 48 framebuffer and returns the
+/// lit pixels.
+fn draw_quad(vp: Viewport) -> BTreeSet<(i32, i32)> {
+    let h = Fx16::from_ratio(9, 10);
+    let positions = [
+        Vec3::new(-h, -h, Fx16::ZERO),
+        Vec3::new(h, -h, Fx16::ZERO),
+        Vec3::new(h, h, Fx16::ZERO),
+        Vec3::new(-h, h, Fx16::ZERO),
+    ];
+    let triangles: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+    let mut buf = vec![0u8; 64 * 48 * 3];
+    let mut fb = Framebuffer::<Rgb888>::new(&mut buf, 64, 48).unwrap();
+    quad_pipeline(vp)
+        .draw(&mut fb, &Mesh::new(&positions, &triangles))
+        .unwrap();
+    let lit: BTreeSet<(i32, i32)> = buf
+        .chunks(3)
+        .enumerate()
+        .filter(|(_, px)| px.iter().any(|&c| c != 0))
+        .map(|(i, _)| ((i % 64) as i32, (i / 64) as i32))
+        .collect();
+    lit
+}
+
+#[test]
+fn viewport_at_the_integer_limits_draws_without_panicking() {
+    // The clip rectangle of these viewports overflowed in embedded-graphics' intersection.
+    let off_screen = Viewport {
+        x: i32::MAX,
+        y: i32::MAX,
+        width: 32767,
+        height: 32767,
+    };
+    assert!(draw_quad(off_screen).is_empty());
+    let huge = draw_quad(Viewport::new(u32::MAX, u32::MAX));
+    assert!(huge
+        .iter()
+        .all(|&(x, y)| (0..64).contains(&x) && (0..48).contains(&y)));
+    // A viewport within the limits keeps its exact clip rectangle.
+    let normal = Viewport {
+        x: -10,
+        y: 5,
+        width: 50,
+        height: 30,
+    };
+    assert_eq!(
+        normal.rectangle(),
+        Rectangle::new(Point::new(-10, 5), Size::new(50, 30))
+    );
+    let lit = draw_quad(normal);
+    assert!(!lit.is_empty());
+    assert!(lit
+        .iter()
+        .all(|&(x, y)| (0..40).contains(&x) && (5..35).contains(&y)));
+}
+
+proptest! {
+    /// Any field values: `rectangle` does not panic, stays within the documented 32767 x 32767 and
+    /// the `i32` plane, and is exact inside the limits.
+    #[test]
+    fn viewport_rectangle_any_fields(x in coord(), y in coord(), width in length(), height in length()) {
+        let vp = Viewport { x, y, width, height };
+        let r = vp.rectangle();
+        prop_assert_eq!(r.top_left, Point::new(x, y));
+        prop_assert!(r.size.width <= 32767 && r.size.height <= 32767);
+        prop_assert!(i64::from(x) + i64::from(r.size.width) <= i64::from(i32::MAX) + 1);
+        prop_assert!(i64::from(y) + i64::from(r.size.height) <= i64::from(i32::MAX) + 1);
+        let fits = |o: i32, len: u32| len <= 32767 && i64::from(o) + i64::from(len) <= i64::from(i32::MAX) + 1;
+        if fits(x, width) && fits(y, height) {
+            prop_assert_eq!(r.size, Size::new(width, height));
+        }
     }
 }
