@@ -648,6 +648,12 @@ fn check_fills<const B: u32>(
     prop_assert_eq!(&mock.written(), &want);
     let mut buf = vec![0u8; (GB_W * GB_H * 3) as usize];
     let mut fb = Framebuffer::<Rgb888>::new(&mut buf, GB_W, GB_H).unwrap();
+    fill_triangle(&mut fb, v, Rgb888::WHITE).unwrap();
+    let lit: BTreeSet<(i32, i32)> = (0..GB_H as i32)
+        .flat_map(|y| (0..GB_W as i32).map(move |x| (x, y)))
+        .filter(|&(x, y)| fb.pixel(Point::new(x, y)) == Some(Rgb888::WHITE))
+        .collect();
+    prop_assert_eq!(&lit, &want);
     fill_triangle_gouraud(&mut fb, v, colors).unwrap();
     let rgb = |c: Rgb888| [c.r(), c.g(), c.b()];
     let raw = v.map(|p| (i64::from(p.x), i64::from(p.y)));
@@ -750,5 +756,45 @@ proptest! {
         colors in [any::<[u8; 3]>(), any::<[u8; 3]>(), any::<[u8; 3]>()],
     ) {
         check_fills_at(bits, places, colors.map(|c| Rgb888::new(c[0], c[1], c[2])))?;
+    }
+}
+
+/// An outline corner anywhere in `i32`: near the target, at the ends, or anywhere.
+fn outline_coord() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        3 => -30i32..50,
+        1 => Just(i32::MIN),
+        1 => Just(i32::MAX),
+        2 => any::<i32>(),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// Outlines with corners anywhere in `i32`: exactly the union of the three edges' reference
+    /// pixels on the target, each written once (the mock fails on overdraw), the same on a
+    /// framebuffer.
+    #[test]
+    fn outline_any_i32_corners_is_the_union_of_its_edges(
+        x0 in outline_coord(), y0 in outline_coord(), x1 in outline_coord(), y1 in outline_coord(),
+        x2 in outline_coord(), y2 in outline_coord(),
+    ) {
+        let p = [Point::new(x0, y0), Point::new(x1, y1), Point::new(x2, y2)];
+        let mut mock = StrictMock::<BinaryColor>::new(20, 16);
+        draw_triangle(&mut AnyTarget::new(&mut mock), p, BinaryColor::On).unwrap();
+        let mut want = BTreeSet::new();
+        for i in 0..3 {
+            want.extend(tests::reference_line_on_screen(p[i], p[(i + 1) % 3], 20, 16));
+        }
+        prop_assert_eq!(mock.written(), want.clone());
+        let mut buf = [0u16; 20 * 16];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 20, 16).unwrap();
+        draw_triangle(&mut fb, p, Rgb565::WHITE).unwrap();
+        let lit: BTreeSet<(i32, i32)> = (0..16)
+            .flat_map(|y| (0..20).map(move |x| (x, y)))
+            .filter(|&(x, y)| fb.pixel(Point::new(x, y)) == Some(Rgb565::WHITE))
+            .collect();
+        prop_assert_eq!(lit, want);
     }
 }
