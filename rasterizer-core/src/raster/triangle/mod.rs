@@ -104,7 +104,6 @@ where
         v0,
         den,
         den2: NonZeroU64::new(2 * den).unwrap_or(NonZeroU64::MIN),
-        c0: c[0],
         a: [0; 4],
         b: [0; 4],
         base: [0; 4],
@@ -131,7 +130,7 @@ where
         g.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
         // c0 (2 den) folds the base colour into the numerator, which is then never negative at a
         // pixel inside the triangle. It reaches 2^8 * 2^61 = 2^69, past u64: saturated here, where
-        // it only chooses `wide` (and is stored only when narrow); the wide path forms it in i128.
+        // it only chooses `wide`; the wide path forms it in i128 from c0.
         let base = u64::from(c[0][i]).saturating_mul(g.den2.get());
         g.base[i] = base as i64;
         let bound = g.a[i]
@@ -140,6 +139,10 @@ where
             .saturating_add(g.b[i].unsigned_abs().saturating_mul(ey))
             .saturating_add(base);
         g.wide |= bound >= 1 << 46;
+    }
+    if g.wide {
+        // c0 itself, so that the span set-up stays one size (a larger one costs every span).
+        g.base = c[0].map(i64::from);
     }
     let clip = PixelRect::from_rectangle(&g.surface.clip_area());
     walk_spans(&t, s, &clip, &mut g)
@@ -160,11 +163,9 @@ struct Gouraud<'a, S: Surface> {
     den: u64,
     /// `2 den`, never zero (the triangle has area).
     den2: NonZeroU64,
-    /// The first vertex's channels.
-    c0: [u8; 4],
     a: [i64; 4],
     b: [i64; 4],
-    /// `c0 * 2 den`; meaningful only when not `wide`.
+    /// `c0 * 2 den`, or when `wide` only `c0` (the product may pass i64).
     base: [i64; 4],
     step: [i32; 4],
     /// The plane numerators need `i128` (a triangle of millions of pixels).
@@ -191,7 +192,8 @@ where
             // |dy2| <= 2^31 + 2s at a centre inside the triangle, |a|, |b| < 2^39 and the base
             // below 2^69, so |f| < 2^72 and f 2^16 < 2^88.
             let v = if self.wide {
-                let f = i128::from(self.c0[i]) * i128::from(self.den2.get())
+                let base = i128::from(self.base[i]) * i128::from(self.den2.get());
+                let f = base
                     + i128::from(self.a[i]) * i128::from(dx2)
                     + i128::from(self.b[i]) * i128::from(dy2);
                 round_div(f << FRAC, self.den).clamp(0, 255 << FRAC) as i32
