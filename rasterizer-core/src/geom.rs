@@ -25,7 +25,8 @@ pub const MAX_SUBPIXEL_BITS: u32 = 8;
 ///
 /// Bound: with `b <= 8` sub-pixel bits the largest coordinate is `M = 2^(21 + b) <= 2^29`; the
 /// largest set-up products, the doubled area `|dx1 dy2| + |dx2 dy1| <= 8 M^2 = 2^61` and the edge
-/// numerator `|(y - ya) dx| + |xa dy| <= 6 M^2`, fit `i64`.
+/// numerator `|(y - ya) dx| + |xa dy| <= 6 M^2`, fit `i64`. The Gouraud fill's colour numerators
+/// (a channel times the doubled area, up to `2^72`) go to `i128` in the triangles that need it.
 pub const GUARD_BAND_PIXELS: i32 = 1 << 21;
 
 /// A point in sub-pixel fixed point with `BITS` fractional bits (28.4 by default).

@@ -611,7 +611,7 @@ impl<'a, C: Storage> Band<'a, C> {
 
 impl<C: Storage> embedded_graphics_core::geometry::Dimensions for Band<'_, C> {
     fn bounding_box(&self) -> Rectangle {
-        // Ends at i32::MAX at most, so embedded-graphics' own rectangle methods are safe on it.
+        // Rows past i32::MAX stand for no screen row: the strip stops there.
         let room = i64::from(i32::MAX) - i64::from(self.y0) + 1;
         let rows = i64::from(self.fb.height).min(room) as u32;
         Rectangle::new(Point::new(0, self.y0), Size::new(self.fb.width, rows))
