@@ -1,16 +1,18 @@
-//! The 2D primitives with arbitrary i32 coordinates: no panic, no out-of-bounds write (a write
-//! outside the slice would panic in safe code), the same pixels through the framebuffer's fast
-//! paths and through a plain `DrawTarget`.
+//! The 2D primitives with arbitrary i32 coordinates, at 0, 4 and 8 sub-pixel bits, drawn through a
+//! `ClipTo` with an arbitrary rectangle: no panic, no out-of-bounds write (a write outside the
+//! slice would panic in safe code), the same pixels through the framebuffer's fast paths and
+//! through a plain `DrawTarget`. Run it with `-a` for overflow checks.
 #![no_main]
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::prelude::*;
+use embedded_graphics_core::primitives::Rectangle;
 use libfuzzer_sys::fuzz_target;
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::target::{AnyTarget, Framebuffer, Surface};
+use rasterizer_core::target::{AnyTarget, ClipTo, Framebuffer, Surface};
 
 const W: u32 = 40;
 const H: u32 = 30;
@@ -43,8 +45,19 @@ impl DrawTarget for Strict {
 }
 
 fn draw_all<S: Surface<Color = Rgb565>>(s: &mut S, v: &[i32]) {
+    let area = Rectangle::new(
+        Point::new(v[10], v[11]),
+        Size::new(v[12] as u32, v[13] as u32),
+    );
+    let s = &mut ClipTo::new(s, area);
+    draw_bits::<_, 4>(s, v);
+    draw_bits::<_, 0>(s, v);
+    draw_bits::<_, 8>(s, v);
+}
+
+fn draw_bits<S: Surface<Color = Rgb565>, const B: u32>(s: &mut S, v: &[i32]) {
     let p = |i: usize| Point::new(v[i], v[i + 1]);
-    let sp = |i: usize| SubPoint::<4>::new(v[i], v[i + 1]);
+    let sp = |i: usize| SubPoint::<B>::new(v[i], v[i + 1]);
     let c = |i: usize| {
         Rgb565::new(
             v[i] as u8 & 31,
@@ -57,8 +70,8 @@ fn draw_all<S: Surface<Color = Rgb565>>(s: &mut S, v: &[i32]) {
     let _ = draw_triangle(s, [p(0), p(2), p(4)], c(3));
     let _ = fill_triangle(s, [sp(0), sp(2), sp(4)], c(5));
     let _ = fill_triangle_gouraud(s, [sp(6), sp(2), sp(8)], [c(0), c(1), c(2)]);
-    let pts: Vec<SubPoint<4>> = (0..v.len() / 2).map(|i| sp(2 * i)).collect();
-    if let Ok(poly) = Polygon::<8, 4>::new(&pts[..pts.len().min(8)]) {
+    let pts: Vec<SubPoint<B>> = (0..5).map(|i| sp(2 * i)).collect();
+    if let Ok(poly) = Polygon::<8, B>::new(&pts) {
         let _ = poly.fill(s, FillRule::NonZero, c(7));
         let _ = poly.fill(s, FillRule::EvenOdd, c(8));
     }
@@ -69,7 +82,12 @@ fuzz_target!(|data: &[u8]| {
         .chunks_exact(4)
         .map(|b| i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         .collect();
-    v.resize(10, 0);
+    // Five points, then the clip rectangle; a short input clips to the whole target.
+    v.resize(14, 0);
+    if data.len() < 56 {
+        v[12] = -1;
+        v[13] = -1;
+    }
     let mut buf = vec![0u16; (W * H) as usize];
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
     draw_all(&mut fb, &v);

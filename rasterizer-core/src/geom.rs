@@ -4,7 +4,8 @@
 //! `(x + 0.5, y + 0.5)`. Filled primitives take vertices in sub-pixel fixed point so that meshes stay
 //! watertight after projection; lines and points take whole pixels.
 
-use embedded_graphics_core::geometry::Point;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
 
 /// The default number of sub-pixel bits: 28.4 fixed point, 1/16 of a pixel.
 pub const DEFAULT_SUBPIXEL_BITS: u32 = 4;
@@ -24,7 +25,8 @@ pub const MAX_SUBPIXEL_BITS: u32 = 8;
 ///
 /// Bound: with `b <= 8` sub-pixel bits the largest coordinate is `M = 2^(21 + b) <= 2^29`; the
 /// largest set-up products, the doubled area `|dx1 dy2| + |dx2 dy1| <= 8 M^2 = 2^61` and the edge
-/// numerator `|(y - ya) dx| + |xa dy| <= 6 M^2`, fit `i64`.
+/// numerator `|(y - ya) dx| + |xa dy| <= 6 M^2`, fit `i64`. The Gouraud fill's colour numerators
+/// (a channel times the doubled area, up to `2^72`) go to `i128` in the triangles that need it.
 pub const GUARD_BAND_PIXELS: i32 = 1 << 21;
 
 /// A point in sub-pixel fixed point with `BITS` fractional bits (28.4 by default).
@@ -69,6 +71,10 @@ impl<const BITS: u32> SubPoint<BITS> {
 
 /// A rectangle of whole pixels, `x0 <= x < x1`, `y0 <= y < y1`, in `i64` so that its arithmetic
 /// cannot overflow for any `i32` input. Empty when `x0 >= x1` or `y0 >= y1`.
+///
+/// An embedded-graphics `Rectangle` may end past `i32::MAX` (`top_left + size` is up to
+/// `2^31 - 1 + 2^32 - 1`), and its own `intersection`, `contains` and `bottom_right` overflow there;
+/// everything here stays below `2^33` in magnitude.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct PixelRect {
     pub x0: i64,
@@ -79,7 +85,7 @@ pub(crate) struct PixelRect {
 
 impl PixelRect {
     /// The pixels of an embedded-graphics rectangle.
-    pub fn from_rectangle(r: &embedded_graphics_core::primitives::Rectangle) -> Self {
+    pub fn from_rectangle(r: &Rectangle) -> Self {
         let x0 = i64::from(r.top_left.x);
         let y0 = i64::from(r.top_left.y);
         Self {
@@ -92,5 +98,39 @@ impl PixelRect {
 
     pub fn is_empty(&self) -> bool {
         self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+
+    /// The pixels in both.
+    #[inline]
+    pub fn intersection(&self, other: &Self) -> Self {
+        Self {
+            x0: self.x0.max(other.x0),
+            y0: self.y0.max(other.y0),
+            x1: self.x1.min(other.x1),
+            y1: self.y1.min(other.y1),
+        }
+    }
+
+    #[inline]
+    pub fn contains(&self, p: Point) -> bool {
+        let (x, y) = (i64::from(p.x), i64::from(p.y));
+        self.x0 <= x && x < self.x1 && self.y0 <= y && y < self.y1
+    }
+
+    /// The same pixels as an embedded-graphics rectangle; `Rectangle::zero()` when empty.
+    ///
+    /// Exact for the intersection of rectangles made by [`PixelRect::from_rectangle`]: its corner is
+    /// one of theirs and its size at most one of theirs. Anything else is clamped to what a
+    /// `Rectangle` can hold.
+    pub fn to_rectangle(self) -> Rectangle {
+        if self.is_empty() {
+            return Rectangle::zero();
+        }
+        let clamp = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX));
+        let len = |lo: i64, hi: i64| (hi - clamp(lo)).clamp(0, i64::from(u32::MAX)) as u32;
+        Rectangle::new(
+            Point::new(clamp(self.x0) as i32, clamp(self.y0) as i32),
+            Size::new(len(self.x0, self.x1), len(self.y0, self.y1)),
+        )
     }
 }

@@ -236,3 +236,27 @@ fn fill_contiguous_with_a_huge_area_and_endless_colours_ends() {
         .unwrap();
     assert!(fb.as_slice().iter().all(|&v| v == 255));
 }
+
+#[test]
+fn fill_contiguous_with_zero_width_over_every_row_ends() {
+    // An area of no columns over 2^32 rows (most of them above the buffer) used to walk each
+    // row, which takes minutes. It must return at once, taking no colours.
+    let (done, finished) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut buf = [0u8; 4 * 4];
+        let mut fb = Framebuffer::<Gray8>::new(&mut buf, 4, 4).unwrap();
+        let mut taken = 0;
+        let colors = core::iter::repeat_with(|| {
+            taken += 1;
+            Gray8::WHITE
+        });
+        let area = Rectangle::new(Point::new(0, i32::MIN), Size::new(0, u32::MAX));
+        fb.fill_contiguous(&area, colors).unwrap();
+        let _ = done.send((taken, buf));
+    });
+    let (taken, buf) = finished
+        .recv_timeout(std::time::Duration::from_secs(5))
+        .expect("fill_contiguous of an empty area did not return");
+    assert_eq!(taken, 0);
+    assert_eq!(buf, [0; 16]);
+}

@@ -330,3 +330,183 @@ proptest! {
         prop_assert_eq!(moved, orig);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The whole i32 range, clip rectangles included
+
+/// The reference line's minor coordinate at major coordinate `m` (x when `|dx| >= |dy|`), exact.
+fn reference_minor(a: Point, b: Point, m: i128) -> i128 {
+    let (ax, ay, bx, by) = (a.x as i128, a.y as i128, b.x as i128, b.y as i128);
+    let (dx, dy) = (bx - ax, by - ay);
+    if dx.abs() >= dy.abs() {
+        if dx == 0 {
+            ay
+        } else {
+            tests::nearest_tie_down(ay * dx + (m - ax) * dy, dx)
+        }
+    } else {
+        tests::nearest_tie_down(ax * dy + (m - ay) * dx, dy)
+    }
+}
+
+/// The first `m` in `lo..=hi` where `pred` holds, or `hi + 1`; `pred` false then true.
+fn first_true(lo: i128, hi: i128, pred: impl Fn(i128) -> bool) -> i128 {
+    let (mut lo, mut hi) = (lo, hi + 1);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if pred(mid) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    lo
+}
+
+/// A clipped walk: its first and last pixel and its length.
+type Run = ((i32, i32), (i32, i32), u64);
+
+/// The reference's first and last pixel inside `area` in walk order (smaller major coordinate
+/// first) and their count, by bisection over the major axis: the reference is monotone, so the
+/// pixels inside form one run. `None` when no pixel is inside.
+fn reference_clipped(a: Point, b: Point, area: &Rectangle) -> Option<Run> {
+    let major_x = (b.x as i128 - a.x as i128).abs() >= (b.y as i128 - a.y as i128).abs();
+    let (r0, r1) = (
+        (area.top_left.x as i128, area.top_left.y as i128),
+        (
+            area.top_left.x as i128 + area.size.width as i128,
+            area.top_left.y as i128 + area.size.height as i128,
+        ),
+    );
+    let (am, bm, (m_lo, n_lo), (m_hi, n_hi)) = if major_x {
+        (a.x as i128, b.x as i128, r0, r1)
+    } else {
+        (a.y as i128, b.y as i128, (r0.1, r0.0), (r1.1, r1.0))
+    };
+    let lo = am.min(bm).max(m_lo);
+    let hi = am.max(bm).min(m_hi - 1);
+    if lo > hi {
+        return None;
+    }
+    let n = |m: i128| reference_minor(a, b, m);
+    // Minor rises or falls with the major coordinate: each bound of the minor range cuts the
+    // major range once.
+    let rising = n(hi) >= n(lo);
+    let (first, end) = if rising {
+        (
+            first_true(lo, hi, |m| n(m) >= n_lo),
+            first_true(lo, hi, |m| n(m) >= n_hi),
+        )
+    } else {
+        (
+            first_true(lo, hi, |m| n(m) < n_hi),
+            first_true(lo, hi, |m| n(m) < n_lo),
+        )
+    };
+    if first >= end {
+        return None;
+    }
+    let px = |m: i128| {
+        if major_x {
+            (m as i32, n(m) as i32)
+        } else {
+            (n(m) as i32, m as i32)
+        }
+    };
+    Some((px(first), px(end - 1), (end - first) as u64))
+}
+
+fn extreme_coord() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        3 => -40i32..80,
+        1 => Just(i32::MIN),
+        1 => Just(i32::MAX),
+        1 => (i32::MAX - 50)..=i32::MAX,
+        1 => i32::MIN..=(i32::MIN + 50),
+        2 => any::<i32>(),
+    ]
+}
+
+fn extreme_len() -> impl Strategy<Value = u32> {
+    prop_oneof![
+        3 => 0u32..60,
+        1 => Just(u32::MAX),
+        1 => (u32::MAX - 50)..=u32::MAX,
+        1 => (1u32 << 31) - 50..(1u32 << 31) + 50,
+        2 => any::<u32>(),
+    ]
+}
+
+/// Endpoints anywhere in `i32`; half of the time mirrored through a pixel of a 24 x 16 screen
+/// (clamped to `i32`), so that long lines from far outside cross it.
+fn endpoints() -> impl Strategy<Value = (Point, Point)> {
+    let any = (
+        extreme_coord(),
+        extreme_coord(),
+        extreme_coord(),
+        extreme_coord(),
+    )
+        .prop_map(|(x0, y0, x1, y1)| (Point::new(x0, y0), Point::new(x1, y1)));
+    let through =
+        (extreme_coord(), extreme_coord(), 0i64..24, 0i64..16).prop_map(|(x, y, cx, cy)| {
+            let mirror = |v: i32, c: i64| {
+                (2 * c - i64::from(v)).clamp(i32::MIN.into(), i32::MAX.into()) as i32
+            };
+            (Point::new(x, y), Point::new(mirror(x, cx), mirror(y, cy)))
+        });
+    prop_oneof![any, through]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// Any endpoints and any clip rectangle, up to the i32/u32 extremes: the clipped walk starts,
+    /// ends and counts exactly as the reference's pixels inside the rectangle.
+    #[test]
+    fn clipped_walk_exact_for_any_endpoints_and_rectangle(
+        (a, b) in endpoints(),
+        rx in extreme_coord(), ry in extreme_coord(), rw in extreme_len(), rh in extreme_len(),
+    ) {
+        let area = Rectangle::new(Point::new(rx, ry), Size::new(rw, rh));
+        let got = Line::new(a, b).clipped(&area).map(|mut walk| {
+            let (count, last) = (walk.remaining(), walk.last_pixel().unwrap());
+            let first = walk.next().unwrap();
+            ((first.x, first.y), last, count)
+        });
+        prop_assert_eq!(got, reference_clipped(a, b, &area));
+        let back = Line::new(b, a).clipped(&area).map(|w| w.remaining());
+        prop_assert_eq!(back, got.map(|g| g.2));
+    }
+
+    /// Gradient lines between any endpoints: the reference's pixels on screen, each with
+    /// `round((c_a (A - k) + c_b k) / A)` per channel, `k` its major distance from `a`.
+    #[test]
+    fn gradient_line_any_endpoints_exact_colours(
+        (a, b) in endpoints(),
+        ca in any::<[u8; 3]>(), cb in any::<[u8; 3]>(),
+    ) {
+        let (x0, y0, x1, y1) = (a.x, a.y, b.x, b.y);
+        let (col_a, col_b) = (Rgb888::new(ca[0], ca[1], ca[2]), Rgb888::new(cb[0], cb[1], cb[2]));
+        let mut mock = StrictMock::<Rgb888>::new(24, 16);
+        draw_line_gradient(&mut AnyTarget::new(&mut mock), a, b, col_a, col_b).unwrap();
+        let mut buf = vec![0u8; 24 * 16 * 3];
+        let mut fb = Framebuffer::<Rgb888>::new(&mut buf, 24, 16).unwrap();
+        draw_line_gradient(&mut fb, a, b, col_a, col_b).unwrap();
+        prop_assert_eq!(mock.written(), tests::reference_line_on_screen(a, b, 24, 16));
+        let (dx, dy) = (x1 as i128 - x0 as i128, y1 as i128 - y0 as i128);
+        let span = dx.abs().max(dy.abs());
+        for (x, y) in mock.written() {
+            let k = if dx.abs() >= dy.abs() { (x as i128 - x0 as i128).abs() } else { (y as i128 - y0 as i128).abs() };
+            let want: Vec<u8> = (0..3).map(|i| {
+                if span == 0 {
+                    return ca[i];
+                }
+                let num = 2 * (ca[i] as i128 * (span - k) + cb[i] as i128 * k) + span;
+                (num / (2 * span)) as u8
+            }).collect();
+            let got = mock.get(x, y).unwrap();
+            prop_assert_eq!(vec![got.r(), got.g(), got.b()], want, "pixel ({}, {})", x, y);
+            prop_assert_eq!(fb.pixel(Point::new(x, y)), Some(got));
+        }
+    }
+}

@@ -987,3 +987,101 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Every sub-pixel setting, over the whole guard band
+// ---------------------------------------------------------------------------------------------
+
+/// A coordinate drawn without knowing the sub-pixel bits: near the targets of `area()`, anywhere
+/// in the guard band, at or next to its limits, or beyond them.
+#[derive(Debug, Clone, Copy)]
+enum Place {
+    /// Raw 1/256-pixel units.
+    Screen(i32),
+    /// A fraction (of 2^32) of the way from `-limit` to `+limit`.
+    Band(u32),
+    /// `±limit`, less a few units inwards.
+    Limit { negative: bool, inset: i32 },
+    /// Outside the band: `±(limit + 1)`, or the ends of `i32`.
+    Beyond(u8),
+}
+
+impl Place {
+    fn raw(self, bits: u32) -> i32 {
+        let limit = GUARD_BAND_PIXELS << bits;
+        match self {
+            Place::Screen(t) => t >> (8 - bits),
+            Place::Band(f) => {
+                (-i64::from(limit) + (((2 * i64::from(limit) + 1) * i64::from(f)) >> 32)) as i32
+            }
+            Place::Limit { negative, inset } => (limit - inset) * if negative { -1 } else { 1 },
+            Place::Beyond(k) => [limit + 1, -limit - 1, i32::MAX, i32::MIN][usize::from(k % 4)],
+        }
+    }
+}
+
+fn place() -> impl Strategy<Value = Place> {
+    prop_oneof![
+        5 => (-16 * 256..56 * 256).prop_map(Place::Screen),
+        3 => any::<u32>().prop_map(Place::Band),
+        2 => (any::<bool>(), prop_oneof![Just(0), Just(1), 0..300])
+            .prop_map(|(negative, inset)| Place::Limit { negative, inset }),
+        1 => any::<u8>().prop_map(Place::Beyond),
+    ]
+}
+
+fn check_reference_at(
+    bits: u32,
+    v: &[(Place, Place)],
+    area: Rectangle,
+) -> Result<(), TestCaseError> {
+    let v: Vec<(i32, i32)> = v.iter().map(|(x, y)| (x.raw(bits), y.raw(bits))).collect();
+    match bits {
+        0 => check_reference::<0>(&v, area),
+        1 => check_reference::<1>(&v, area),
+        2 => check_reference::<2>(&v, area),
+        3 => check_reference::<3>(&v, area),
+        4 => check_reference::<4>(&v, area),
+        5 => check_reference::<5>(&v, area),
+        6 => check_reference::<6>(&v, area),
+        7 => check_reference::<7>(&v, area),
+        _ => check_reference::<8>(&v, area),
+    }
+}
+
+#[test]
+fn polygon_at_the_guard_band_corners_every_bits() {
+    let limit = |negative| Place::Limit { negative, inset: 0 };
+    let (lo, hi) = (limit(true), limit(false));
+    // The band's square, a bow tie across it, and a sliver from a corner to the target.
+    let shapes: [&[(Place, Place)]; 3] = [
+        &[(lo, lo), (hi, lo), (hi, hi), (lo, hi)],
+        &[(lo, lo), (hi, hi), (hi, lo), (lo, hi)],
+        &[
+            (lo, lo),
+            (Place::Screen(5 * 256), Place::Screen(3 * 256)),
+            (Place::Screen(9 * 256), Place::Screen(3 * 256)),
+        ],
+    ];
+    let area = Rectangle::new(Point::new(-3, -2), Size::new(20, 12));
+    for bits in 0..=8 {
+        for v in shapes {
+            check_reference_at(bits, v, area).unwrap();
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// Both rules at every sub-pixel setting 0..=8, vertices anywhere in the guard band, at its
+    /// exact limits and beyond: exactly the reference's pixels (none with a vertex outside).
+    #[test]
+    fn matches_reference_across_the_guard_band_at_every_bits(
+        bits in 0u32..=8,
+        v in prop::collection::vec((place(), place()), 0..10),
+        area in area(),
+    ) {
+        check_reference_at(bits, &v, area)?;
+    }
+}

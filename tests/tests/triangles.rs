@@ -552,3 +552,249 @@ proptest! {
         prop_assert_eq!(interp_mock(48, 40, v).written(), reference_set(v, 48, 40));
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The whole guard band at every sub-pixel setting
+// ---------------------------------------------------------------------------------------------
+
+/// True when `got` is within half a step, plus the span stepping's error (below 2^-10 on targets
+/// at most 64 pixels wide), of the exact barycentric blend of `colors` at the centre of pixel `p`.
+/// Exact rational arithmetic in `i128`, from edge functions (not the fill's colour planes).
+fn gouraud_close(
+    v: [(i64, i64); 3],
+    bits: u32,
+    colors: [[u8; 3]; 3],
+    p: (i32, i32),
+    got: [u8; 3],
+) -> bool {
+    let s = 1i128 << bits;
+    let (cx, cy) = ((2 * i128::from(p.0) + 1) * s, (2 * i128::from(p.1) + 1) * s);
+    let d = v.map(|(x, y)| (2 * i128::from(x), 2 * i128::from(y)));
+    let edge =
+        |a: (i128, i128), b: (i128, i128)| (b.0 - a.0) * (cy - a.1) - (b.1 - a.1) * (cx - a.0);
+    let w = [edge(d[1], d[2]), edge(d[2], d[0]), edge(d[0], d[1])];
+    let total: i128 = w.iter().sum();
+    (0..3).all(|ch| {
+        let num: i128 = (0..3).map(|k| i128::from(colors[k][ch]) * w[k]).sum();
+        // |got - num / total| <= 1/2 + 2^-10
+        1024 * (i128::from(got[ch]) * total - num).abs() <= 513 * total.abs()
+    })
+}
+
+/// A coordinate drawn without knowing the sub-pixel bits: placed on the target, anywhere in the
+/// guard band, at or next to its limits, or just beyond them.
+#[derive(Debug, Clone, Copy)]
+enum Place {
+    /// Raw 1/256-pixel units from two pixels left of the target to two beyond it.
+    Screen(i32),
+    /// A fraction (of 2^32) of the way from `-limit` to `+limit`.
+    Band(u32),
+    /// `±limit`, less a few units inwards.
+    Limit { negative: bool, inset: i32 },
+    /// Outside the band: `±(limit + 1)`, or the ends of `i32`.
+    Beyond(u8),
+}
+
+impl Place {
+    fn raw(self, bits: u32) -> i32 {
+        let limit = GUARD_BAND_PIXELS << bits;
+        match self {
+            Place::Screen(t) => t >> (8 - bits),
+            Place::Band(f) => {
+                (-i64::from(limit) + (((2 * i64::from(limit) + 1) * i64::from(f)) >> 32)) as i32
+            }
+            Place::Limit { negative, inset } => {
+                let m = limit - inset;
+                if negative {
+                    -m
+                } else {
+                    m
+                }
+            }
+            Place::Beyond(k) => [limit + 1, -limit - 1, i32::MAX, i32::MIN][usize::from(k % 4)],
+        }
+    }
+}
+
+/// Target size of the guard-band properties.
+const GB_W: u32 = 16;
+const GB_H: u32 = 12;
+
+fn place() -> impl Strategy<Value = Place> {
+    prop_oneof![
+        4 => (-2 * 256..(GB_W as i32 + 2) * 256).prop_map(Place::Screen),
+        3 => any::<u32>().prop_map(Place::Band),
+        2 => (any::<bool>(), prop_oneof![Just(0), Just(1), 0..300]).prop_map(|(negative, inset)| Place::Limit { negative, inset }),
+        1 => any::<u8>().prop_map(Place::Beyond),
+    ]
+}
+
+/// Flat and Gouraud fills of one triangle: the reference's pixels (none with a vertex outside the
+/// guard band), the same on a framebuffer and through `AnyTarget`, colours within half a step of
+/// exact. The dev profile checks every intermediate for overflow.
+fn check_fills<const B: u32>(
+    places: [(Place, Place); 3],
+    colors: [Rgb888; 3],
+) -> Result<(), TestCaseError> {
+    let v = places.map(|(x, y)| SubPoint::<B>::new(x.raw(B), y.raw(B)));
+    let want = if v.iter().all(|p| p.in_guard_band()) {
+        reference_set(v, GB_W as i32, GB_H as i32)
+    } else {
+        BTreeSet::new()
+    };
+    prop_assert_eq!(&fill_mock(GB_W, GB_H, v).written(), &want);
+    let mut mock = StrictMock::<Rgb888>::new(GB_W, GB_H);
+    fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
+    prop_assert_eq!(&mock.written(), &want);
+    let mut buf = vec![0u8; (GB_W * GB_H * 3) as usize];
+    let mut fb = Framebuffer::<Rgb888>::new(&mut buf, GB_W, GB_H).unwrap();
+    fill_triangle(&mut fb, v, Rgb888::WHITE).unwrap();
+    let lit: BTreeSet<(i32, i32)> = (0..GB_H as i32)
+        .flat_map(|y| (0..GB_W as i32).map(move |x| (x, y)))
+        .filter(|&(x, y)| fb.pixel(Point::new(x, y)) == Some(Rgb888::WHITE))
+        .collect();
+    prop_assert_eq!(&lit, &want);
+    fill_triangle_gouraud(&mut fb, v, colors).unwrap();
+    let rgb = |c: Rgb888| [c.r(), c.g(), c.b()];
+    let raw = v.map(|p| (i64::from(p.x), i64::from(p.y)));
+    for &(x, y) in &want {
+        let got = mock.get(x, y).unwrap();
+        prop_assert_eq!(fb.pixel(Point::new(x, y)), Some(got));
+        prop_assert!(
+            gouraud_close(raw, B, colors.map(rgb), (x, y), rgb(got)),
+            "pixel ({}, {}) = {:?}, vertices {:?}",
+            x,
+            y,
+            got,
+            v
+        );
+    }
+    Ok(())
+}
+
+fn check_fills_at(
+    bits: u32,
+    places: [(Place, Place); 3],
+    colors: [Rgb888; 3],
+) -> Result<(), TestCaseError> {
+    match bits {
+        0 => check_fills::<0>(places, colors),
+        1 => check_fills::<1>(places, colors),
+        2 => check_fills::<2>(places, colors),
+        3 => check_fills::<3>(places, colors),
+        4 => check_fills::<4>(places, colors),
+        5 => check_fills::<5>(places, colors),
+        6 => check_fills::<6>(places, colors),
+        7 => check_fills::<7>(places, colors),
+        _ => check_fills::<8>(places, colors),
+    }
+}
+
+#[test]
+fn gouraud_at_guard_band_limits_keeps_base_colour() {
+    // c0 * 2 * |doubled area| overflowed u64 for a triangle this large at 8 sub-pixel bits: debug
+    // panicked, release lost the red channel.
+    let m = (1 << 29) - 1;
+    let v = [
+        SubPoint::<8>::new(-m, -m),
+        SubPoint::new(m, -m),
+        SubPoint::new(0, m),
+    ];
+    let colors = [
+        Rgb565::new(8, 16, 16),
+        Rgb565::new(8, 16, 16),
+        Rgb565::new(8, 16, 16),
+    ];
+    let mut buf = [0u16; 8 * 8];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 8, 8).unwrap();
+    fill_triangle_gouraud(&mut fb, v, colors).unwrap();
+    assert!(buf.iter().all(|&w| w == 0x4210), "{buf:04x?}");
+    // Every corner of the band and every sub-pixel setting, with distinct colours.
+    let colors = [
+        Rgb888::new(255, 0, 7),
+        Rgb888::new(0, 255, 128),
+        Rgb888::new(9, 40, 255),
+    ];
+    let limit = |negative| Place::Limit { negative, inset: 0 };
+    let screen = Place::Screen(3 * 256);
+    let corners = [
+        [
+            (limit(true), limit(true)),
+            (limit(false), limit(true)),
+            (limit(true), limit(false)),
+        ],
+        [
+            (limit(false), limit(false)),
+            (limit(true), limit(false)),
+            (limit(false), limit(true)),
+        ],
+        [
+            (limit(true), limit(true)),
+            (limit(false), screen),
+            (limit(true), limit(false)),
+        ],
+        [
+            (screen, limit(true)),
+            (limit(false), limit(false)),
+            (limit(true), limit(false)),
+        ],
+    ];
+    for bits in 0..=8 {
+        for places in corners {
+            check_fills_at(bits, places, colors).unwrap();
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    #[test]
+    fn fills_exact_across_the_guard_band_at_every_bits(
+        bits in 0u32..=8,
+        places in [(place(), place()), (place(), place()), (place(), place())],
+        colors in [any::<[u8; 3]>(), any::<[u8; 3]>(), any::<[u8; 3]>()],
+    ) {
+        check_fills_at(bits, places, colors.map(|c| Rgb888::new(c[0], c[1], c[2])))?;
+    }
+}
+
+/// An outline corner anywhere in `i32`: near the target, at the ends, or anywhere.
+fn outline_coord() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        3 => -30i32..50,
+        1 => Just(i32::MIN),
+        1 => Just(i32::MAX),
+        2 => any::<i32>(),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// Outlines with corners anywhere in `i32`: exactly the union of the three edges' reference
+    /// pixels on the target, each written once (the mock fails on overdraw), the same on a
+    /// framebuffer.
+    #[test]
+    fn outline_any_i32_corners_is_the_union_of_its_edges(
+        x0 in outline_coord(), y0 in outline_coord(), x1 in outline_coord(), y1 in outline_coord(),
+        x2 in outline_coord(), y2 in outline_coord(),
+    ) {
+        let p = [Point::new(x0, y0), Point::new(x1, y1), Point::new(x2, y2)];
+        let mut mock = StrictMock::<BinaryColor>::new(20, 16);
+        draw_triangle(&mut AnyTarget::new(&mut mock), p, BinaryColor::On).unwrap();
+        let mut want = BTreeSet::new();
+        for i in 0..3 {
+            want.extend(tests::reference_line_on_screen(p[i], p[(i + 1) % 3], 20, 16));
+        }
+        prop_assert_eq!(mock.written(), want.clone());
+        let mut buf = [0u16; 20 * 16];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 20, 16).unwrap();
+        draw_triangle(&mut fb, p, Rgb565::WHITE).unwrap();
+        let lit: BTreeSet<(i32, i32)> = (0..16)
+            .flat_map(|y| (0..20).map(move |x| (x, y)))
+            .filter(|&(x, y)| fb.pixel(Point::new(x, y)) == Some(Rgb565::WHITE))
+            .collect();
+        prop_assert_eq!(lit, want);
+    }
+}

@@ -154,6 +154,12 @@ impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
 /// Where normalised device coordinates land on the target: `x = -1` at the left edge of the
 /// rectangle, `y = +1` at its top (the y flip), in whole pixels. The pipeline also clips to it, so
 /// several viewports can share one target.
+///
+/// Range: any `x` and `y`; `width` and `height` at most 32767 ([`crate::target::MAX_DIMENSION`]).
+/// Beyond that the clip rectangle, [`Viewport::rectangle`], is clamped to 32767 x 32767 pixels and
+/// to the `i32` plane (it never reaches past `i32::MAX`), so nothing is drawn outside it or the
+/// target. The mapping from device coordinates still uses the fields as given, and its arithmetic
+/// is sized for the documented range only.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Viewport {
     /// Left edge.
@@ -168,10 +174,19 @@ pub struct Viewport {
 
 impl Viewport {
     /// The rectangle of pixels the viewport covers: the pipeline draws nothing outside it.
+    ///
+    /// Exactly `(x, y)`, `width` x `height` within the documented range; a width or height above
+    /// 32767 is clamped to it, and the size to what ends at `i32::MAX`, for any field values.
     pub fn rectangle(&self) -> Rectangle {
+        // No pixel lies past i32::MAX.
+        let max = i64::from(crate::target::MAX_DIMENSION);
+        let len = |origin: i32, len: u32| {
+            let room = i64::from(i32::MAX) - i64::from(origin) + 1;
+            i64::from(len).min(max).min(room) as u32
+        };
         Rectangle::new(
             Point::new(self.x, self.y),
-            Size::new(self.width, self.height),
+            Size::new(len(self.x, self.width), len(self.y, self.height)),
         )
     }
 

@@ -7,7 +7,7 @@
 use super::{DepthSpan, Surface};
 use crate::raster::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{OriginDimensions, Size};
+use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::prelude::PixelColor;
@@ -30,7 +30,8 @@ pub enum FramebufferError {
         /// Words the slice has.
         actual: usize,
     },
-    /// Width or height is zero or larger than [`MAX_DIMENSION`].
+    /// Width or height is zero or larger than [`MAX_DIMENSION`], or (on a 16-bit target) the
+    /// buffer's length overflows `usize`.
     BadSize {
         /// The width asked for.
         width: u32,
@@ -269,7 +270,8 @@ impl Storage for Gray8 {
 impl Storage for Rgb888 {
     type Word = u8;
     fn row_words(width: usize) -> usize {
-        width * 3
+        // Saturating: no slice is usize::MAX bytes long, so a 16-bit target rejects such a width.
+        width.saturating_mul(3)
     }
     #[inline]
     fn set(row: &mut [u8], x: usize, color: Self) {
@@ -345,10 +347,13 @@ pub struct Framebuffer<'a, C: Storage> {
 
 impl<'a, C: Storage> Framebuffer<'a, C> {
     /// Words a `width` x `height` framebuffer of this format needs, or `None` if the size is out of
-    /// range (zero, or above [`MAX_DIMENSION`]).
+    /// range (zero, or above [`MAX_DIMENSION`]) or its length overflows `usize` (16-bit targets).
     pub fn required_len(width: u32, height: u32) -> Option<usize> {
         let valid = (1..=MAX_DIMENSION).contains(&width) && (1..=MAX_DIMENSION).contains(&height);
-        valid.then(|| C::row_words(width as usize) * height as usize)
+        // At most 98,301 x 32,767 words: below 2^32, so checked only for 16-bit targets.
+        valid
+            .then(|| C::row_words(width as usize).checked_mul(height as usize))
+            .flatten()
     }
 
     /// A framebuffer over `buf`, which must hold exactly [`Self::required_len`] words.
@@ -394,7 +399,7 @@ impl<'a, C: Storage> Framebuffer<'a, C> {
     }
 
     /// The colour of a pixel, or `None` outside the buffer.
-    pub fn pixel(&self, p: embedded_graphics_core::geometry::Point) -> Option<C> {
+    pub fn pixel(&self, p: Point) -> Option<C> {
         let (x, y) = self.index(p.x, p.y)?;
         Some(C::get(&self.buf[y * self.stride..(y + 1) * self.stride], x))
     }
@@ -438,9 +443,13 @@ impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
         I: IntoIterator<Item = C>,
     {
         let area_px = crate::geom::PixelRect::from_rectangle(area);
+        // An empty area takes no colours; without this, zero columns over 2^32 rows would loop.
+        if area_px.is_empty() {
+            return Ok(());
+        }
         let mut colors = colors.into_iter();
         // Rows below the buffer can hold no visible pixel: stop there, so a huge area with an
-        // endless colour iterator still ends.
+        // endless colour iterator still ends. Above the buffer, every step takes a colour.
         for y in area_px.y0..area_px.y1.min(i64::from(self.height)) {
             for x in area_px.x0..area_px.x1 {
                 let Some(color) = colors.next() else {
@@ -494,10 +503,7 @@ impl<C: Storage> Framebuffer<'_, C> {
     #[cold]
     #[inline(never)]
     fn fill_span_clipped(&mut self, x: i32, y: i32, len: u32, color: C) {
-        let area = Rectangle::new(
-            embedded_graphics_core::geometry::Point::new(x, y),
-            Size::new(len, 1),
-        );
+        let area = Rectangle::new(Point::new(x, y), Size::new(len, 1));
         let Ok(()) = self.fill_solid(&area, color);
     }
 
@@ -542,10 +548,7 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
             Ok(())
         } else {
             // Every colour is still taken, in order; only the pixels inside are stored.
-            let area = Rectangle::new(
-                embedded_graphics_core::geometry::Point::new(x, y),
-                Size::new(len, 1),
-            );
+            let area = Rectangle::new(Point::new(x, y), Size::new(len, 1));
             self.fill_contiguous(
                 &area,
                 core::iter::repeat_with(&mut shade).take(len as usize),
@@ -623,7 +626,8 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
 
 /// One horizontal strip of a screen rendered into a small buffer: a [`Framebuffer`] of `rows`
 /// rows that stands for screen rows `y0 .. y0 + rows`. Drawing uses screen coordinates; the clip
-/// area is the strip, so everything outside it is dropped.
+/// area is the strip, so everything outside it is dropped. Any `y0` is accepted; rows that would
+/// lie past `i32::MAX` stand for no screen row and are never drawn.
 #[derive(Debug)]
 pub struct Band<'a, C: Storage> {
     fb: Framebuffer<'a, C>,
@@ -649,10 +653,10 @@ impl<'a, C: Storage> Band<'a, C> {
 
 impl<C: Storage> embedded_graphics_core::geometry::Dimensions for Band<'_, C> {
     fn bounding_box(&self) -> Rectangle {
-        Rectangle::new(
-            embedded_graphics_core::geometry::Point::new(0, self.y0),
-            Size::new(self.fb.width, self.fb.height),
-        )
+        // Rows past i32::MAX stand for no screen row: the strip stops there.
+        let room = i64::from(i32::MAX) - i64::from(self.y0) + 1;
+        let rows = i64::from(self.fb.height).min(room) as u32;
+        Rectangle::new(Point::new(0, self.y0), Size::new(self.fb.width, rows))
     }
 }
 
@@ -664,20 +668,31 @@ impl<C: Storage> DrawTarget for Band<'_, C> {
     where
         I: IntoIterator<Item = Pixel<C>>,
     {
+        // A row too far from the band for the difference to fit i32 is certainly outside it.
         let y0 = self.y0;
         self.fb.draw_iter(
-            pixels.into_iter().map(|Pixel(p, c)| {
-                Pixel(p - embedded_graphics_core::geometry::Point::new(0, y0), c)
-            }),
+            pixels
+                .into_iter()
+                .filter_map(|Pixel(p, c)| Some(Pixel(Point::new(p.x, p.y.checked_sub(y0)?), c))),
         )
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
-        let shifted = Rectangle::new(
-            area.top_left - embedded_graphics_core::geometry::Point::new(0, self.y0),
-            area.size,
-        );
-        self.fb.fill_solid(&shifted, color)
+        // Shifted in i64: the area's rows may lie anywhere relative to the band.
+        let mut r = crate::geom::PixelRect::from_rectangle(area);
+        r.y0 -= i64::from(self.y0);
+        r.y1 -= i64::from(self.y0);
+        let rows = crate::geom::PixelRect {
+            x0: 0,
+            y0: 0,
+            x1: i64::from(self.fb.width),
+            y1: i64::from(self.fb.height),
+        };
+        let r = r.intersection(&rows);
+        if r.is_empty() {
+            return Ok(());
+        }
+        self.fb.fill_solid(&r.to_rectangle(), color)
     }
 
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
@@ -688,7 +703,11 @@ impl<C: Storage> DrawTarget for Band<'_, C> {
 impl<C: Storage> Surface for Band<'_, C> {
     #[inline(always)]
     fn fill_span(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
-        self.fb.fill_span(x, y.wrapping_sub(self.y0), len, color)
+        // Not wrapping: a row 2^32 away would land inside the band.
+        match y.checked_sub(self.y0) {
+            Some(y) => self.fb.fill_span(x, y, len, color),
+            None => Ok(()),
+        }
     }
 
     #[inline(always)]
@@ -727,17 +746,14 @@ impl<C: Storage> Surface for Band<'_, C> {
         len: u32,
         shade: F,
     ) -> Result<(), Self::Error> {
-        self.fb.shade_span(x, y - self.y0, len, shade)
+        match y.checked_sub(self.y0) {
+            Some(y) => self.fb.shade_span(x, y, len, shade),
+            None => Ok(()),
+        }
     }
 
     fn draw_line_points(&mut self, points: LinePoints, color: C) -> Result<(), Self::Error> {
         // A line walk carries screen rows; shift each point (lines are not the band fast path).
-        let y0 = self.y0;
-        self.fb.draw_iter(points.map(|p| {
-            Pixel(
-                p - embedded_graphics_core::geometry::Point::new(0, y0),
-                color,
-            )
-        }))
+        self.draw_iter(points.map(|p| Pixel(p, color)))
     }
 }

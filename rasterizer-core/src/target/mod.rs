@@ -10,6 +10,7 @@ mod framebuffer;
 
 pub use framebuffer::{Band, Framebuffer, FramebufferError, Storage, MAX_DIMENSION};
 
+use crate::geom::PixelRect;
 use crate::raster::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point, Size};
@@ -206,8 +207,9 @@ impl<T: DrawTarget> DrawTarget for AnyTarget<'_, T> {
 impl<T: DrawTarget> Surface for AnyTarget<'_, T> {}
 
 /// A [`Surface`] whose clip area is narrowed to a rectangle: everything drawn through it stays
-/// inside both the rectangle and the wrapped surface's own clip area. The span methods forward to
-/// the wrapped surface, so its fast paths are kept.
+/// inside both the rectangle and the wrapped surface's own clip area, for any rectangle (one that
+/// ends past `i32::MAX` included). The span methods forward to the wrapped surface, so its fast
+/// paths are kept.
 ///
 /// ```
 /// # use rasterizer_core::target::{ClipTo, Framebuffer, Surface};
@@ -223,14 +225,23 @@ impl<T: DrawTarget> Surface for AnyTarget<'_, T> {}
 #[derive(Debug)]
 pub struct ClipTo<'a, T> {
     inner: &'a mut T,
+    /// `cells` as a rectangle (`Rectangle::zero()` when empty).
     area: Rectangle,
+    cells: PixelRect,
 }
 
 impl<'a, T: Surface> ClipTo<'a, T> {
-    /// Narrows `inner`'s clip area to `area`.
+    /// Narrows `inner`'s clip area to `area`. An empty intersection draws nothing.
     pub fn new(inner: &'a mut T, area: Rectangle) -> Self {
-        let area = inner.clip_area().intersection(&area);
-        Self { inner, area }
+        // Not embedded-graphics' `Rectangle::intersection`: it overflows for a rectangle that ends
+        // past i32::MAX.
+        let cells = PixelRect::from_rectangle(&inner.clip_area())
+            .intersection(&PixelRect::from_rectangle(&area));
+        Self {
+            inner,
+            area: cells.to_rectangle(),
+            cells,
+        }
     }
 }
 
@@ -248,13 +259,17 @@ impl<T: Surface> DrawTarget for ClipTo<'_, T> {
     where
         I: IntoIterator<Item = Pixel<Self::Color>>,
     {
-        let area = self.area;
+        let cells = self.cells;
         self.inner
-            .draw_iter(pixels.into_iter().filter(|p| area.contains(p.0)))
+            .draw_iter(pixels.into_iter().filter(|p| cells.contains(p.0)))
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: Self::Color) -> Result<(), Self::Error> {
-        self.inner.fill_solid(&area.intersection(&self.area), color)
+        let r = PixelRect::from_rectangle(area).intersection(&self.cells);
+        if r.is_empty() {
+            return Ok(());
+        }
+        self.inner.fill_solid(&r.to_rectangle(), color)
     }
 }
 

@@ -93,6 +93,9 @@ where
         2 * (hi - lo).unsigned_abs() + 2 * s as u64
     };
     let (ex, ey) = (extent(xs), extent(ys));
+    // Bounds, with M = 2^(21 + BITS) <= 2^29 the guard band in raw units: vertex differences
+    // <= 2M = 2^30, so den = |cross| <= 2^60 (the doubled area of a triangle inside a square of
+    // side 2M) and 2 den <= 2^61.
     let den = t.cross.unsigned_abs();
     let sign = t.cross.signum();
     let mut g = Gouraud {
@@ -126,8 +129,9 @@ where
         };
         g.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
         // c0 (2 den) folds the base colour into the numerator, which is then never negative at a
-        // pixel inside the triangle.
-        let base = u64::from(c[0][i]) * 2 * den;
+        // pixel inside the triangle. It reaches 2^8 * 2^61 = 2^69, past u64: saturated here, where
+        // it only chooses `wide`; the wide path forms it in i128 from c0.
+        let base = u64::from(c[0][i]).saturating_mul(g.den2.get());
         g.base[i] = base as i64;
         let bound = g.a[i]
             .unsigned_abs()
@@ -135,6 +139,10 @@ where
             .saturating_add(g.b[i].unsigned_abs().saturating_mul(ey))
             .saturating_add(base);
         g.wide |= bound >= 1 << 46;
+    }
+    if g.wide {
+        // c0 itself, so that the span set-up stays one size (a larger one costs every span).
+        g.base = c[0].map(i64::from);
     }
     let clip = PixelRect::from_rectangle(&g.surface.clip_area());
     walk_spans(&t, s, &clip, &mut g)
@@ -157,7 +165,7 @@ struct Gouraud<'a, S: Surface> {
     den2: NonZeroU64,
     a: [i64; 4],
     b: [i64; 4],
-    /// `c0 * 2 den`.
+    /// `c0 * 2 den`, or when `wide` only `c0` (the product may pass i64).
     base: [i64; 4],
     step: [i32; 4],
     /// The plane numerators need `i128` (a triangle of millions of pixels).
@@ -180,9 +188,12 @@ where
         for i in 0..S::Color::COUNT {
             // The exact value at an inside pixel lies in the vertex colours' range, so its 16.16
             // rounding does too: no clamping. Unless `wide`, the numerator is below 2^62 and not
-            // negative, and the division is unsigned (no sign or overflow fix-ups).
+            // negative, and the division is unsigned (no sign or overflow fix-ups). Wide: |dx2|,
+            // |dy2| <= 2^31 + 2s at a centre inside the triangle, |a|, |b| < 2^39 and the base
+            // below 2^69, so |f| < 2^72 and f 2^16 < 2^88.
             let v = if self.wide {
-                let f = i128::from(self.base[i])
+                let base = i128::from(self.base[i]) * i128::from(self.den2.get());
+                let f = base
                     + i128::from(self.a[i]) * i128::from(dx2)
                     + i128::from(self.b[i]) * i128::from(dy2);
                 round_div(f << FRAC, self.den).clamp(0, 255 << FRAC) as i32
