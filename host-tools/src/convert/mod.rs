@@ -734,28 +734,6 @@ impl Report {
     }
 }
 
-/// Writes `data` to a temporary file beside `path`, then renames it into place, so `path` is
-/// either untouched or complete.
-fn write_atomically(path: &Path, data: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::other("the output path names no file"))?;
-    let tmp = dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = std::fs::write(&tmp, data).and_then(|()| std::fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
 /// Runs the command: converts, prints warnings on stderr and the summary on stdout, and writes
 /// the output only on success.
 ///
@@ -778,7 +756,7 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut warnings = Vec::new();
     let result = convert_obj(&file, &bytes, args.input.parent(), &opts, &mut warnings);
     for w in &warnings {
-        eprintln!("warning: {}", w.display(&file));
+        crate::errln!("warning: {}", w.display(&file));
     }
     let conv = result?;
     let out = if args.rust {
@@ -814,17 +792,15 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
     } else {
         conv.blob.clone()
     };
-    write_atomically(&args.output, &out).map_err(|e| ConvertError {
-        file: args.output.display().to_string(),
-        line: None,
-        message: format!("cannot write: {e}"),
+    crate::output::write_output(&args.output, &[args.input.as_path()], |w| {
+        std::io::Write::write_all(w, &out)
     })?;
-    println!(
+    crate::outln!(
         "{file} -> {}: {}; {:.2} s",
         args.output.display(),
         conv.report.summary(),
         started.elapsed().as_secs_f64()
-    );
+    )?;
     Ok(())
 }
 

@@ -41,11 +41,22 @@ pub struct Scene {
     pub shapes: Vec<Shape>,
 }
 
+impl Scene {
+    /// The files the scene reads: the scene file and its meshes (an output must be none of them).
+    pub fn inputs(&self) -> Vec<&Path> {
+        std::iter::once(self.path.as_path())
+            .chain(self.meshes.iter().map(|m| m.file.as_path()))
+            .collect()
+    }
+}
+
 /// A mesh with its transform and stages.
 #[derive(Debug)]
 pub struct SceneMesh {
     /// The path as the scene file wrote it.
     pub name: String,
+    /// The file read (relative to the scene file's directory).
+    pub file: PathBuf,
     /// The vertex data.
     pub data: MeshData,
     /// Per-axis scale.
@@ -345,6 +356,7 @@ fn load_mesh(
     };
     Ok(SceneMesh {
         name,
+        file,
         data,
         scale,
         rotate: def.rotate,
