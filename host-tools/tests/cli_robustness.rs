@@ -1,6 +1,6 @@
 //! The binary under hostile conditions, run as a user would: full disks, write failures, closed
-//! and full standard output, an output that is the input, a symlink or a device node, and requests
-//! beyond the size limits.
+//! and full standard output, an output that is the input, a symlink or a device node, requests
+//! beyond the size limits, and scene values beyond what 16.16 can draw.
 //!
 //! Every failure must be exactly one `error:` line and a non-zero exit, never a panic; the user's
 //! existing files stay byte-for-byte as they were and no temporary file is left behind. Cases that
@@ -675,4 +675,34 @@ fn help_documents_the_limits() {
         );
         assert!(help.to_lowercase().contains("memory"), "{cmd}: {help}");
     }
+}
+
+#[test]
+fn model_messages_name_their_cause() {
+    let dir = scratch("model-messages");
+    // A garbage OBJ gives the converter's reason, with the file name.
+    let garbage = dir.join("garbage.obj");
+    fs::write(&garbage, b"v 0 0 0\nv 1 0 0\xff\xfe\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let e = render_error(
+        &dir,
+        "garbage",
+        &scene_3d("").replace(s(&models().join("unit_cube.obj")), s(&garbage)),
+        &[],
+    );
+    assert!(
+        e.contains("garbage.obj") && e.contains("not UTF-8 text"),
+        "{e}"
+    );
+
+    // A missing demo model: the path and the operating system's reason.
+    let o = run(&[
+        "demo",
+        "--out",
+        s(&dir.join("demo")),
+        "--models",
+        s(&dir.join("nowhere")),
+    ]);
+    let e = assert_error(&o, "demo model");
+    assert!(e.contains("nowhere") && e.contains("suzanne.obj"), "{e}");
+    assert!(e.contains("No such file or directory"), "{e}");
 }
