@@ -678,6 +678,31 @@ fn help_documents_the_limits() {
 }
 
 #[test]
+fn collapsed_model_is_a_convert_error() {
+    let dir = scratch("collapse");
+    // Below one 16.16 step: every vertex decodes to the same point. And far below it.
+    for (name, e) in [("tiny", "1e-6"), ("tinier", "1e-30")] {
+        let obj = dir.join(format!("{name}.obj"));
+        fs::write(
+            &obj,
+            format!("v 0 0 0\nv {e} 0 0\nv 0 {e} 0\nv 0 0 {e}\nf 1 2 3\nf 1 3 4\n"),
+        )
+        .unwrap();
+        let out = dir.join(format!("{name}.rmsh"));
+        let o = run(&["convert", s(&obj), "-o", s(&out)]);
+        let line = assert_error(&o, name);
+        assert!(
+            line.contains(&format!("{name}.obj")) && line.contains("--center-unit-sphere"),
+            "{line}"
+        );
+        assert!(!out.exists(), "{name}: written");
+        // Rescaled, it converts.
+        let o = run(&["convert", s(&obj), "--center-unit-sphere", "-o", s(&out)]);
+        assert_ok(&o, name);
+    }
+}
+
+#[test]
 fn model_messages_name_their_cause() {
     let dir = scratch("model-messages");
     // A garbage OBJ gives the converter's reason, with the file name.

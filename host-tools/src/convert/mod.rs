@@ -422,8 +422,14 @@ fn convert_inner(
     let mut used = vec![false; nv];
     let (quant, transform, bounds) = loop {
         if tris.is_empty() {
+            let hint = if zero_area > 0 {
+                "; if the model is tiny, --center-unit-sphere rescales it"
+            } else {
+                ""
+            };
             return Err(fail(format!(
-                "no triangles left: all {triangles_in} are degenerate (repeated vertex or no area)"
+                "no triangles left: all {triangles_in} are degenerate (repeated vertex or no \
+                 area){hint}"
             )));
         }
         used.iter_mut().for_each(|u| *u = false);
@@ -650,6 +656,34 @@ fn convert_inner(
             "internal error: the encoded mesh does not parse: {e}"
         ))
     })?;
+
+    // The quanta can all differ while their 16.16 decodings coincide (a model smaller than one
+    // 16.16 step): such a mesh would draw nothing.
+    let decoded_area = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|v| {
+            packed
+                .position_bits(v as usize)
+                .unwrap_or_default()
+                .map(i128::from)
+        });
+        let (e, f) = (
+            [0, 1, 2].map(|k| b[k] - a[k]),
+            [0, 1, 2].map(|k| c[k] - a[k]),
+        );
+        e[1] * f[2] - e[2] * f[1] != 0
+            || e[2] * f[0] - e[0] * f[2] != 0
+            || e[0] * f[1] - e[1] * f[0] != 0
+    };
+    if !mesh.triangles.iter().any(decoded_area) {
+        let extent = (0..3)
+            .map(|k| bounds.1[k] - bounds.0[k])
+            .fold(0.0, f64::max);
+        return Err(fail(format!(
+            "the mesh collapses in 16.16 fixed point: its extent is {extent:.3e} and all {} \
+             triangles have no area after quantisation; --center-unit-sphere rescales it",
+            mesh.triangles.len()
+        )));
+    }
 
     // Measure the errors on the decoded blob.
     let mut err = [0f64; 3];
