@@ -678,6 +678,56 @@ fn help_documents_the_limits() {
 }
 
 #[test]
+fn scene_values_beyond_16_16_are_errors() {
+    let dir = scratch("range");
+    let cases: &[(&str, &str, &[&str])] = &[
+        ("mesh_scale", "scale = 1e30", &["scale", "1e30"]),
+        ("mesh_neg_scale", "scale = -1e30", &["scale", "-1e30"]),
+        ("mesh_tiny_scale", "scale = 1e-30", &["scale", "1e-30"]),
+        (
+            "mesh_translate",
+            "translate = [1e30, 0.0, 0.0]",
+            &["translate", "1e30"],
+        ),
+    ];
+    for (name, line, needles) in cases {
+        let e = render_error(&dir, name, &scene_3d(line), &[]);
+        for n in *needles {
+            assert!(e.contains(n), "{name}: {n} missing in {e}");
+        }
+    }
+    let eye = scene_3d("").replace("eye = [1.5, 1.2, 2.5]", "eye = [0.0, 0.0, 1e6]");
+    let e = render_error(&dir, "camera_eye", &eye, &[]);
+    assert!(e.contains("eye") && e.contains("1e6"), "{e}");
+
+    let shape = |v: &str| {
+        format!("[output]\nwidth = 32\nheight = 32\n[[shapes]]\n{v}\ncolor = [255, 255, 255]\n")
+    };
+    let e = render_error(
+        &dir,
+        "triangle_far",
+        &shape("kind = \"triangle\"\nvertices = [[0.0, 0.0], [3e6, 5.0], [5.0, 9.0]]"),
+        &[],
+    );
+    assert!(e.contains("3e6") && e.contains("2097152"), "{e}");
+    let e = render_error(
+        &dir,
+        "polygon_far",
+        &shape("kind = \"polygon\"\nvertices = [[0.0, 0.0], [10.0, 0.0], [5.0, -1e9]]"),
+        &[],
+    );
+    assert!(e.contains("-1e9") && e.contains("2097152"), "{e}");
+    // Lines take whole pixels: any i32 is drawn exactly, beyond that is an error.
+    let e = render_error(
+        &dir,
+        "line_far",
+        &shape("kind = \"line\"\nfrom = [1e30, 0.0]\nto = [5.0, 5.0]"),
+        &[],
+    );
+    assert!(e.contains("1e30") && e.contains("2147483647"), "{e}");
+}
+
+#[test]
 fn collapsed_model_is_a_convert_error() {
     let dir = scratch("collapse");
     // Below one 16.16 step: every vertex decodes to the same point. And far below it.
@@ -700,6 +750,45 @@ fn collapsed_model_is_a_convert_error() {
         let o = run(&["convert", s(&obj), "--center-unit-sphere", "-o", s(&out)]);
         assert_ok(&o, name);
     }
+}
+
+#[test]
+fn scene_messages_name_their_cause() {
+    let dir = scratch("messages");
+    // A degenerate camera names the file and the keys.
+    let same = scene_3d("").replace("eye = [1.5, 1.2, 2.5]", "eye = [0.0, 0.0, 0.0]");
+    let e = render_error(&dir, "eye_is_target", &same, &[]);
+    assert!(
+        e.contains("[camera]") && e.contains("eye") && e.contains("target"),
+        "{e}"
+    );
+    let parallel = scene_3d("").replace("eye = [1.5, 1.2, 2.5]", "eye = [0.0, 3.0, 0.0]");
+    let e = render_error(&dir, "up_parallel", &parallel, &[]);
+    assert!(e.contains("[camera]") && e.contains("up"), "{e}");
+    // The eye so close to the target that 16.16 cannot tell them apart.
+    let close = scene_3d("").replace("eye = [1.5, 1.2, 2.5]", "eye = [0.0, 0.0, 1e-7]");
+    let e = render_error(&dir, "eye_too_close", &close, &[]);
+    assert!(e.contains("[camera]") && e.contains("eye"), "{e}");
+
+    // fit_unit_sphere happens before the range check.
+    let huge = dir.join("huge.obj");
+    fs::write(&huge, "v 0 0 0\nv 1e6 0 0\nv 0 1e6 0\nf 1 2 3\n").unwrap();
+    let fit = scene_3d("fit_unit_sphere = true\ncull = \"none\"")
+        .replace(s(&models().join("unit_cube.obj")), s(&huge));
+    let path = dir.join("fit.toml");
+    fs::write(&path, &fit).unwrap();
+    let o = run(&["render", s(&path), "-o", s(&dir.join("fit.png"))]);
+    assert_ok(&o, "fit_unit_sphere on a huge model");
+    let e = render_error(
+        &dir,
+        "no_fit",
+        &fit.replace("fit_unit_sphere = true", ""),
+        &[],
+    );
+    assert!(
+        e.contains("huge.obj") && e.contains("fit_unit_sphere"),
+        "{e}"
+    );
 }
 
 #[test]
