@@ -97,10 +97,10 @@
 //!
 //! Memory: one image is rendered at a time and streamed through the encoder into the output
 //! file (GIF frames one by one, PNG sequences file by file), so the peak does not grow with the
-//! number of frames: about 8 bytes per display pixel plus 3 (PNG) or 8 (GIF) bytes per output
-//! pixel, at most about 270 MB within the limits. Measured (maximum resident set size, release
-//! build): 186 MB to render a 4096 x 4096 scene, 203 MB to animate it into a GIF; 15 MB for a GIF
-//! of a 320 x 240 scene at scale 4 with 36, 144 or 720 frames. [`LIMITS_HELP`], which
+//! number of frames: at most about 12.5 bytes per output pixel, so about 210 MB at the limit.
+//! Measured (maximum resident set size, release build): 186 MB to render a 4096 x 4096 scene, 203
+//! MB to animate it into a GIF, 134 MB for a GIF of a 1024 x 1024 scene at scale 4; 15 MB for a
+//! GIF of a 320 x 240 scene at scale 4 with 36, 144 or 720 frames. [`LIMITS_HELP`], which
 //! `render --help` and `animate --help` show, says the same.
 //!
 //! Meshes are drawn through `rasterizer_core::pipeline::Pipeline`, whose type is chosen from the
@@ -220,10 +220,9 @@ pub const LIMITS_HELP: &str = "Limits: scenes are at most 4096 x 4096 display pi
     anything is rendered, with an error naming the limit and the value.\n\n\
     Memory: one image is rendered at a time and encoded straight into the output file (GIF \
     frames one by one, PNG sequences file by file), so the peak does not grow with the number of \
-    frames: about 8 bytes per display pixel plus 3 (PNG) or 8 (GIF) bytes per output pixel, at \
-    most about 270 MB within the limits. Measured peaks (maximum resident set size, release \
-    build): render of a 4096 x 4096 scene 186 MB; animate of it to a GIF 203 MB, to a PNG \
-    sequence 187 MB; a GIF of a 1024 x 1024 scene at scale 4 134 MB; a GIF of a 320 x 240 scene \
+    frames: at most about 12.5 bytes per output pixel, so about 210 MB at the limit. Measured \
+    peaks (maximum resident set size, release build): render of a 4096 x 4096 scene 186 MB; \
+    animate of it to a GIF 203 MB, to a PNG sequence 187 MB; a GIF of a 1024 x 1024 scene at scale 4 134 MB; a GIF of a 320 x 240 scene \
     at scale 4 15 MB with 36, 144 or 720 frames.\n\n\
     Output files are written to a temporary file beside the target and renamed over it when \
     complete: a failure leaves an existing file as it was.";
