@@ -13,6 +13,8 @@ use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+use host_tools::console::StdoutError;
+use host_tools::output::write_png;
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
@@ -60,6 +62,8 @@ pub enum DemoError {
         /// What the loader said.
         message: String,
     },
+    /// Standard output could not be written.
+    Stdout(host_tools::console::StdoutError),
     /// A scene was rejected by the rasterizer (a bug in the scene).
     Scene {
         /// The scene's file name.
@@ -80,6 +84,7 @@ impl fmt::Display for DemoError {
                 )
             }
             Self::Save { path, message } => write!(f, "cannot write {}: {message}", path.display()),
+            Self::Stdout(e) => e.fmt(f),
             Self::Model { path, message } => {
                 write!(f, "cannot load model {}: {message}", path.display())
             }
@@ -148,7 +153,11 @@ pub const SCENES: [Scene; 7] = [
 /// [`DemoError::CreateDir`] when `out` cannot be created, [`DemoError::Model`] when a mesh cannot
 /// be loaded, [`DemoError::Save`] when a file cannot be written, [`DemoError::Scene`] when the
 /// rasterizer rejects a scene's input.
-pub fn run(out: &Path, models: &Path, mut on_written: impl FnMut(&Path)) -> Result<(), DemoError> {
+pub fn run(
+    out: &Path,
+    models: &Path,
+    mut on_written: impl FnMut(&Path) -> Result<(), StdoutError>,
+) -> Result<(), DemoError> {
     std::fs::create_dir_all(out).map_err(|source| DemoError::CreateDir {
         path: out.to_path_buf(),
         source,
@@ -158,25 +167,24 @@ pub fn run(out: &Path, models: &Path, mut on_written: impl FnMut(&Path)) -> Resu
     let save = |display: &Display, file: &str, scale: u32| {
         let settings = OutputSettingsBuilder::new().scale(scale).build();
         let path = out.join(file);
-        display
-            .to_rgb_output_image(&settings)
-            .save_png(&path)
-            .map_err(|e| DemoError::Save {
-                path: path.clone(),
-                message: e.to_string(),
-            })?;
+        let image = display.to_rgb_output_image(&settings);
+        let buf = image.as_image_buffer();
+        write_png(&path, &[], buf.width(), buf.height(), &buf).map_err(|e| DemoError::Save {
+            path: path.clone(),
+            message: e.message,
+        })?;
         Ok(path)
     };
     for scene in &SCENES {
         let display = render(scene)?;
-        on_written(&save(&display, scene.file, SCALE)?);
+        on_written(&save(&display, scene.file, SCALE)?).map_err(DemoError::Stdout)?;
     }
     for scene in &demo3d::SCENES {
         let display = demo3d::render(scene, &models).map_err(|message| DemoError::Scene {
             name: scene.file,
             message,
         })?;
-        on_written(&save(&display, scene.file, demo3d::SCALE)?);
+        on_written(&save(&display, scene.file, demo3d::SCALE)?).map_err(DemoError::Stdout)?;
     }
     Ok(())
 }

@@ -1,8 +1,10 @@
 //! Host-side helpers shared by the host tools, benches and examples.
 
 pub mod accuracy;
+pub mod console;
 pub mod convert;
 pub mod obj;
+pub mod output;
 pub mod reference3d;
 pub mod scenefile;
 pub mod scenes;

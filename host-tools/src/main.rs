@@ -48,8 +48,10 @@ enum Command {
     /// Convert an OBJ file into the packed fixed-point mesh firmware embeds (or Rust source).
     Convert(host_tools::convert::ConvertArgs),
     /// Render a scene file to a PNG through embedded-graphics-simulator.
+    #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
     Render(host_tools::scenefile::RenderArgs),
     /// Render a turntable of a scene file as an animated GIF or a PNG sequence.
+    #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
     Animate(host_tools::scenefile::AnimateArgs),
     /// Render a scene in fixed point and in floating point and write the difference image.
     Compare(host_tools::scenefile::CompareArgs),
@@ -91,7 +93,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
         Command::Demo(args) => demo::run(&args.out, &args.models, |path| {
-            println!("wrote {}", path.display())
+            host_tools::outln!("wrote {}", path.display())
         })
         .map_err(Into::into),
         Command::Convert(args) => host_tools::convert::run(&args),
@@ -104,7 +106,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            host_tools::errln!("error: {e}");
             ExitCode::FAILURE
         }
     }

@@ -19,12 +19,36 @@ pub struct LoadedMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
+/// An OBJ file's mesh in `f64`, before any range check: what [`LoadedMesh::load`] rounds to
+/// 16.16, and what a scene can rescale first.
+#[derive(Debug, Clone, Default)]
+pub struct RawMesh {
+    /// Positions (finite).
+    pub positions: Vec<[f64; 3]>,
+    /// Normals, one per position, when the file has them for every model.
+    pub normals: Option<Vec<[f64; 3]>>,
+    /// Triangles.
+    pub triangles: Vec<[u32; 3]>,
+}
+
 /// Why a mesh could not be loaded.
 #[derive(Debug)]
 pub enum LoadError {
+    /// The file could not be read.
+    Read(std::io::Error),
+    /// The file is not UTF-8 text; the 1-based line of the first bad byte.
+    NotUtf8 {
+        /// The line.
+        line: usize,
+    },
     /// tobj rejected the file.
     Obj(tobj::LoadError),
-    /// A coordinate is not finite or does not fit 16.16.
+    /// A coordinate is not finite.
+    NotFinite {
+        /// The model's vertex index.
+        vertex: usize,
+    },
+    /// A coordinate does not fit 16.16.
     BadCoordinate {
         /// The model's vertex index.
         vertex: usize,
@@ -36,12 +60,15 @@ pub enum LoadError {
 impl std::fmt::Display for LoadError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
+            LoadError::Read(e) => write!(f, "cannot read: {e}"),
+            // The converter's words for the same problem.
+            LoadError::NotUtf8 { line } => write!(f, "line {line}: not UTF-8 text"),
             LoadError::Obj(e) => write!(f, "OBJ parse error: {e}"),
+            LoadError::NotFinite { vertex } => {
+                write!(f, "vertex {vertex} has a coordinate that is not finite")
+            }
             LoadError::BadCoordinate { vertex } => {
-                write!(
-                    f,
-                    "vertex {vertex} is not finite or outside the 16.16 range"
-                )
+                write!(f, "vertex {vertex} is outside the 16.16 range (±32767)")
             }
             LoadError::Empty => write!(f, "no triangles"),
         }
@@ -51,36 +78,64 @@ impl std::fmt::Display for LoadError {
 impl std::error::Error for LoadError {}
 
 fn fx(v: f32) -> Option<Fx16> {
-    let bits = (f64::from(v) * 65536.0).round();
+    fx64(f64::from(v))
+}
+
+fn fx64(v: f64) -> Option<Fx16> {
+    let bits = (v * 65536.0).round();
     (bits.is_finite() && bits.abs() < 2_147_483_647.0).then(|| Fx16::from_bits(bits as i32))
 }
 
-impl LoadedMesh {
-    /// Loads every model of an OBJ file into one mesh.
+/// `v` on the 16.16 grid when it is in range, else unchanged.
+fn on_grid(v: f64) -> f64 {
+    fx64(v).map_or(v, |f| f64::from(f.to_bits()) / 65536.0)
+}
+
+impl RawMesh {
+    /// Loads every model of an OBJ file into one mesh. Materials are not read. Coordinates in
+    /// 16.16's range are rounded to it (as the pipeline would); larger ones are kept for a caller
+    /// that rescales.
     ///
     /// # Errors
-    /// [`LoadError`] for an unreadable file, a bad coordinate or no triangles.
+    /// [`LoadError`] for an unreadable or non-UTF-8 file, a non-finite coordinate or no
+    /// triangles.
     pub fn load(path: &Path) -> Result<Self, LoadError> {
+        // Read here rather than in tobj, whose errors drop the operating system's reason.
+        let bytes = std::fs::read(path).map_err(LoadError::Read)?;
+        let text = std::str::from_utf8(&bytes).map_err(|e| LoadError::NotUtf8 {
+            line: 1 + bytes[..e.valid_up_to()]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count(),
+        })?;
         let opts = tobj::LoadOptions {
             triangulate: true,
             single_index: true,
             ..Default::default()
         };
-        let (models, _) = tobj::load_obj(path, &opts).map_err(LoadError::Obj)?;
-        let mut out = LoadedMesh::default();
+        let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &opts, |_| {
+            Err(tobj::LoadError::OpenFileFailed)
+        })
+        .map_err(LoadError::Obj)?;
+        let mut out = RawMesh::default();
         let mut normals = Vec::new();
         let mut all_normals = true;
         for m in &models {
             let base = out.positions.len() as u32;
             let mesh = &m.mesh;
             for (i, p) in mesh.positions.chunks_exact(3).enumerate() {
-                let v = |k: usize| fx(p[k]).ok_or(LoadError::BadCoordinate { vertex: i });
-                out.positions.push(Vec3::new(v(0)?, v(1)?, v(2)?));
+                let p = [0, 1, 2].map(|k| f64::from(p[k]));
+                if !p.iter().all(|v| v.is_finite()) {
+                    return Err(LoadError::NotFinite { vertex: i });
+                }
+                out.positions.push(p.map(on_grid));
             }
             if mesh.normals.len() == mesh.positions.len() {
                 for n in mesh.normals.chunks_exact(3) {
-                    let v = |k: usize| fx(n[k]).unwrap_or(Fx16::ZERO);
-                    normals.push(Vec3::new(v(0), v(1), v(2)));
+                    normals.push(
+                        [0, 1, 2]
+                            .map(|k| fx(n[k]).map_or(0.0, |f| f64::from(f.to_bits()) / 65536.0)),
+                    );
                 }
             } else {
                 all_normals = false;
@@ -94,6 +149,36 @@ impl LoadedMesh {
         }
         out.normals = all_normals.then_some(normals);
         Ok(out)
+    }
+}
+
+impl LoadedMesh {
+    /// Loads every model of an OBJ file into one mesh.
+    ///
+    /// # Errors
+    /// [`LoadError`] for an unreadable file, a bad coordinate or no triangles.
+    pub fn load(path: &Path) -> Result<Self, LoadError> {
+        let raw = RawMesh::load(path)?;
+        let v3 = |p: &[f64; 3]| {
+            let [x, y, z] = p.map(fx64);
+            Some(Vec3::new(x?, y?, z?))
+        };
+        let positions = raw
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| v3(p).ok_or(LoadError::BadCoordinate { vertex: i }))
+            .collect::<Result<Vec<_>, _>>()?;
+        let normals = raw.normals.as_ref().map(|n| {
+            n.iter()
+                .map(|p| v3(p).unwrap_or(Vec3::new(Fx16::ZERO, Fx16::ZERO, Fx16::ZERO)))
+                .collect()
+        });
+        Ok(LoadedMesh {
+            positions,
+            normals,
+            triangles: raw.triangles,
+        })
     }
 
     /// The mesh as the pipeline's slices.

@@ -178,7 +178,7 @@ pub fn m1(dirs: &[PathBuf]) -> Result<SceneDef, String> {
 pub fn run(args: &AccuracyArgs) -> Result<(), Box<dyn std::error::Error>> {
     let started = Instant::now();
     if cfg!(debug_assertions) {
-        eprintln!(
+        crate::errln!(
             "warning: this is a debug build: the instruction counts are not the release figures \
              and the sweep is slow; use `cargo run --release -p host-tools -- accuracy`"
         );
@@ -232,16 +232,18 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Box<dyn std::error::Error>> {
             .collect();
         for (c, slot) in plan.configs.iter().zip(counts.iter_mut()) {
             let n = count::count(&exe, c.label, &models, &scratch)?;
-            eprintln!(
+            crate::errln!(
                 "counted {:<16} {:>12} instructions  {}",
-                c.label, n.instructions, n.note
+                c.label,
+                n.instructions,
+                n.note
             );
             *slot = Some(n);
         }
         let _ = std::fs::remove_dir(&scratch);
     }
 
-    let mut result = sweep(&plan, &|what| eprintln!("{what}"));
+    let mut result = sweep(&plan, &|what| crate::errln!("{what}"));
     for (row, c) in result.rows.iter_mut().zip(counts) {
         row.count = c;
     }
@@ -255,7 +257,7 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Box<dyn std::error::Error>> {
     };
     let written = report::write(&args.out, &result, &meta)?;
     for p in written {
-        println!("wrote {}", p.display());
+        crate::outln!("wrote {}", p.display())?;
     }
     Ok(())
 }
@@ -268,7 +270,7 @@ pub fn run_count(args: &CountArgs) -> Result<(), Box<dyn std::error::Error>> {
         .find(|c| c.label == args.label)
         .ok_or_else(|| format!("no configuration {}", args.label))?;
     let scene = m1(&model_dirs(&args.models))?;
-    println!("{}", (c.count)(&scene)?);
+    crate::outln!("{}", (c.count)(&scene)?)?;
     Ok(())
 }
 

@@ -134,9 +134,14 @@ fn front(rows: &[Row]) -> (Vec<usize>, Vec<usize>) {
 }
 
 /// Writes the report and the plot under `out`; returns the paths written.
-pub fn write(out: &Path, sweep: &Sweep, meta: &Meta) -> std::io::Result<Vec<PathBuf>> {
+pub fn write(
+    out: &Path,
+    sweep: &Sweep,
+    meta: &Meta,
+) -> Result<Vec<PathBuf>, Box<dyn std::error::Error>> {
     let images = out.join("images");
-    std::fs::create_dir_all(&images)?;
+    std::fs::create_dir_all(&images)
+        .map_err(|e| format!("cannot create {}: {e}", images.display()))?;
     let (plotted, on_front) = front(&sweep.rows);
     let mut written = Vec::new();
     let counted = !plotted.is_empty();
@@ -157,14 +162,19 @@ pub fn write(out: &Path, sweep: &Sweep, meta: &Meta) -> std::io::Result<Vec<Path
             "wrong pixels, % of covered (log scale)",
         );
         let path = images.join("accuracy.svg");
-        std::fs::write(&path, svg)?;
+        write_text(&path, &svg)?;
         written.push(path);
     }
     let md = markdown(sweep, meta, &on_front, counted);
     let path = out.join("ACCURACY.md");
-    std::fs::write(&path, md)?;
+    write_text(&path, &md)?;
     written.insert(0, path);
     Ok(written)
+}
+
+/// One report file, through the shared output writer (an old report survives a failure).
+fn write_text(path: &Path, text: &str) -> Result<(), crate::output::OutputError> {
+    crate::output::write_output(path, &[], |w| std::io::Write::write_all(w, text.as_bytes()))
 }
 
 fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> String {

@@ -422,8 +422,14 @@ fn convert_inner(
     let mut used = vec![false; nv];
     let (quant, transform, bounds) = loop {
         if tris.is_empty() {
+            let hint = if zero_area > 0 {
+                "; if the model is tiny, --center-unit-sphere rescales it"
+            } else {
+                ""
+            };
             return Err(fail(format!(
-                "no triangles left: all {triangles_in} are degenerate (repeated vertex or no area)"
+                "no triangles left: all {triangles_in} are degenerate (repeated vertex or no \
+                 area){hint}"
             )));
         }
         used.iter_mut().for_each(|u| *u = false);
@@ -651,6 +657,34 @@ fn convert_inner(
         ))
     })?;
 
+    // The quanta can all differ while their 16.16 decodings coincide (a model smaller than one
+    // 16.16 step): such a mesh would draw nothing.
+    let decoded_area = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|v| {
+            packed
+                .position_bits(v as usize)
+                .unwrap_or_default()
+                .map(i128::from)
+        });
+        let (e, f) = (
+            [0, 1, 2].map(|k| b[k] - a[k]),
+            [0, 1, 2].map(|k| c[k] - a[k]),
+        );
+        e[1] * f[2] - e[2] * f[1] != 0
+            || e[2] * f[0] - e[0] * f[2] != 0
+            || e[0] * f[1] - e[1] * f[0] != 0
+    };
+    if !mesh.triangles.iter().any(decoded_area) {
+        let extent = (0..3)
+            .map(|k| bounds.1[k] - bounds.0[k])
+            .fold(0.0, f64::max);
+        return Err(fail(format!(
+            "the mesh collapses in 16.16 fixed point: its extent is {extent:.3e} and all {} \
+             triangles have no area after quantisation; --center-unit-sphere rescales it",
+            mesh.triangles.len()
+        )));
+    }
+
     // Measure the errors on the decoded blob.
     let mut err = [0f64; 3];
     let mut nerr = 0f64;
@@ -734,28 +768,6 @@ impl Report {
     }
 }
 
-/// Writes `data` to a temporary file beside `path`, then renames it into place, so `path` is
-/// either untouched or complete.
-fn write_atomically(path: &Path, data: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::other("the output path names no file"))?;
-    let tmp = dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = std::fs::write(&tmp, data).and_then(|()| std::fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
 /// Runs the command: converts, prints warnings on stderr and the summary on stdout, and writes
 /// the output only on success.
 ///
@@ -778,7 +790,7 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut warnings = Vec::new();
     let result = convert_obj(&file, &bytes, args.input.parent(), &opts, &mut warnings);
     for w in &warnings {
-        eprintln!("warning: {}", w.display(&file));
+        crate::errln!("warning: {}", w.display(&file));
     }
     let conv = result?;
     let out = if args.rust {
@@ -814,17 +826,15 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
     } else {
         conv.blob.clone()
     };
-    write_atomically(&args.output, &out).map_err(|e| ConvertError {
-        file: args.output.display().to_string(),
-        line: None,
-        message: format!("cannot write: {e}"),
+    crate::output::write_output(&args.output, &[args.input.as_path()], |w| {
+        std::io::Write::write_all(w, &out)
     })?;
-    println!(
+    crate::outln!(
         "{file} -> {}: {}; {:.2} s",
         args.output.display(),
         conv.report.summary(),
         started.elapsed().as_secs_f64()
-    );
+    )?;
     Ok(())
 }
 

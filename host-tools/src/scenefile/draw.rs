@@ -182,15 +182,26 @@ struct Job<'a, S: Real> {
 fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, turn: Angle) -> Result<(), String> {
     let cam = &scene.camera;
     let (w, h) = (scene.width, scene.height);
-    let view = Mat4::look_at(v3::<S>(cam.eye), v3(cam.target), v3(cam.up))
-        .ok_or("the camera's view matrix is degenerate in this number format")?;
+    let view = Mat4::look_at(v3::<S>(cam.eye), v3(cam.target), v3(cam.up)).ok_or_else(|| {
+        format!(
+            "{}: [camera] eye, target and up give no view matrix in {}",
+            scene.path.display(),
+            S::NAME
+        )
+    })?;
     let projection = Mat4::perspective(
         degrees(cam.fov),
         S::from_ratio(i64::from(w), i64::from(h)),
         S::from_f64(cam.near),
         S::from_f64(cam.far),
     )
-    .ok_or("the camera's projection is degenerate in this number format")?;
+    .ok_or_else(|| {
+        format!(
+            "{}: [camera] fov, near and far give no projection in {}",
+            scene.path.display(),
+            S::NAME
+        )
+    })?;
     let mut zbuf = vec![u16::MAX; w as usize * h as usize];
     for mesh in &scene.meshes {
         let (model, normal_matrix) = model_of::<S>(mesh, turn);
@@ -206,9 +217,13 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, turn: Angle) -> 
                     color: Rgb888::new(color.0[0], color.0[1], color.0[2]),
                 },
             };
-            lighting
-                .add_light(light)
-                .map_err(|_| "a light's direction is zero in this number format")?;
+            lighting.add_light(light).map_err(|_| {
+                format!(
+                    "{}: [[lights]] a direction is zero in {}",
+                    scene.path.display(),
+                    S::NAME
+                )
+            })?;
         }
         let job = Job {
             mesh,

@@ -4,9 +4,12 @@ use super::format::{
     Camera, Color, CullMode, LightDef, MeshDef, NormalsMode, PixelFormat, ScaleDef, SceneFile,
     ShadingModel, Shape, SpecularModel, VertexColorMode,
 };
+use super::limits;
+use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
-use crate::obj::LoadedMesh;
+use crate::obj::RawMesh;
 use embedded_graphics_core::pixelcolor::Rgb888;
+use rasterizer_core::math::Fx16;
 use rasterizer_core::mesh::{PackedMesh, MAGIC};
 use rasterizer_core::shade::{Material, Specular};
 use std::collections::HashMap;
@@ -41,11 +44,22 @@ pub struct Scene {
     pub shapes: Vec<Shape>,
 }
 
+impl Scene {
+    /// The files the scene reads: the scene file and its meshes (an output must be none of them).
+    pub fn inputs(&self) -> Vec<&Path> {
+        std::iter::once(self.path.as_path())
+            .chain(self.meshes.iter().map(|m| m.file.as_path()))
+            .collect()
+    }
+}
+
 /// A mesh with its transform and stages.
 #[derive(Debug)]
 pub struct SceneMesh {
     /// The path as the scene file wrote it.
     pub name: String,
+    /// The file read (relative to the scene file's directory).
+    pub file: PathBuf,
     /// The vertex data.
     pub data: MeshData,
     /// Per-axis scale.
@@ -151,7 +165,9 @@ pub fn load(path: &Path) -> Result<Scene, String> {
             out.scale
         ));
     }
-    check_camera(&file.camera).map_err(|e| format!("{shown}: [camera] {e}"))?;
+    limits::check_camera(&file.camera)
+        .and_then(|()| camera_in_fixed_point(&file.camera, out.width, out.height))
+        .map_err(|e| format!("{shown}: [camera] {e}"))?;
 
     if file.lights.len() > MAX_LIGHTS {
         return Err(format!(
@@ -163,16 +179,25 @@ pub fn load(path: &Path) -> Result<Scene, String> {
     for l in file.lights {
         let span = l.span();
         let light = l.into_inner();
-        let ok = match &light {
-            LightDef::Directional { direction, .. } => finite(direction) && norm(*direction) > 0.0,
-            LightDef::Point { position, .. } => finite(position),
+        let checked = match &light {
+            LightDef::Directional { direction, .. } => {
+                limits::within("direction", direction, limits::MAX_COORD).and_then(|()| {
+                    if norm(*direction) >= limits::MIN_LENGTH {
+                        Ok(())
+                    } else {
+                        Err(format!(
+                            "direction = {} is too short: its length must be at least {}",
+                            limits::vector(direction),
+                            limits::num(limits::MIN_LENGTH)
+                        ))
+                    }
+                })
+            }
+            LightDef::Point { position, .. } => {
+                limits::within("position", position, limits::MAX_COORD)
+            }
         };
-        if !ok {
-            return Err(format!(
-                "{}: light needs a finite, non-zero direction or a finite position",
-                at(span)
-            ));
-        }
+        checked.map_err(|e| format!("{}: [[lights]] {e}", at(span)))?;
         lights.push(light);
     }
 
@@ -181,7 +206,27 @@ pub fn load(path: &Path) -> Result<Scene, String> {
     for m in file.meshes {
         let span = m.span();
         let def = m.into_inner();
-        let mesh = load_mesh(dir, def, &file.render).map_err(|e| format!("{}: {e}", at(span)))?;
+        let name = def.path.clone();
+        let mesh = load_mesh(dir, def, &file.render)
+            .and_then(|m| {
+                let positions = match &m.data {
+                    MeshData::Owned(o) => o.positions.clone(),
+                    MeshData::Packed(bytes) => PackedMesh::parse(bytes)
+                        .map(|p| unpack(&p).positions)
+                        .unwrap_or_default(),
+                };
+                limits::check_mesh(
+                    &positions,
+                    m.scale,
+                    m.translate,
+                    &file.camera,
+                    out.width,
+                    out.height,
+                )
+                .map_err(|e| format!("mesh {name}: {e}"))?;
+                Ok(m)
+            })
+            .map_err(|e| format!("{}: [[meshes]] {e}", at(span)))?;
         meshes.push(mesh);
     }
 
@@ -189,7 +234,7 @@ pub fn load(path: &Path) -> Result<Scene, String> {
     for s in file.shapes {
         let span = s.span();
         let shape = s.into_inner();
-        check_shape(&shape).map_err(|e| format!("{}: {e}", at(span)))?;
+        check_shape(&shape).map_err(|e| format!("{}: [[shapes]] {e}", at(span)))?;
         shapes.push(shape);
     }
 
@@ -213,26 +258,40 @@ pub fn load(path: &Path) -> Result<Scene, String> {
     })
 }
 
-fn check_camera(c: &Camera) -> Result<(), String> {
-    if !finite(&c.eye) || !finite(&c.target) || !finite(&c.up) {
-        return Err("eye, target and up must be finite".into());
-    }
-    if !(c.fov > 0.0 && c.fov < 180.0) {
-        return Err(format!(
-            "fov must be between 0 and 180 degrees, got {}",
-            c.fov
-        ));
-    }
-    if !(c.near > 0.0 && c.far > c.near && c.far.is_finite()) {
-        return Err(format!(
-            "need 0 < near < far, got near {} far {}",
-            c.near, c.far
-        ));
-    }
-    let f = sub3(c.target, c.eye);
-    if norm(f) == 0.0 || norm(cross(f, c.up)) <= 1e-9 * norm(f) * norm(c.up) {
-        return Err("eye equals target, or up is parallel to the view direction".into());
-    }
+/// The camera's matrices built in 16.16, as the renderer will: `Mat4::look_at` and
+/// `Mat4::perspective` refuse what that format cannot represent.
+fn camera_in_fixed_point(c: &Camera, width: u32, height: u32) -> Result<(), String> {
+    use rasterizer_core::math::{Angle, Mat4, Vec3};
+    let v = |a: [f64; 3]| {
+        Vec3::new(
+            Fx16::from_f64(a[0]),
+            Fx16::from_f64(a[1]),
+            Fx16::from_f64(a[2]),
+        )
+    };
+    Mat4::look_at(v(c.eye), v(c.target), v(c.up)).ok_or_else(|| {
+        format!(
+            "eye = {}, target = {}, up = {}: 16.16 cannot form a view direction and a right angle \
+             from them",
+            limits::vector(&c.eye),
+            limits::vector(&c.target),
+            limits::vector(&c.up)
+        )
+    })?;
+    Mat4::perspective(
+        Angle::from_degrees_ratio((c.fov * 3600.0).round() as i64, 3600),
+        Fx16::from_ratio(i64::from(width), i64::from(height)),
+        Fx16::from_f64(c.near),
+        Fx16::from_f64(c.far),
+    )
+    .ok_or_else(|| {
+        format!(
+            "fov = {}, near = {}, far = {}: 16.16 cannot form the projection from them",
+            limits::num(c.fov),
+            limits::num(c.near),
+            limits::num(c.far)
+        )
+    })?;
     Ok(())
 }
 
@@ -273,9 +332,15 @@ fn check_shape(shape: &Shape) -> Result<(), String> {
             (vertices.clone(), clip)
         }
     };
-    if !pts.iter().all(|p| finite(p)) {
-        return Err("coordinates must be finite".into());
-    }
+    let kind = match shape {
+        Shape::Point { .. } => "point",
+        Shape::Line { .. } => "line",
+        Shape::Triangle { .. } => "triangle",
+        Shape::Outline { .. } => "outline",
+        Shape::Polygon { .. } => "polygon",
+    };
+    let filled = matches!(shape, Shape::Triangle { .. } | Shape::Polygon { .. });
+    limits::check_pixels(&pts, filled).map_err(|e| format!("{kind}: {e}"))?;
     if let Some([_, _, w, h]) = clip {
         if *w < 0 || *h < 0 {
             return Err("clip = [x, y, width, height] needs width, height >= 0".into());
@@ -297,9 +362,10 @@ fn load_mesh(
         ScaleDef::Uniform(s) => [s; 3],
         ScaleDef::Axes(a) => a,
     };
-    if !finite(&scale) || scale.contains(&0.0) || !finite(&def.rotate) || !finite(&def.translate) {
+    if !finite(&def.rotate) {
         return Err(format!(
-            "mesh {name}: scale must be finite and non-zero, rotate and translate finite"
+            "mesh {name}: rotate = {} must be finite",
+            limits::vector(&def.rotate)
         ));
     }
     let needs_edit = def.fit_unit_sphere
@@ -321,15 +387,14 @@ fn load_mesh(
             MeshData::Packed(bytes)
         }
     } else {
-        let loaded =
-            LoadedMesh::load(&file).map_err(|e| format!("mesh {}: {e}", file.display()))?;
-        if def.normals == NormalsMode::File && loaded.normals.is_none() {
+        let raw = RawMesh::load(&file).map_err(|e| format!("mesh {}: {e}", file.display()))?;
+        if def.normals == NormalsMode::File && raw.normals.is_none() {
             return Err(format!(
                 "mesh {}: normals = \"file\" but it has none",
                 file.display()
             ));
         }
-        MeshData::Owned(edit(from_loaded(&loaded), &def))
+        MeshData::Owned(edit(from_raw(raw), &def))
     };
     let c = def.color.0;
     let m = def.material.as_ref();
@@ -345,6 +410,7 @@ fn load_mesh(
     };
     Ok(SceneMesh {
         name,
+        file,
         data,
         scale,
         rotate: def.rotate,
@@ -397,16 +463,13 @@ fn unpack(p: &PackedMesh<'_>) -> OwnedMesh {
     }
 }
 
-/// An OBJ mesh in memory (its 16.16 values are exact in `f64`).
-fn from_loaded(m: &LoadedMesh) -> OwnedMesh {
-    let v = |p: &rasterizer_core::math::Vec3<rasterizer_core::math::Fx16>| {
-        [p.x, p.y, p.z].map(|c| fx_to_f64(c.to_bits()))
-    };
+/// An OBJ mesh in memory.
+fn from_raw(m: RawMesh) -> OwnedMesh {
     OwnedMesh {
-        positions: m.positions.iter().map(v).collect(),
-        normals: m.normals.as_ref().map(|n| n.iter().map(v).collect()),
+        positions: m.positions,
+        normals: m.normals,
         colors: None,
-        triangles: m.triangles.clone(),
+        triangles: m.triangles,
     }
 }
 

@@ -7,7 +7,7 @@
 //!
 //! ```toml
 //! [output]
-//! width = 320                # 1 ..= 4096 display pixels
+//! width = 320                # 1 ..= 4096 display pixels (see Limits below)
 //! height = 240
 //! format = "rgb565"          # rgb565 | rgb888 (default) | gray8 | binary
 //! background = [14, 16, 26]  # [r, g, b] or "#0e101a"; default black
@@ -71,6 +71,38 @@
 //! 1/16 pixel (28.4 fixed point), and sample pixel centres. A triangle takes `color` (flat) or
 //! `colors` (three, Gouraud); an outline `color`; a point `at` and `color`.
 //!
+//! # Limits
+//!
+//! The geometry runs in 16.16 fixed point (±32768 in steps of 1/65536), which saturates rather
+//! than fails, so the loader refuses any value that would leave its range, naming the file, the
+//! line, the key, the value and the allowed range (see [`limits`]). The checks come after
+//! `fit_unit_sphere`, so a model with huge coordinates loads when it is fitted.
+//!
+//! | what | allowed |
+//! |---|---|
+//! | `[output]` `width`, `height` | 1 ..= 4096 ([`MAX_SIZE`]) |
+//! | output image after scaling | at most 16,777,216 pixels ([`MAX_OUTPUT_PIXELS`], 4096 x 4096); `compare`'s is three panels wide |
+//! | `animate --frames` | 1 ..= 720 ([`MAX_FRAMES`]); a GIF frame at most 65535 pixels a side |
+//! | `eye`, `target`, `up`, light `position` and `direction` | each component within ±8192 ([`limits::MAX_COORD`]) |
+//! | `eye` to `target`; `up`, a light `direction` | at least 1/256 long; `up` at least 0.45° off the view direction |
+//! | `fov` | 1 ..= 179 degrees |
+//! | `near`, `far` | 1/8192 <= near < far <= 16384 |
+//! | mesh `scale` | each factor's magnitude 1/1024 ..= 8192 |
+//! | mesh `translate` | each component within ±8192 |
+//! | a mesh's model-space vertices (after `fit_unit_sphere`) | within ±32767, the box's largest side at least 1/256 |
+//! | a mesh after scale and translate | within 8192 of the origin |
+//! | clip space (mesh and camera together) | within ±16384 ([`limits::MAX_CLIP`]) for any turn of `animate` |
+//! | filled `triangle`, `polygon` vertices | within ±2,097,152 px (the core's `GUARD_BAND_PIXELS`) |
+//! | `point`, `line`, `outline` coordinates | whole `i32` pixels |
+//!
+//! Memory: one image is rendered at a time and streamed through the encoder into the output
+//! file (GIF frames one by one, PNG sequences file by file), so the peak does not grow with the
+//! number of frames: at most about 12.5 bytes per output pixel, so about 210 MB at the limit.
+//! Measured (maximum resident set size, release build): 186 MB to render a 4096 x 4096 scene, 203
+//! MB to animate it into a GIF, 134 MB for a GIF of a 1024 x 1024 scene at scale 4; 15 MB for a
+//! GIF of a 320 x 240 scene at scale 4 with 36, 144 or 720 frames. [`LIMITS_HELP`], which
+//! `render --help` and `animate --help` show, says the same.
+//!
 //! Meshes are drawn through `rasterizer_core::pipeline::Pipeline`, whose type is chosen from the
 //! stages asked for (culling × depth × shading × perspective), so a stage that is off is not in
 //! the code that runs. Lit shading uses the mesh's material, the lights, the ambient light and the
@@ -79,6 +111,7 @@
 
 mod draw;
 mod format;
+pub mod limits;
 mod load;
 mod reference;
 
@@ -91,6 +124,8 @@ pub use format::{
 pub use load::{load, MeshData, OwnedMesh, Scene, SceneMesh};
 pub use reference::{Real, F64};
 
+use crate::outln;
+use crate::output::{encode_png, write_png, OutputFile};
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics_simulator::SimulatorDisplay;
@@ -126,8 +161,8 @@ pub struct AnimateArgs {
     /// derived from (`out.gif` gives `out_000.png`, `out_001.png`, ...).
     #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
-    /// Frames in one full turn.
-    #[arg(long, value_name = "N", default_value_t = 36, value_parser = clap::value_parser!(u32).range(1..=720))]
+    /// Frames in one full turn (at most 720).
+    #[arg(long, value_name = "N", default_value_t = 36, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_FRAMES)))]
     pub frames: u32,
     /// Write numbered PNG files instead of a GIF.
     #[arg(long)]
@@ -167,58 +202,110 @@ pub struct CompareArgs {
 
 type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
-/// Writes a file from bytes made in memory, so a failure leaves no output behind.
-fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
-    std::fs::write(path, bytes).map_err(|e| {
-        let _ = std::fs::remove_file(path);
-        format!("cannot write {}: {e}", path.display()).into()
-    })
+/// The largest scene width and height, in display pixels.
+pub const MAX_SIZE: u32 = 4096;
+/// The most pixels one output image may have after scaling (`render`, each `animate` frame,
+/// `compare`'s three panels): 4096 x 4096. This bounds the memory and time of one image.
+pub const MAX_OUTPUT_PIXELS: u64 = 1 << 24;
+/// The most frames of `animate`.
+pub const MAX_FRAMES: u32 = 720;
+/// The widest and tallest GIF frame the format can hold.
+pub const MAX_GIF_SIDE: u32 = u16::MAX as u32;
+
+/// The limits and the memory they bound, shown by `render --help` and `animate --help`.
+pub const LIMITS_HELP: &str = "Limits: scenes are at most 4096 x 4096 display pixels; an output \
+    image is at most 16777216 pixels (4096 x 4096) after scaling, so a 4096 x 4096 scene renders \
+    at scale 1 and a 1024 x 1024 one at up to scale 4; animate makes at most 720 frames, and a GIF \
+    frame is at most 65535 pixels wide and tall. A request beyond a limit is refused before \
+    anything is rendered, with an error naming the limit and the value.\n\n\
+    Memory: one image is rendered at a time and encoded straight into the output file (GIF \
+    frames one by one, PNG sequences file by file), so the peak does not grow with the number of \
+    frames: at most about 12.5 bytes per output pixel, so about 210 MB at the limit. Measured \
+    peaks (maximum resident set size, release build): render of a 4096 x 4096 scene 186 MB; \
+    animate of it to a GIF 203 MB, to a PNG sequence 187 MB; a GIF of a 1024 x 1024 scene at scale 4 134 MB; a GIF of a 320 x 240 scene \
+    at scale 4 15 MB with 36, 144 or 720 frames.\n\n\
+    Output files are written to a temporary file beside the target and renamed over it when \
+    complete: a failure leaves an existing file as it was.";
+
+#[cfg(test)]
+#[test]
+fn the_help_states_the_limits_in_force() {
+    for figure in [MAX_SIZE, MAX_FRAMES, MAX_GIF_SIDE] {
+        assert!(LIMITS_HELP.contains(&figure.to_string()), "{figure}");
+    }
+    assert!(LIMITS_HELP.contains(&MAX_OUTPUT_PIXELS.to_string()));
 }
 
-/// PNG bytes of an RGB image.
-fn png_bytes(img: &RgbImage) -> Result<Vec<u8>> {
-    let mut out = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut out, image::ImageFormat::Png)?;
-    Ok(out.into_inner())
-}
-
-/// The simulator's output image as an owned RGB image.
-fn to_rgb_image(img: &embedded_graphics_simulator::OutputImage<Rgb888>) -> Result<RgbImage> {
-    let buf = img.as_image_buffer();
-    RgbImage::from_raw(buf.width(), buf.height(), buf.into_raw().to_vec())
-        .ok_or_else(|| "bad image buffer".into())
+/// Checks the size of one output image, `width x height` PNG pixels, before anything is drawn.
+fn check_output(scene: &Scene, scale: u32, width: u64, height: u64) -> Result<()> {
+    let pixels = width * height;
+    if pixels > MAX_OUTPUT_PIXELS {
+        return Err(format!(
+            "{}: the output would be {width} x {height} = {pixels} pixels ({} x {} display \
+             pixels at scale {scale}); the limit is {MAX_OUTPUT_PIXELS} pixels (4096 x 4096): \
+             lower the scale or the scene's size",
+            scene.path.display(),
+            scene.width,
+            scene.height
+        )
+        .into());
+    }
+    Ok(())
 }
 
 /// Runs `render`: draws the scene through embedded-graphics-simulator and saves the PNG.
 ///
 /// # Errors
-/// Any failure, as a message for the `error:` line; no file is written then.
+/// Any failure, as a message for the `error:` line; an existing output is left as it was then.
 pub fn render(args: &RenderArgs) -> Result<()> {
     let scene = load(&args.scene)?;
-    let image = render_image(&scene, Angle(0), args.scale.unwrap_or(scene.scale))?;
-    image.save_png(&args.output).map_err(|e| {
-        let _ = std::fs::remove_file(&args.output);
-        format!("cannot write {}: {e}", args.output.display())
-    })?;
-    println!("wrote {}", args.output.display());
+    let scale = args.scale.unwrap_or(scene.scale);
+    check_output(
+        &scene,
+        scale,
+        u64::from(scene.width) * u64::from(scale),
+        u64::from(scene.height) * u64::from(scale),
+    )?;
+    let image = render_image(&scene, Angle(0), scale)?;
+    let buf = image.as_image_buffer();
+    write_png(
+        &args.output,
+        &scene.inputs(),
+        buf.width(),
+        buf.height(),
+        &buf,
+    )?;
+    outln!("wrote {}", args.output.display())?;
     Ok(())
 }
 
+/// Why a frame of `animate` failed: the scene, or the output.
+enum FrameError {
+    Scene(String),
+    Encode(image::ImageError),
+}
+
 /// Runs `animate`: a turntable of the scene's meshes about the world's Y axis, one full turn in
-/// `--frames` frames, as an animated GIF or numbered PNGs.
+/// `--frames` frames, as an animated GIF or numbered PNGs. Each frame is encoded into its file as
+/// soon as it is rendered, so memory does not grow with the number of frames.
 ///
 /// # Errors
-/// Any failure, as a message for the `error:` line; nothing is written unless every frame
-/// rendered and encoded.
+/// Any failure, as a message for the `error:` line; existing outputs are left as they were
+/// unless every frame rendered and was written.
 pub fn animate(args: &AnimateArgs) -> Result<()> {
     let scene = load(&args.scene)?;
     let scale = args.scale.unwrap_or(scene.scale);
     let n = args.frames;
-    let mut frames = Vec::with_capacity(n as usize);
-    for k in 0..n {
-        let turn = Angle((u64::from(k) * 65536 / u64::from(n)) as u16);
-        frames.push(to_rgb_image(&render_image(&scene, turn, scale)?)?);
+    if !(1..=MAX_FRAMES).contains(&n) {
+        return Err(format!("--frames must be 1 ..= {MAX_FRAMES}, got {n}").into());
     }
+    let (width, height) = (
+        u64::from(scene.width) * u64::from(scale),
+        u64::from(scene.height) * u64::from(scale),
+    );
+    check_output(&scene, scale, width, height)?;
+    let turn = |k: u32| Angle((u64::from(k) * 65536 / u64::from(n)) as u16);
+    let inputs = scene.inputs();
     if args.png_sequence {
         let stem = args
             .output
@@ -227,28 +314,65 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
             .to_string_lossy()
             .into_owned();
         let dir = args.output.parent().unwrap_or(Path::new(""));
-        let encoded = frames.iter().map(png_bytes).collect::<Result<Vec<_>>>()?;
-        for (k, bytes) in encoded.iter().enumerate() {
-            write_file(&dir.join(format!("{stem}_{k:03}.png")), bytes)?;
+        // All frames or none: each is finished into a temporary file, and they are renamed into
+        // place together at the end.
+        let mut pending = Vec::with_capacity(n as usize);
+        for k in 0..n {
+            let path = dir.join(format!("{stem}_{k:03}.png"));
+            let image = render_image(&scene, turn(k), scale)?;
+            let buf = image.as_image_buffer();
+            let mut out = OutputFile::create(&path, &inputs)?;
+            if let Err(e) = encode_png(&mut out, buf.width(), buf.height(), &buf) {
+                return Err(out.error(e).into());
+            }
+            pending.push(out.finish()?);
         }
-        println!(
+        for p in pending {
+            p.commit()?;
+        }
+        outln!(
             "wrote {n} frames to {}",
             dir.join(format!("{stem}_NNN.png")).display()
-        );
+        )?;
         return Ok(());
     }
-    let delay = args.delay_ms.unwrap_or((3000 / n).max(20));
-    let mut gif = Vec::new();
-    {
-        let mut encoder = GifEncoder::new_with_speed(&mut gif, 10);
-        encoder.set_repeat(Repeat::Infinite)?;
-        encoder.encode_frames(frames.into_iter().map(|f| {
-            let rgba: RgbaImage = image::DynamicImage::ImageRgb8(f).into_rgba8();
-            Frame::from_parts(rgba, 0, 0, Delay::from_numer_denom_ms(delay, 1))
-        }))?;
+    if width > u64::from(MAX_GIF_SIDE) || height > u64::from(MAX_GIF_SIDE) {
+        return Err(format!(
+            "{}: a GIF frame is at most {MAX_GIF_SIDE} pixels wide and tall; this one would be \
+             {width} x {height} ({} x {} at scale {scale}); lower the scale or use --png-sequence",
+            scene.path.display(),
+            scene.width,
+            scene.height
+        )
+        .into());
     }
-    write_file(&args.output, &gif)?;
-    println!("wrote {} ({n} frames)", args.output.display());
+    let delay = args.delay_ms.unwrap_or((3000 / n).max(20));
+    let mut out = OutputFile::create(&args.output, &inputs)?;
+    let result = (|| {
+        let mut encoder = GifEncoder::new_with_speed(&mut out, 10);
+        encoder
+            .set_repeat(Repeat::Infinite)
+            .map_err(FrameError::Encode)?;
+        for k in 0..n {
+            let rgba = {
+                let image = render_image(&scene, turn(k), scale).map_err(FrameError::Scene)?;
+                let buf = image.as_image_buffer();
+                RgbaImage::from_fn(buf.width(), buf.height(), |x, y| {
+                    let [r, g, b] = buf.get_pixel(x, y).0;
+                    image::Rgba([r, g, b, 255])
+                })
+            };
+            let frame = Frame::from_parts(rgba, 0, 0, Delay::from_numer_denom_ms(delay, 1));
+            encoder.encode_frame(frame).map_err(FrameError::Encode)?;
+        }
+        Ok(())
+    })();
+    match result {
+        Ok(()) => out.commit()?,
+        Err(FrameError::Scene(e)) => return Err(e.into()),
+        Err(FrameError::Encode(e)) => return Err(out.error(e).into()),
+    }
+    outln!("wrote {} ({n} frames)", args.output.display())?;
     Ok(())
 }
 
@@ -319,43 +443,59 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
         .into());
     }
     let (w, h) = (scene.width, scene.height);
+    let scale = args.scale.unwrap_or(scene.scale);
+    check_output(
+        &scene,
+        scale,
+        u64::from(3 * w + 2 * DIFF_GAP) * u64::from(scale),
+        u64::from(h) * u64::from(scale),
+    )?;
     let fixed = render_3d::<Fx16>(&scene)?;
     let single = render_3d::<f32>(&scene)?;
     let double = render_3d::<F64>(&scene)?;
-    println!(
+    outln!(
         "{}: 3D part, {w}x{h} = {} pixels, compared in Rgb888",
         scene.path.display(),
         u64::from(w) * u64::from(h)
-    );
+    )?;
     for (name, a, b) in [
         ("16.16 vs f32", &fixed, &single),
         ("16.16 vs f64", &fixed, &double),
         ("f32   vs f64", &single, &double),
     ] {
         let d = difference(a, b, w, h);
-        println!(
+        outln!(
             "  {name}: {} differing pixels ({:.3} %), max channel difference {}",
             d.pixels,
             d.percent(),
             d.max_channel
-        );
+        )?;
     }
     let reference = match args.reference {
         Reference::F32 => &single,
         Reference::F64 => &double,
     };
-    let image = diff_image(&fixed, reference, w, h, args.scale.unwrap_or(scene.scale));
-    write_file(&args.output, &png_bytes(&image)?)?;
-    println!(
+    let image = diff_image(&fixed, reference, w, h, scale);
+    write_png(
+        &args.output,
+        &scene.inputs(),
+        image.width(),
+        image.height(),
+        &image,
+    )?;
+    outln!(
         "wrote {} (16.16 | {} | differences: yellow 1 step .. red 8 or more)",
         args.output.display(),
         match args.reference {
             Reference::F32 => "f32",
             Reference::F64 => "f64",
         }
-    );
+    )?;
     Ok(())
 }
+
+/// The white gap between the panels of the difference image, in display pixels.
+const DIFF_GAP: u32 = 4;
 
 /// Three panels: `a`, `b`, and `a` in dim grey with the differing pixels coloured by how much
 /// they differ (yellow: one step, red: eight or more).
@@ -366,7 +506,7 @@ fn diff_image(
     h: u32,
     scale: u32,
 ) -> RgbImage {
-    const GAP: u32 = 4;
+    const GAP: u32 = DIFF_GAP;
     let panel = |x: u32, y: u32, k: u32| -> [u8; 3] {
         let p = Point::new(x as i32, y as i32);
         let (ca, cb) = (a.get_pixel(p), b.get_pixel(p));

@@ -1,0 +1,68 @@
+//! Standard output and standard error that never panic.
+//!
+//! `println!` panics when stdout is a closed pipe (`host-tools demo | head -1`) or a full device,
+//! and `eprintln!` likewise for stderr. [`outln!`](crate::outln) writes to a locked stdout
+//! instead: a closed pipe ends the printing quietly (the work goes on and the command exits 0, as
+//! the reader has gone), any other failure is an error for the `error:` line.
+//! [`errln!`](crate::errln) writes to stderr and ignores failures: there is nowhere left to report
+//! them.
+
+use std::fmt;
+use std::io::{self, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Set once stdout's reader has gone; later output is dropped.
+static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
+
+/// Standard output could not be written (other than a closed pipe).
+#[derive(Debug)]
+pub struct StdoutError(pub io::Error);
+
+impl fmt::Display for StdoutError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "cannot write to standard output: {}", self.0)
+    }
+}
+
+impl std::error::Error for StdoutError {}
+
+/// Writes to stdout and flushes; a closed pipe is not an error. Use [`outln!`](crate::outln).
+///
+/// # Errors
+/// [`StdoutError`] for any other write failure (e.g. a full device).
+pub fn out(args: fmt::Arguments<'_>) -> Result<(), StdoutError> {
+    if STDOUT_CLOSED.load(Ordering::Relaxed) {
+        return Ok(());
+    }
+    let mut lock = io::stdout().lock();
+    match lock.write_fmt(args).and_then(|()| lock.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => {
+            STDOUT_CLOSED.store(true, Ordering::Relaxed);
+            Ok(())
+        }
+        Err(e) => Err(StdoutError(e)),
+    }
+}
+
+/// Writes to stderr, ignoring failures. Use [`errln!`](crate::errln).
+pub fn err(args: fmt::Arguments<'_>) {
+    let mut lock = io::stderr().lock();
+    let _ = lock.write_fmt(args).and_then(|()| lock.flush());
+}
+
+/// `println!` that returns `Result<(), StdoutError>` instead of panicking.
+#[macro_export]
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::console::out(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// `eprintln!` that never panics.
+#[macro_export]
+macro_rules! errln {
+    ($($arg:tt)*) => {
+        $crate::console::err(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
