@@ -2,6 +2,7 @@
 
 pub mod accuracy;
 pub mod convert;
+pub mod figures;
 pub mod obj;
 pub mod reference3d;
 pub mod scenefile;
