@@ -167,8 +167,8 @@ impl Figures {
         &self.rows
     }
 
-    /// The renderers with figures on `scene`, comparisons (`A/B`) left out: those of [`ORDER`]
-    /// first in its order, then the others in file order, euc last.
+    /// The renderers with figures on `scene`, comparisons (`A/B`) left out: the default, its
+    /// variants and the bands first in a fixed order, then the others in file order, euc last.
     pub fn renderers(&self, scene: &str) -> Vec<&str> {
         let mut out: Vec<&str> = Vec::new();
         for r in self.rows.iter().filter(|r| r.scene == scene) {
