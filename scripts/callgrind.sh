@@ -23,25 +23,7 @@ mkdir -p "$OUT"
 
 # count SCENE RENDERER FRAME_FN: prints the instructions of one counted frame.
 count() {
-    local scene="$1" renderer="$2" fn="$3"
-    local file="$OUT/$scene-$renderer.out"
-    rm -f "$file"
-    valgrind --tool=callgrind --toggle-collect="*${fn}*" --callgrind-out-file="$file" \
-        "$BIN" "$scene" "$renderer" >"$OUT/$scene-$renderer.stdout" 2>"$OUT/$scene-$renderer.log" || {
-        echo "valgrind failed for $scene $renderer, see $OUT/$scene-$renderer.log" >&2
-        return 1
-    }
-    local total
-    total="$(awk '/^totals:/ {print $2; found=1} END {if (!found) exit 1}' "$file" ||
-        awk '/^summary:/ {print $2}' "$file")"
-    if [ -z "$total" ] || [ "$total" -eq 0 ]; then
-        echo "no instructions collected for $scene $renderer: did $fn get inlined or renamed?" >&2
-        return 1
-    fi
-    if [ "${ANNOTATE:-0}" = "1" ]; then
-        callgrind_annotate --auto=yes --inclusive=no "$file" >"$OUT/$scene-$renderer.annotate.txt" 2>/dev/null || true
-    fi
-    echo "$total"
+    callgrind_count "$OUT/$1-$2" "*${3}*" "$BIN" "$1" "$2"
 }
 
 # Primitives per frame, from the generator (the example prints them too).

@@ -56,25 +56,7 @@ mkdir -p "$OUT"
 # frame_COMBINATION). Only one frame_* function runs per process, so the pattern's trailing wildcard
 # (the symbol hash) cannot pick up another combination's function.
 count() {
-    local scene="$1" combo="$2"
-    local base="$OUT/3d-$scene-$combo"
-    rm -f "$base.out"
-    valgrind --tool=callgrind --toggle-collect="*::frame_${combo}*" --callgrind-out-file="$base.out" \
-        "$BIN" --scene "$scene" "$combo" >"$base.stdout" 2>"$base.log" || {
-        echo "valgrind failed for $scene $combo, see $base.log" >&2
-        return 1
-    }
-    local total
-    total="$(awk '/^totals:/ {print $2; found=1} END {if (!found) exit 1}' "$base.out" ||
-        awk '/^summary:/ {print $2}' "$base.out")"
-    if [ -z "$total" ] || [ "$total" -eq 0 ]; then
-        echo "no instructions collected for $scene $combo: did frame_$combo get inlined or merged?" >&2
-        return 1
-    fi
-    if [ "${ANNOTATE:-0}" = "1" ]; then
-        callgrind_annotate --auto=yes --inclusive=no "$base.out" >"$base.annotate.txt" 2>/dev/null || true
-    fi
-    echo "$total"
+    callgrind_count "$OUT/3d-$1-$2" "*::frame_${2}*" "$BIN" --scene "$1" "$2"
 }
 
 # stat SCENE COMBINATION KEY: a field of the stats line the example printed.

@@ -18,9 +18,11 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
-NOSTD_DIR="$TARGET_DIR/nostd-variants"
 OUT="$ROOT/docs/MEMORY.md"
-mkdir -p "$NOSTD_DIR/bin" "$ROOT/docs"
+
+# shellcheck source=lib/memory-common.sh
+source "$ROOT/scripts/lib/memory-common.sh"
+mkdir -p "$ROOT/docs"
 
 command -v size >/dev/null || {
     echo "memory.sh: needs size (binutils)" >&2
@@ -44,86 +46,28 @@ for shading in unlit flat gouraud phong; do
 done
 PRIMITIVES=(line triangle gouraud_triangle polygon)
 
-# nostd-check features of a configuration name.
-features_of() {
-    case "$1" in
-    line) echo line2d ;;
-    triangle) echo triangle2d ;;
-    gouraud_triangle) echo gouraud2d ;;
-    polygon) echo polygon2d ;;
-    empty | all) echo "" ;;
-    *)
-        local IFS=_ f
-        # shellcheck disable=SC2086
-        set -- $1
-        f="$1"
-        [ "$2" = depth ] && f="$f,depth"
-        [ "$3" = cull ] && f="$f,cull"
-        case "$4" in
-        cached) f="$f,cached" ;;
-        banded16) f="$f,banded" ;;
-        esac
-        [ "${5:-}" = cached ] && f="$f,cached"
-        echo "$f"
-        ;;
-    esac
-}
-
 declare -A SIZE
-# build NAME [FEATURES...]: builds one nostd-check variant and records its sections.
+# build NAME: builds one nostd-check variant and records its sections.
 build() {
-    local name="$1" features="$2" args=()
-    if [ "$name" = all ]; then
-        args=()
-    else
-        args=(--no-default-features)
-        [ -n "$features" ] && args+=(--features "$features")
-    fi
-    echo "nostd-check $name (${features:-default features})" >&2
-    (cd nostd-check && CARGO_TARGET_DIR="$NOSTD_DIR" RUSTFLAGS="" cargo build --quiet --release "${args[@]}")
-    cp "$NOSTD_DIR/release/nostd-check" "$NOSTD_DIR/bin/$name"
-    if ! "$NOSTD_DIR/bin/$name"; then
-        echo "memory.sh: nostd-check $name exited non-zero (drew nothing?)" >&2
-        exit 1
-    fi
+    nostd_build "$1"
     local sec
     for sec in text rodata data bss; do
-        SIZE["$name.$sec"]=$(size -A "$NOSTD_DIR/bin/$name" | awk -v s=".$sec" '$1 == s { print $2 }')
-        SIZE["$name.$sec"]=${SIZE["$name.$sec"]:-0}
+        SIZE["$1.$sec"]=$(section_bytes "$1" "$sec")
     done
 }
 
-build all ""
-build empty ""
+build all
+build empty
 for c in "${PRIMITIVES[@]}" "${CONFIGS[@]}"; do
-    build "$c" "$(features_of "$c")"
+    build "$c"
 done
 
-# The stack test: MEMORY lines into M[name.key].
+# The stack test: MEMORY lines into M[profile.name.key].
 declare -A M
-collect() {
-    local profile="$1" log="$TARGET_DIR/memory-stack-$1.log" args=()
-    [ "$profile" = release ] && args=(--release)
-    echo "stack test ($profile)" >&2
-    if ! CARGO_TARGET_DIR="$TARGET_DIR" cargo test --quiet "${args[@]}" -p tests --test stack -- \
-        --nocapture --test-threads=1 >"$log" 2>&1; then
-        echo "memory.sh: the stack test failed ($profile); see $log" >&2
-        exit 1
-    fi
-    local line name kv
-    while read -r line; do
-        # shellcheck disable=SC2086
-        set -- $line
-        name="$2"
-        shift 2
-        for kv in "$@"; do
-            M["$profile.$name.${kv%%=*}"]="${kv#*=}"
-        done
-    # The test harness may print "test NAME ... " in front of a test's first line.
-    done < <(grep -o 'MEMORY .*' "$log")
-}
-collect release
-collect debug
+for profile in release debug; do
+    stack_test "$profile" "$TARGET_DIR/memory-stack-$profile.log"
+    read_memory "$TARGET_DIR/memory-stack-$profile.log" M "$profile"
+done
 
 m() { echo "${M[release.$1.$2]:-0}"; }
 md() { echo "${M[debug.$1.$2]:-0}"; }

@@ -1,6 +1,6 @@
 //! Draws one frame of a WORKLOADS.md scene for callgrind to count (`scripts/callgrind.sh`).
 //!
-//! `count2d SCENE RENDERER [--pixels]`, SCENE one of L1 T1 T2 G1 LIMIT, RENDERER `ours` or `eg`
+//! `count2d SCENE RENDERER [--pixels | --stats]`, SCENE one of L1 T1 T2 G1 LIMIT, RENDERER `ours` or `eg`
 //! (LIMIT ignores it). The scene is generated and one warm frame drawn outside the counted
 //! function; then exactly one call of a `frame_*` function draws the counted frame:
 //!
@@ -12,7 +12,8 @@
 //! | LIMIT | `frame_limit` | `frame_limit` |
 //!
 //! With `--pixels` nothing is counted: the scene is drawn once into a target that counts pixel writes
-//! (overdraw included) and the count is printed.
+//! (overdraw included) and the count is printed. `--stats` does the same and prints
+//! `pixels=N spans=N` (spans: the runs of one row the target was handed; see `CountingTarget`).
 
 #[path = "../benches/support/eg.rs"]
 mod eg;
@@ -49,8 +50,10 @@ fn frame_eg_triangles(fb: &mut Framebuffer<Rgb565>, t: &[Tri]) {
     let Ok(()) = eg::draw_triangles_eg(fb, t);
 }
 
+/// LIMIT as WORKLOADS.md defines it: the buffer's length is part of its type, so LLVM can unroll
+/// the fill fully (a run-time length gives a loop with half the stores per iteration).
 #[inline(never)]
-fn frame_limit(buf: &mut [u16], value: u16) {
+fn frame_limit(buf: &mut [u16; PIXELS], value: u16) {
     buf.fill(value);
 }
 
@@ -62,16 +65,19 @@ enum Renderer {
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: count2d SCENE RENDERER [--pixels]   SCENE: L1 T1 T2 G1 LIMIT, RENDERER: ours eg"
+        "usage: count2d SCENE RENDERER [--pixels | --stats]   SCENE: L1 T1 T2 G1 LIMIT, \
+         RENDERER: ours eg"
     );
     ExitCode::from(2)
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (scene, renderer, pixels) = match args.as_slice() {
-        [s, r] => (s.as_str(), r.as_str(), false),
-        [s, r, p] if p == "--pixels" => (s.as_str(), r.as_str(), true),
+    let (scene, renderer, count_only) = match args.as_slice() {
+        [s, r] => (s.as_str(), r.as_str(), None),
+        [s, r, p] if p == "--pixels" || p == "--stats" => {
+            (s.as_str(), r.as_str(), Some(p.as_str()))
+        }
         _ => return usage(),
     };
     let renderer = match renderer {
@@ -83,7 +89,7 @@ fn main() -> ExitCode {
         eprintln!("count2d: embedded-graphics has no Gouraud fill, G1 is ours only");
         return ExitCode::from(2);
     }
-    if pixels {
+    if let Some(flag) = count_only {
         let mut count = CountingTarget::default();
         let Ok(()) = match (scene, renderer) {
             ("L1", Renderer::Ours) => scenes::draw_lines_ours(&mut count, &scenes::l1()),
@@ -95,11 +101,17 @@ fn main() -> ExitCode {
             ("G1", _) => scenes::draw_gouraud_ours(&mut count, &scenes::g1()),
             ("LIMIT", _) => {
                 count.pixels = PIXELS as u64;
+                // One contiguous fill.
+                count.spans = 1;
                 Ok(())
             }
             _ => return usage(),
         };
-        println!("{}", count.pixels);
+        if flag == "--stats" {
+            println!("pixels={} spans={}", count.pixels, count.spans);
+        } else {
+            println!("{}", count.pixels);
+        }
         return ExitCode::SUCCESS;
     }
 
@@ -142,8 +154,12 @@ fn main() -> ExitCode {
             t.len()
         }
         ("LIMIT", _) => {
-            fb.as_mut_slice().fill(black_box(0x0841));
-            frame_limit(fb.as_mut_slice(), black_box(0xFFFF));
+            let words: &mut [u16; PIXELS] = fb
+                .as_mut_slice()
+                .try_into()
+                .expect("a 320 x 240 buffer holds PIXELS words");
+            words.fill(black_box(0x0841));
+            frame_limit(words, black_box(0xFFFF));
             1
         }
         _ => return usage(),

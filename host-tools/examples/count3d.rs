@@ -47,7 +47,8 @@
 //!
 //! `count3d [--scene S] compare [DIR]` draws the scene with `m1` and with euc and prints how far
 //! the two pictures are apart (and writes them as PNG files into DIR when given); nothing is
-//! counted.
+//! counted. Its last line, `compare scene=.. ours_covered=.. euc_covered=.. both=.. ours_only=..
+//! euc_only=.. mean_diff=.. max_diff=.. over_16=..`, holds the same figures for scripts.
 
 #[path = "../benches/support/euc3d.rs"]
 mod euc3d;
@@ -415,6 +416,15 @@ fn compare(scene: Scene, loaded: &LoadedMesh, dir: Option<&Path>) -> ExitCode {
         "pixels covered by both {both}, by ours only {only_ours}, by euc only {only_euc}; \
          largest channel difference where both: mean {:.2}, max {max} (8-bit steps), \
          {off2} pixels more than 16 apart",
+        sum as f64 / both.max(1) as f64
+    );
+    // The same figures in one line of key=value pairs, for scripts/figures.sh.
+    println!(
+        "compare scene={} ours_covered={} euc_covered={} both={both} ours_only={only_ours} \
+         euc_only={only_euc} mean_diff={:.2} max_diff={max} over_16={off2}",
+        scene.name(),
+        covered(a),
+        covered(b),
         sum as f64 / both.max(1) as f64
     );
     if let Some(dir) = dir {

@@ -3,6 +3,7 @@
 pub mod accuracy;
 pub mod console;
 pub mod convert;
+pub mod figures;
 pub mod obj;
 pub mod output;
 pub mod reference3d;

@@ -227,12 +227,28 @@ pub fn draw_gouraud_ours<S: Surface<Color = Rgb565>>(
 pub struct CountingTarget {
     /// Pixels written so far.
     pub pixels: u64,
+    /// Runs of pixels on one row handed over so far: one per span call, one per row of a
+    /// rectangle, one per pixel of `draw_iter`. `pixels / spans` is the average span.
+    pub spans: u64,
 }
 
 impl CountingTarget {
-    fn visible(area: &Rectangle) -> u64 {
-        let r = area.intersection(&Rectangle::new(Point::zero(), Size::new(WIDTH, HEIGHT)));
-        u64::from(r.size.width) * u64::from(r.size.height)
+    fn visible(area: &Rectangle) -> Size {
+        area.intersection(&Rectangle::new(Point::zero(), Size::new(WIDTH, HEIGHT)))
+            .size
+    }
+
+    fn add_rectangle(&mut self, area: &Rectangle) {
+        let Size { width, height } = Self::visible(area);
+        self.pixels += u64::from(width) * u64::from(height);
+        if width > 0 {
+            self.spans += u64::from(height);
+        }
+    }
+
+    fn add_span(&mut self, len: u32) {
+        self.pixels += u64::from(len);
+        self.spans += u64::from(len > 0);
     }
 }
 
@@ -251,7 +267,9 @@ impl DrawTarget for CountingTarget {
         I: IntoIterator<Item = Pixel<Rgb565>>,
     {
         let inside = |p: &Point| (p.x as u32) < WIDTH && (p.y as u32) < HEIGHT;
-        self.pixels += pixels.into_iter().filter(|Pixel(p, _)| inside(p)).count() as u64;
+        let n = pixels.into_iter().filter(|Pixel(p, _)| inside(p)).count() as u64;
+        self.pixels += n;
+        self.spans += n;
         Ok(())
     }
 
@@ -259,19 +277,19 @@ impl DrawTarget for CountingTarget {
     where
         I: IntoIterator<Item = Rgb565>,
     {
-        self.pixels += Self::visible(area);
+        self.add_rectangle(area);
         Ok(())
     }
 
     fn fill_solid(&mut self, area: &Rectangle, _color: Rgb565) -> Result<(), Self::Error> {
-        self.pixels += Self::visible(area);
+        self.add_rectangle(area);
         Ok(())
     }
 }
 
 impl Surface for CountingTarget {
     fn fill_span(&mut self, _x: i32, _y: i32, len: u32, _color: Rgb565) -> Result<(), Self::Error> {
-        self.pixels += u64::from(len);
+        self.add_span(len);
         Ok(())
     }
 
@@ -282,7 +300,7 @@ impl Surface for CountingTarget {
         len: u32,
         _shade: F,
     ) -> Result<(), Self::Error> {
-        self.pixels += u64::from(len);
+        self.add_span(len);
         Ok(())
     }
 }

@@ -1,4 +1,6 @@
-# Shared by scripts/callgrind.sh and scripts/callgrind3d.sh (sourced, not run).
+# shellcheck shell=bash
+# Shared by scripts/callgrind.sh, scripts/callgrind3d.sh and scripts/figures.sh (sourced, not run).
+# The caller sets TARGET_DIR (the cargo target directory) before calling build_example.
 
 # Installs valgrind with apt-get when it is missing.
 ensure_valgrind() {
@@ -16,5 +18,36 @@ ensure_valgrind() {
 build_example() {
     echo "building $1 (release)..." >&2
     RUSTFLAGS="" CARGO_TARGET_DIR="$TARGET_DIR" cargo build --quiet --release -p host-tools --example "$1"
+    # shellcheck disable=SC2034 # read by the scripts that source this file
     BIN="$TARGET_DIR/release/examples/$1"
+}
+
+# callgrind_count BASE PATTERN COMMAND...: runs COMMAND under callgrind, collecting only inside the
+# functions PATTERN matches (--toggle-collect), and prints the instructions collected. Writes
+# BASE.out (callgrind's file), BASE.stdout and BASE.log; with ANNOTATE=1 also
+# BASE.annotate.txt. Fails, saying why, when valgrind fails or nothing was collected: a frame
+# function that was inlined, merged or renamed collects nothing, and a zero must never pass as a
+# figure.
+callgrind_count() {
+    local base="$1" pattern="$2"
+    shift 2
+    rm -f "$base.out"
+    if ! valgrind --tool=callgrind --toggle-collect="$pattern" --callgrind-out-file="$base.out" \
+        "$@" >"$base.stdout" 2>"$base.log"; then
+        echo "valgrind failed for: $* (see $base.log)" >&2
+        return 1
+    fi
+    local total
+    # Older callgrind versions write only `summary:`; both hold the collected total.
+    total="$(awk '/^totals:/ {t = $2} /^summary:/ {s = $2} END {print (t != "" ? t : s)}' "$base.out")"
+    case "$total" in
+    '' | *[!0-9]* | 0)
+        echo "no instructions collected for: $* (pattern '$pattern'): was the frame function inlined, merged or renamed?" >&2
+        return 1
+        ;;
+    esac
+    if [ "${ANNOTATE:-0}" = "1" ]; then
+        callgrind_annotate --auto=yes --inclusive=no "$base.out" >"$base.annotate.txt" 2>/dev/null || true
+    fi
+    echo "$total"
 }

@@ -1,0 +1,335 @@
+#!/usr/bin/env bash
+# Runs every count of shared/bench/WORKLOADS.md and prints the figures of record: one line per
+# figure on stdout, `scene<TAB>renderer<TAB>metric<TAB>value` (plain integers or decimals), in a
+# fixed order. Progress and build output go to stderr. BENCHMARKS.md and README.md take their
+# tables from this output, committed as docs/figures.tsv:
+#
+#   scripts/figures.sh -o docs/figures.tsv && cargo run -p host-tools --example figures_tables -- docs/figures.tsv
+#
+# Usage (from anywhere; paths are relative to the repo root):
+#   scripts/figures.sh                  # every figure
+#   scripts/figures.sh --quick          # only the lines WORKLOADS.md's table requires
+#   scripts/figures.sh T2 M1            # only these scenes (L1 T1 T2 G1 LIMIT and the mesh scenes)
+#   scripts/figures.sh -o FILE          # also write the lines to FILE (or FIGURES_OUT=FILE), which is
+#                                       # replaced only once every count has succeeded
+#   ANNOTATE=1 scripts/figures.sh ...   # also callgrind_annotate reports next to the outputs
+#
+# What it runs: count2d and count3d (host-tools examples) under callgrind, one process per frame,
+# collecting only inside the frame function (--toggle-collect); count2d --stats and
+# count3d compare natively for pixels and the ours-against-euc pictures; tests/tests/stack.rs in
+# release for the RAM figures (its MEMORY lines); nostd-check built per configuration for .text.
+# Every build is --release for the default x86-64 target with RUSTFLAGS cleared (no
+# target-cpu=native). Honours CARGO_TARGET_DIR; each count's files go to $CARGO_TARGET_DIR/figures.
+# Any count that fails, or comes out empty or zero, stops the script with a non-zero status.
+set -euo pipefail
+
+# The count3d combination behind each renderer name WORKLOADS.md requires. `ours` is the default
+# configuration exactly as the README's 3D example builds it (Pipeline::draw, Gouraud, depth buffer,
+# back faces culled, default numerics).
+DEFAULT_COMBINATION=m1
+PHONG_COMBINATION=m1_phong
+# The default configuration in 16-row bands. m1_band16_cached is the closest count3d has today; its
+# RAM and code size are those of the stack test's and nostd-check's configuration of the same name
+# below (keep the two in step when switching).
+BAND16_COMBINATION=m1_band16_cached
+BAND16_MEMORY=gouraud_depth_cull_banded16_cached
+
+# The mesh scenes, one line each: SCENE, the count3d combinations whose lines WORKLOADS.md
+# requires (all that --quick runs), `|`, the others. A combination is counted as renderer
+# `ours-COMBINATION` unless it is one of the above or is written COMBINATION=RENDERER. A scene
+# with euc also gets the ours/euc ratio and count3d's picture comparison.
+MESH_SCENES=(
+    "M1 $DEFAULT_COMBINATION $PHONG_COMBINATION $BAND16_COMBINATION euc | m1_cached m1_nodepth m1_nocull m1_unlit m1_flat m1_unlit_nodepth_nocull m1_wireframe m1_depth_always m1_cull_keepall m1_band8 m1_band16 m1_band32 m1_band240"
+    "M2 $DEFAULT_COMBINATION euc | m1_cached m1_unlit m1_flat m1_phong m1_wireframe"
+    "M3 $DEFAULT_COMBINATION euc | m1_cached m1_unlit m1_flat m1_phong m1_wireframe"
+    # M4, once count3d draws it, is one more line, e.g.: "M4 m4=ours m1=ours-untextured euc | ..."
+)
+
+# The RAM and code size of M1 configurations, one line each: RENDERER, the configuration as
+# tests/tests/stack.rs and scripts/memory.sh name it. The lines before the empty entry are the
+# required ones (--quick).
+MEMORY_JOBS=(
+    "ours gouraud_depth_cull_draw"
+    "ours-band16 $BAND16_MEMORY"
+    ""
+    "ours-m1_cached gouraud_depth_cull_cached"
+    "ours-m1_band16 gouraud_depth_cull_banded16"
+)
+
+SCENES_2D=(L1 T1 T2 G1)
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
+OUT="$TARGET_DIR/figures"
+
+# usage [STATUS]: the usage lines of the header.
+usage() {
+    sed -n '/^# Usage/,/^# What/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2
+    exit "${1:-2}"
+}
+
+QUICK=0
+FILE="${FIGURES_OUT:-}"
+SELECTED=()
+while [ "$#" -gt 0 ]; do
+    case "$1" in
+    --quick) QUICK=1 ;;
+    -o)
+        [ "$#" -ge 2 ] || usage
+        FILE="$2"
+        shift
+        ;;
+    -h | --help) usage 0 ;;
+    -*) usage ;;
+    *) SELECTED+=("$1") ;;
+    esac
+    shift
+done
+
+# A relative output file is the caller's, not the repository's.
+case "$FILE" in
+'' | /*) ;;
+*) FILE="$PWD/$FILE" ;;
+esac
+cd "$ROOT"
+
+# Every scene this script knows, in output order.
+ALL_SCENES=("${SCENES_2D[@]}" LIMIT)
+for line in "${MESH_SCENES[@]}"; do ALL_SCENES+=("${line%% *}"); done
+declare -A WANT
+if [ "${#SELECTED[@]}" -eq 0 ]; then
+    for s in "${ALL_SCENES[@]}"; do WANT[$s]=1; done
+else
+    for s in "${SELECTED[@]}"; do
+        case " ${ALL_SCENES[*]} " in
+        *" $s "*) WANT[$s]=1 ;;
+        *)
+            echo "figures.sh: unknown scene $s (known: ${ALL_SCENES[*]})" >&2
+            exit 2
+            ;;
+        esac
+    done
+    # T2's share of LIMIT needs LIMIT's count from the same run.
+    if [ -n "${WANT[T2]:-}" ]; then WANT[LIMIT]=1; fi
+fi
+wanted() { [ -n "${WANT[$1]:-}" ]; }
+
+# shellcheck source=lib/callgrind-common.sh
+source "$ROOT/scripts/lib/callgrind-common.sh"
+# shellcheck source=lib/memory-common.sh
+source "$ROOT/scripts/lib/memory-common.sh"
+
+START=$SECONDS
+mkdir -p "$OUT"
+ROWS="$OUT/figures.tsv.partial"
+: >"$ROWS"
+
+# emit SCENE RENDERER METRIC VALUE: one line of the output. Values must be plain numbers.
+emit() {
+    case "$4" in
+    '' | *[!0-9.]* | *.*.* | .* | *.)
+        echo "figures.sh: $1 $2 $3: not a plain number: '$4'" >&2
+        exit 1
+        ;;
+    esac
+    printf '%s\t%s\t%s\t%s\n' "$1" "$2" "$3" "$4" >>"$ROWS"
+}
+
+# emit_count SCENE RENDERER METRIC VALUE: as emit, for a figure that cannot be zero.
+emit_count() {
+    if ! awk -v v="$4" 'BEGIN { exit !(v + 0 > 0) }' 2>/dev/null; then
+        echo "figures.sh: $1 $2 $3 is '$4': missing or zero" >&2
+        exit 1
+    fi
+    emit "$@"
+}
+
+# div A B DECIMALS: A / B rounded.
+div() { awk -v a="$1" -v b="$2" -v d="$3" 'BEGIN { if (b == 0) exit 1; printf "%.*f", d, a / b }'; }
+
+# field FILE KEY: the value of KEY=value in FILE's last line that has it.
+field() {
+    local v
+    v="$(sed -n "s/.*[ ]$2=\([0-9.]*\).*/\1/p; s/^$2=\([0-9.]*\).*/\1/p" "$1" | tail -n 1)"
+    if [ -z "$v" ]; then
+        echo "figures.sh: no $2= in $1" >&2
+        exit 1
+    fi
+    echo "$v"
+}
+
+ensure_valgrind
+
+# --- 2D scenes and LIMIT (count2d) ---
+
+need_2d=0
+for s in "${SCENES_2D[@]}" LIMIT; do wanted "$s" && need_2d=1; done
+if [ "$need_2d" = 1 ]; then
+    build_example count2d
+    COUNT2D="$BIN"
+fi
+
+# count2d_frame SCENE RENDERER FRAME_FN: counts one frame; prints its instructions.
+count2d_frame() {
+    echo "counting $1 $2..." >&2
+    callgrind_count "$OUT/$1-$2" "*${3}*" "$COUNT2D" "$1" "$2"
+}
+
+declare -A INSTR2D PIXELS2D
+if wanted LIMIT; then
+    LIMIT_INSTR="$(count2d_frame LIMIT ours frame_limit)"
+    "$COUNT2D" LIMIT ours --stats >"$OUT/LIMIT-stats.txt"
+    LIMIT_PIXELS="$(field "$OUT/LIMIT-stats.txt" pixels)"
+fi
+for scene in "${SCENES_2D[@]}"; do
+    wanted "$scene" || continue
+    renderers=(ours eg)
+    case "$scene" in
+    L1) kind=lines ;;
+    G1)
+        kind=gouraud
+        renderers=(ours) # embedded-graphics has no Gouraud fill
+        ;;
+    *) kind=triangles ;;
+    esac
+    for r in "${renderers[@]}"; do
+        n="$(count2d_frame "$scene" "$r" "frame_${r}_$kind")"
+        prims="$(field "$OUT/$scene-$r.stdout" primitives)"
+        "$COUNT2D" "$scene" "$r" --stats >"$OUT/$scene-$r-stats.txt"
+        px="$(field "$OUT/$scene-$r-stats.txt" pixels)"
+        INSTR2D[$scene.$r]=$n
+        PIXELS2D[$scene.$r]=$px
+        emit_count "$scene" "$r" instructions "$n"
+        emit_count "$scene" "$r" primitives "$prims"
+        emit_count "$scene" "$r" per_primitive "$(div "$n" "$prims" 1)"
+        emit_count "$scene" "$r" pixels "$px"
+        emit_count "$scene" "$r" spans "$(field "$OUT/$scene-$r-stats.txt" spans)"
+    done
+    if [ "$scene" = T2 ]; then
+        # Pixels per instruction over LIMIT's.
+        for r in "${renderers[@]}"; do
+            share="$(awk -v p="${PIXELS2D[$scene.$r]}" -v i="${INSTR2D[$scene.$r]}" \
+                -v lp="$LIMIT_PIXELS" -v li="$LIMIT_INSTR" 'BEGIN { printf "%.4f", (p / i) / (lp / li) }')"
+            emit_count "$scene" "$r" limit_share "$share"
+        done
+    fi
+    if [ -n "${INSTR2D[$scene.eg]:-}" ]; then
+        emit_count "$scene" ours/eg ratio "$(div "${INSTR2D[$scene.ours]}" "${INSTR2D[$scene.eg]}" 4)"
+    fi
+done
+if wanted LIMIT; then
+    emit_count LIMIT limit instructions "$LIMIT_INSTR"
+    emit_count LIMIT limit pixels "$LIMIT_PIXELS"
+fi
+
+# --- Mesh scenes (count3d) ---
+
+need_3d=0
+for line in "${MESH_SCENES[@]}"; do wanted "${line%% *}" && need_3d=1; done
+if [ "$need_3d" = 1 ]; then
+    build_example count3d
+    COUNT3D="$BIN"
+fi
+
+# renderer_of COMBINATION: the renderer name of a count3d combination.
+renderer_of() {
+    case "$1" in
+    "$DEFAULT_COMBINATION") echo ours ;;
+    "$PHONG_COMBINATION") echo ours-phong ;;
+    "$BAND16_COMBINATION") echo ours-band16 ;;
+    euc) echo euc ;;
+    *) echo "ours-$1" ;;
+    esac
+}
+
+for line in "${MESH_SCENES[@]}"; do
+    scene="${line%% *}"
+    wanted "$scene" || continue
+    jobs="${line#* }"
+    required="${jobs%%|*}"
+    extra=""
+    [[ "$jobs" == *"|"* ]] && extra="${jobs#*|}"
+    [ "$QUICK" = 1 ] && extra=""
+    declare -A SCENE_INSTR=()
+    # shellcheck disable=SC2086 # the job lists are words
+    for job in $required $extra; do
+        combo="${job%%=*}"
+        if [[ "$job" == *=* ]]; then r="${job#*=}"; else r="$(renderer_of "$combo")"; fi
+        echo "counting $scene $combo ($r)..." >&2
+        base="$OUT/3d-$scene-$combo"
+        n="$(callgrind_count "$base" "*::frame_${combo}*" "$COUNT3D" --scene "$scene" "$combo")"
+        tris="$(field "$base.stdout" triangles)"
+        drawn="$(field "$base.stdout" drawn)"
+        SCENE_INSTR[$r]=$n
+        emit_count "$scene" "$r" instructions "$n"
+        emit_count "$scene" "$r" per_primitive "$(div "$n" "$tris" 1)"
+        emit_count "$scene" "$r" triangles "$tris"
+        emit_count "$scene" "$r" drawn "$drawn"
+        emit "$scene" "$r" culled "$(field "$base.stdout" culled)"
+        emit_count "$scene" "$r" per_drawn "$(div "$n" "$drawn" 1)"
+        emit_count "$scene" "$r" covered "$(field "$base.stdout" covered)"
+    done
+    if [ -n "${SCENE_INSTR[ours]:-}" ] && [ -n "${SCENE_INSTR[euc]:-}" ]; then
+        emit_count "$scene" ours/euc ratio "$(div "${SCENE_INSTR[ours]}" "${SCENE_INSTR[euc]}" 4)"
+        if [ "$QUICK" = 0 ]; then
+            # count3d compare draws count3d's m1 and euc.
+            echo "comparing $scene pictures..." >&2
+            "$COUNT3D" --scene "$scene" compare >"$OUT/3d-$scene-compare.txt"
+            cmp="$OUT/3d-$scene-compare.txt"
+            emit_count "$scene" ours/euc pixels_both "$(field "$cmp" both)"
+            emit "$scene" ours/euc pixels_ours_only "$(field "$cmp" ours_only)"
+            emit "$scene" ours/euc pixels_euc_only "$(field "$cmp" euc_only)"
+            emit "$scene" ours/euc mean_channel_diff "$(field "$cmp" mean_diff)"
+            emit "$scene" ours/euc max_channel_diff "$(field "$cmp" max_diff)"
+            emit "$scene" ours/euc pixels_over_16 "$(field "$cmp" over_16)"
+        fi
+    fi
+    unset SCENE_INSTR
+done
+
+# --- RAM and code size of M1 (stack test, nostd-check) ---
+
+if wanted M1; then
+    log="$OUT/stack-release.log"
+    stack_test release "$log"
+    declare -A MEM=()
+    read_memory "$log" MEM release
+    # m KEY: KEY of the current configuration's MEMORY line.
+    m() { echo "${MEM[release.$config.$1]}"; }
+    for job in "${MEMORY_JOBS[@]}"; do
+        if [ -z "$job" ]; then
+            [ "$QUICK" = 1 ] && break
+            continue
+        fi
+        r="${job%% *}"
+        config="${job#* }"
+        if [ -z "${MEM[release.$config.stack]:-}" ]; then
+            echo "figures.sh: the stack test printed no MEMORY line for $config (see $log)" >&2
+            exit 1
+        fi
+        # Everything the frame needs besides the mesh and the output (the framebuffer).
+        ram=0
+        for part in depth band band_depth bins cache stack; do ram=$((ram + $(m "$part"))); done
+        emit_count M1 "$r" ram_bytes "$ram"
+        emit M1 "$r" depth_bytes "$(m depth)"
+        emit M1 "$r" band_bytes "$(m band)"
+        emit M1 "$r" band_depth_bytes "$(m band_depth)"
+        emit M1 "$r" bins_bytes "$(m bins)"
+        emit M1 "$r" binned_triangles "$(m visible)"
+        emit M1 "$r" scratch_bytes "$(m cache)"
+        emit_count M1 "$r" stack_bytes "$(m stack)"
+        emit_count M1 "$r" pipeline_bytes "$(m pipeline)"
+        emit M1 "$r" framebuffer_bytes "$(m framebuffer)"
+        nostd_build "$config"
+        emit_count M1 "$r" text_bytes "$(section_bytes "$config" text)"
+        emit_count M1 "$r" rodata_bytes "$(section_bytes "$config" rodata)"
+    done
+fi
+
+if [ -n "$FILE" ]; then
+    cp "$ROWS" "$FILE.tmp"
+    mv "$FILE.tmp" "$FILE"
+    echo "wrote $FILE" >&2
+fi
+cat "$ROWS"
+echo "figures.sh: $(wc -l <"$ROWS") figures in $((SECONDS - START)) s" >&2
