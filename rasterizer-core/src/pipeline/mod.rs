@@ -156,10 +156,10 @@ impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
 /// several viewports can share one target.
 ///
 /// Range: any `x` and `y`; `width` and `height` at most 32767 ([`crate::target::MAX_DIMENSION`]).
-/// Beyond that the clip rectangle, [`Viewport::rectangle`], is clamped to 32767 x 32767 pixels and
-/// to the `i32` plane (it never reaches past `i32::MAX`), so nothing is drawn outside it or the
-/// target. The mapping from device coordinates still uses the fields as given, and its arithmetic
-/// is sized for the documented range only.
+/// A [`Pipeline`] clamps a larger width or height to 32767, for the mapping from device
+/// coordinates as for clipping; the clip rectangle, [`Viewport::rectangle`], also stops at the
+/// `i32` plane's edge (it never reaches past `i32::MAX`), so nothing is drawn outside it or the
+/// target.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Viewport {
     /// Left edge.
@@ -365,6 +365,13 @@ where
             .model
             .then(&transforms.view)
             .then(&transforms.projection);
+        // The mapping's arithmetic is sized for the documented range.
+        let max = crate::target::MAX_DIMENSION;
+        let viewport = Viewport {
+            width: viewport.width.min(max),
+            height: viewport.height.min(max),
+            ..viewport
+        };
         Self {
             raw: RawMvp::new(&mvp),
             mvp,

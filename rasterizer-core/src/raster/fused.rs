@@ -20,8 +20,8 @@
 
 use crate::geom::{PixelRect, SubPoint};
 use crate::raster::edge::row_at_or_below;
-use crate::raster::interp::{covers_a_pixel, Compare, DepthTest};
-use crate::raster::triangle::setup::{walk_spans, Sorted, SpanSink};
+use crate::raster::interp::{Compare, DepthTest};
+use crate::raster::triangle::setup::{covers_a_centre, walk_spans, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::{DepthSpan, Surface};
 
@@ -294,7 +294,7 @@ where
     // With at most four pixel centres in reach, the span walk first says whether the triangle
     // covers any, before the planes are set up.
     let centres = (rows.end - rows.start).saturating_mul(cols.end - cols.start);
-    if centres <= 4 && !covers_a_pixel(&t, s, &clip) {
+    if centres <= 4 && !covers_a_centre(&t, s, rows, cols) {
         return Ok(());
     }
     let sign = t.cross.signum();

@@ -9,7 +9,7 @@
 use crate::geom::{PixelRect, SubPoint};
 use crate::numerics::{Numerics, SpanStart, Standard};
 use crate::raster::edge::row_at_or_below;
-use crate::raster::triangle::setup::{walk_spans, Sorted, SpanSink};
+use crate::raster::triangle::setup::{covers_a_centre, walk_spans, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::Surface;
 use embedded_graphics_core::primitives::Rectangle;
@@ -617,7 +617,7 @@ where
     // the span walk alone first says whether the triangle covers one, before the planes are set
     // up: M3 -12.6 %, M1 and M2 +0.4 % and +0.6 % in instructions.
     let centres = (rows.end - rows.start).saturating_mul(cols.end - cols.start);
-    if centres <= 4 && !covers_a_pixel(&t, s, &clip) {
+    if centres <= 4 && !covers_a_centre(&t, s, rows.clone(), cols) {
         return Ok(());
     }
     let [o0, o1, o2] = t.order;
@@ -731,23 +731,6 @@ where
         _v: core::marker::PhantomData,
     };
     walk_spans(&t, s, &clip, &mut sink)
-}
-
-/// Whether the triangle's span walk yields a span: out of line, one copy for every target.
-#[inline(never)]
-pub(crate) fn covers_a_pixel(t: &Sorted, s: i64, clip: &PixelRect) -> bool {
-    struct Probe(bool);
-    impl SpanSink for Probe {
-        type Error = ();
-        fn span(&mut self, _row: i32, _x0: i32, _x1: i32) -> Result<(), ()> {
-            self.0 = true;
-            // Stop at the first span.
-            Err(())
-        }
-    }
-    let mut probe = Probe(false);
-    let _ = walk_spans(t, s, clip, &mut probe);
-    probe.0
 }
 
 /// The largest `q` a vertex may carry: `1/w` for `w = 2^-8` in the scale of [`ScreenVertex::q`].

@@ -126,3 +126,94 @@ fn rows_of<K: SpanSink>(
     }
     Ok(())
 }
+
+/// Whether the triangle covers one of the pixel centres of `rows` x `cols` (pixel ranges inside
+/// the clip area and the triangle's own rows): exactly what [`walk_spans`] decides for them, a
+/// centre at a time with the edge functions instead of a set-up of the edge walks. For
+/// triangles that reach a few centres at most (most triangles of a dense mesh seen from afar).
+///
+/// A centre `c` of a row lies right of (or on) an edge `a -> b` walked downwards when
+/// `(c.x - a.x)(b.y - a.y) - (c.y - a.y)(b.x - a.x) >= 0`, the condition the edge walk's column
+/// `ceil(N / D)` encodes; the span takes the centres at or right of its left edge and strictly
+/// left of its right edge, with the short edge of the row's half of the triangle.
+#[inline(never)]
+pub(crate) fn covers_a_centre(
+    t: &Sorted,
+    s: i64,
+    rows: core::ops::Range<i64>,
+    cols: core::ops::Range<i64>,
+) -> bool {
+    let [v0, v1, v2] = t.v;
+    // Doubled coordinates keep the centre (c s + s / 2) an integer with no sub-pixel bits.
+    let side = |a: (i64, i64), b: (i64, i64), x2: i64, y2: i64| {
+        (x2 - 2 * a.0) * (b.1 - a.1) - (y2 - 2 * a.1) * (b.0 - a.0)
+    };
+    for row in rows {
+        let y2 = 2 * row * s + s;
+        let short = if y2 < 2 * v1.1 { (v0, v1) } else { (v1, v2) };
+        let (left, right) = if t.cross < 0 {
+            (short, (v0, v2))
+        } else {
+            ((v0, v2), short)
+        };
+        for col in cols.clone() {
+            let x2 = 2 * col * s + s;
+            if side(left.0, left.1, x2, y2) >= 0 && side(right.0, right.1, x2, y2) < 0 {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::SubPoint;
+
+    /// The first span of the walk, as the probe the centre test replaces.
+    fn walk_covers(t: &Sorted, s: i64, clip: &PixelRect) -> bool {
+        struct Probe(bool);
+        impl SpanSink for Probe {
+            type Error = ();
+            fn span(&mut self, _: i32, _: i32, _: i32) -> Result<(), ()> {
+                self.0 = true;
+                Err(())
+            }
+        }
+        let mut probe = Probe(false);
+        let _ = walk_spans(t, s, clip, &mut probe);
+        probe.0
+    }
+
+    #[test]
+    fn centre_test_matches_the_walk_on_small_triangles() {
+        let mut x = 0x2545_f491u32;
+        let mut next = |m: u32| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x % m) as i32
+        };
+        let clip = PixelRect {
+            x0: -3,
+            y0: -2,
+            x1: 40,
+            y1: 30,
+        };
+        let s = 1i64 << 4;
+        for _ in 0..200_000 {
+            // Vertices within a few pixels of each other, some on pixel centres and rows.
+            let (cx, cy) = (next(48 * 16) - 64, next(40 * 16) - 64);
+            let v = [0, 1, 2].map(|_| SubPoint::<4>::new(cx + next(80) - 40, cy + next(80) - 40));
+            let Some(t) = Sorted::new(&v) else { continue };
+            let [v0, v1, v2] = t.v;
+            let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+            let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
+            let cols =
+                row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
+            let expected = walk_covers(&t, s, &clip);
+            assert_eq!(covers_a_centre(&t, s, rows, cols), expected, "{v:?}");
+        }
+    }
+}
