@@ -295,7 +295,7 @@ where
                 for e in &bins[lo..] {
                     t += usize::from(e.step);
                     if e.first <= unit && unit <= e.last {
-                        let front = self.front(mesh, t, scratch, &mut scratch_stats, false);
+                        let front = self.front_again(mesh, t, scratch);
                         let Ok(()) =
                             self.draw_front(&mut target, mesh, front, scratch, &mut scratch_stats);
                     }

@@ -720,6 +720,34 @@ where
         }
     }
 
+    /// The front end for a triangle that has passed it once this frame (a band's binned
+    /// triangle): its vertices' slots, without the tests.
+    #[inline(always)]
+    fn front_again<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        t: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> Front<S, BITS> {
+        let idx = mesh.triangle(t);
+        let a = self.slot_geometry(mesh, idx[0], scratch);
+        let b = self.slot_geometry(mesh, idx[1], scratch);
+        let c = self.slot_geometry(mesh, idx[2], scratch);
+        if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
+            let clip = idx.map(|i| self.mvp.transform_point(mesh.position(i)));
+            let codes = clip.map(|p| outcode(&p));
+            return Front::Clip { idx, clip, codes };
+        }
+        Front::Inside {
+            idx,
+            v: [
+                (SubPoint::new(a.0, a.1), a.2),
+                (SubPoint::new(b.0, b.1), b.2),
+                (SubPoint::new(c.0, c.1), c.2),
+            ],
+        }
+    }
+
     /// Draws a triangle the front end let through, counting it as drawn.
     #[inline(always)]
     fn draw_front<T, M>(

@@ -91,15 +91,13 @@ fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3] {
     out
 }
 
-/// An 8-bit lit colour at the target's depth, rounded.
+/// A lit colour from [`Lighting::shade_sums`] at the target's depth, rounded once.
 #[inline(always)]
-fn from_rgb888<C: ShadeColor>(c: Rgb888) -> C {
-    let ch = |v: u8, max: u8| ((u32::from(v) * u32::from(max) + 127) / 255) as u8;
-    C::from_shade([
-        ch(c.r(), C::MAX[0]),
-        ch(c.g(), C::MAX[1]),
-        ch(c.b(), C::MAX[2]),
-    ])
+fn from_sums<C: ShadeColor>(sums: [u64; 3]) -> C {
+    // sums[c] / (255 · 2^16) 8-bit steps, times max / 255, rounded half up.
+    let d = 255 * 255 * (1u64 << 16);
+    let ch = |c: usize| ((sums[c] * u64::from(C::MAX[c]) + d / 2) / d) as u8;
+    C::from_shade([ch(0), ch(1), ch(2)])
 }
 
 /// The colour from interpolated [`target_channels`] (each shifted back by `shift` bits first).
@@ -204,7 +202,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
         let third = S::from_ratio(1, 3);
         let centre = (v[0].position + v[1].position + v[2].position).scale(third);
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
-        self.color = from_rgb888(lighting.shade(centre, normal));
+        self.color = from_sums(lighting.shade_sums(centre, normal));
     }
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
@@ -306,6 +304,6 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
         let normal = Vec3::new(f(0), f(1), f(2));
         let position = Vec3::new(f(3), f(4), f(5));
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
-        from_rgb888(lighting.shade(position, normal))
+        from_sums(lighting.shade_sums(position, normal))
     }
 }

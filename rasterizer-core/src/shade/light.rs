@@ -14,55 +14,59 @@
 //! `spec = 1` wherever `N·L > 0`. Point lights are not attenuated with distance.
 //!
 //! # Arithmetic and rounding
-//! The vectors are normalised with [`Vec3::normalize`] and `N·L` (and for Phong `N·V`, `L·V`) are
-//! [`Vec3::dot`] products in `S`; everything after that is integer:
+//! For a fixed-point format (every [`crate::math::Fx`]) the whole computation runs on the raw
+//! integers, with no rounding to the format's step on the way:
 //!
-//! 1. Phong converts the cosines to signed 2.30 integers through [`Scalar::to_scaled_int`] and uses
-//!    `R·V = 2 (N·L)(N·V) - L·V` (one product, rounded half up; no reflected vector). Blinn-Phong
-//!    forms `h = L + V` in `S` and takes `(N·H)² = (N·h)² / (h·h)`, where `N·h` and `h·h` are exact
-//!    `i64` sums over the components in 4.28 and the quotient is rounded half up: no normalised
-//!    half vector, and no square root for even exponents. (`h·h = 2 + 2 L·V` from a rounded `L·V`
-//!    would cancel when the light and the eye are nearly opposite: that version was off by several
-//!    8-bit steps in 16.16.) Both factors are clamped to `[0, 1]`.
-//! 2. The power is taken by repeated squaring in unsigned 0.30 fixed point, each product rounded half
-//!    up (error at most 2^-31, and every value stays in `[0, 1]`). A rounding error made in `x^m`
-//!    reaches `x^s` multiplied by at most `s/m` (the slope of `y ↦ y^(s/m)` on `[0, 1]`); the squares
-//!    have `m = 2, 4, 8, ...` and the at most 16 products into the result have slope 1, so the result
-//!    is within `(s + 16) · 2^-31` of the exact power of the rounded base (4e-8 for `s = 64`). An odd
-//!    exponent under Blinn-Phong takes one more factor `N·H`, an integer square root rounded down
-//!    (error at most 2^-30).
-//! 3. The diffuse and specular factors are rounded half up to 0.16 (error at most 2^-17) and
+//! 1. Each vector (`N`, `V`, a point light's `L`) is made a unit vector in signed 2.30 with one
+//!    reciprocal square root and three products: no division. The root comes from a table of the
+//!    top eight bits and two Newton steps, within `2^-29` of `1 / |v|`; a vector already of unit
+//!    length within `2^-12` (a mesh normal) takes one Newton step from 1 instead, within `2^-25`.
+//!    A directional light's direction is stored unit length (by [`Lighting::add_light`]) and
+//!    carried into 2.30 when the lighting is set up. The cosines `N·L` (and for Phong `N·V`,
+//!    `L·V`) are exact `i64` sums of products, rounded once to 2.30.
+//! 2. Phong uses `R·V = 2 (N·L)(N·V) - L·V` (one product, rounded half up; no reflected vector).
+//!    Blinn-Phong takes `N·H = N·h / |h|` with `h = L + V` in 2.30 and `1 / |h|` from the same
+//!    reciprocal square root, so no half vector is normalised and a short `h` (light and eye on
+//!    opposite sides) loses only its components' rounding. Both factors are clamped to `[0, 1]`.
+//! 3. The power is taken by repeated squaring in unsigned 0.30 fixed point, each product rounded
+//!    half up (error at most 2^-31, and every value stays in `[0, 1]`). A rounding error made in
+//!    `x^m` reaches `x^s` multiplied by at most `s/m` (the slope of `y ↦ y^(s/m)` on `[0, 1]`);
+//!    the squares have `m = 2, 4, 8, ...` and the at most 16 products into the result have slope
+//!    1, so the result is within `(s + 16) · 2^-31` of the exact power of the rounded base (4e-8
+//!    for `s = 64`).
+//! 4. The diffuse and specular factors are rounded half up to 0.16 (error at most 2^-17) and
 //!    multiplied by the colour products `Md Lc`, `Ms Lc` (at most `255²`) into one `u64` sum per
 //!    channel; the ambient term `Ma La` enters exactly. The sum is clamped and divided by
 //!    `255 · 2^16` (or by `255 · 2^8` for [`Lighting::shade_fine`]) once, rounding half up.
 //!
-//! So, in 8-bit steps, the integer stages add at most `2 · 255 · (2^-17 + 2^-30)` ≈ 0.004 per light,
-//! plus the final rounding: 0.5 for [`Lighting::shade`], 1/512 for [`Lighting::shade_fine`]. The
-//! rest is the error of the vectors in `S`. With a step `q` (2^-16 for 16.16), a unit vector is
-//! within about `q/2` per component and a dot product adds `q/2`, so a cosine is within about
-//! `2.2 q`; `R·V = 2 (N·L)(N·V) - L·V` within about `11 q`; `N·H` within about
-//! `(1 + 2 / |L + V|) q`, which grows when light and eye are nearly opposite (the half vector itself
-//! is ill-conditioned there). The power multiplies an error in its base by at most `s`, so the
-//! specular term is within about `Ms Lc / 255 · s · 11 q` steps (at most 2.7 for 16.16, `s = 64`,
-//! white light; the component errors rarely line up) and the diffuse term within
-//! `Md Lc / 255 · 2.2 q` (0.009 for 16.16). Measured against an f64 reference over random scenes
-//! (`tests/tests/lighting.rs`), [`Lighting::shade`] is within 0.78 steps in 16.16 for
-//! `shininess <= 64` ([`Lighting::shade_fine`] within 0.40); 24.8 stays within 2.4 steps for
-//! ambient and diffuse light but misses highlights by up to 75 steps, as its unit vectors carry only
-//! 8 fractional bits.
+//! So, in 8-bit steps, the integer stages add at most `2 · 255 · (2^-17 + 2^-30)` ≈ 0.004 per
+//! light, plus the final rounding: 0.5 for [`Lighting::shade`], 1/512 for
+//! [`Lighting::shade_fine`]. The rest is the error of the inputs in the format: a normal or a
+//! position within half a step `q` per component moves a cosine by about `q`, and the power
+//! multiplies an error in its base by at most `s`. Measured against an f64 reference over random
+//! scenes (`tests/tests/lighting.rs`), [`Lighting::shade`] is within 0.57 steps in 16.16 for
+//! `shininess <= 64` ([`Lighting::shade_fine`] within 0.16); 24.8 stays within 1.5 steps for
+//! ambient and diffuse light and within 22 steps in highlights, as its inputs carry only 8
+//! fractional bits.
+//!
+//! A floating-point format (the `float` feature, for comparison) takes the same formulas in its
+//! own arithmetic: vectors normalised with [`Vec3::normalize`], dot products in `S`, and the same
+//! integer stages from the cosines on.
 //!
 //! Where a light grazes the surface (`N·L = 0`) the model itself jumps: the specular term switches
 //! off there (with `shininess = 0` it is 1 right up to the edge), so a cosine a few steps of `S` off
 //! moves the edge.
 //!
 //! # Cost
-//! Per call: one normalisation for `N`, one for `V` when a specular term needs it (not for
-//! [`Specular::None`] or `shininess = 0`), one per point light (directional lights are normalised
-//! once, by [`Lighting::add_light`]); these dominate. Then per light one dot product in `S` (`N·L`),
-//! and for Phong one more (`L·V`, plus `N·V` once per call), for Blinn-Phong six `i32 × i32 → i64`
-//! products, one `u64` division and, for odd exponents, an integer square root; for the power at
-//! most 16 squarings and 16 products (`u32 × u32 → u64`); six `u32 × u32 → u64` multiply-adds; and
-//! three divisions by a constant at the end.
+//! Per call, for a fixed-point format: one reciprocal square root for `N` (a few products for a
+//! unit normal), one for `V` when a specular term needs it (not for [`Specular::None`] or
+//! `shininess = 0`), one per point light; then per light a dot product, and for Blinn-Phong one
+//! more reciprocal square root; for the power at most 16 squarings and 16 products
+//! (`u32 × u32 → u64`); six `u32 × u32 → u64` multiply-adds; and three divisions by a constant at
+//! the end. No division otherwise. The colour products and a directional light's direction in
+//! 2.30 are prepared when the light or the material changes. For a model whose matrix is a
+//! similarity, [`Lighting::in_model_space`] moves the eye and the lights into model space once,
+//! so that a mesh's positions and normals are lit as they are stored.
 
 use crate::math::fx::rsqrt_u64;
 use crate::math::{Mat4, Scalar, Vec3};
