@@ -134,6 +134,8 @@ fn crossing<S: Scalar, V: Varyings>(
 /// Clips a triangle; the result is a convex polygon of 0 or 3 to [`MAX_CLIPPED`] vertices in the
 /// same winding. `codes` are the three vertices' [`outcode`]s; only planes some vertex is outside of
 /// are clipped against.
+// Out of line: the rare path of every draw call, one copy each.
+#[inline(never)]
 pub fn clip_triangle<S: Scalar, V: Varyings>(
     tri: &[ClipVertex<S, V>; 3],
     codes: [Outcode; 3],

@@ -576,19 +576,28 @@ where
         scratch: &mut [VertexSlot<Sh::Stored>],
     ) -> Sh::Varyings {
         use vertex::{Packed, Stored};
-        match scratch.get_mut(i) {
-            Some(s) => {
-                if s.st.is_empty() {
-                    let vin = self.vertex_in(mesh, i);
-                    s.st = Sh::Stored::pack(&self.shading.vertex(&vin));
-                }
-                s.st.unpack()
-            }
-            None => {
-                let vin = self.vertex_in(mesh, i);
-                Sh::Stored::pack(&self.shading.vertex(&vin)).unpack()
-            }
+        match scratch.get(i) {
+            Some(s) if !s.st.is_empty() => s.st.unpack(),
+            _ => self.shade_vertex(mesh, i, scratch),
         }
+    }
+
+    /// Shades vertex `i` and keeps its packed values in its slot, if it has one. Out of line:
+    /// once per vertex and frame, and one copy of the lighting for every caller.
+    #[inline(never)]
+    fn shade_vertex<M: MeshSource<S>>(
+        &mut self,
+        mesh: &M,
+        i: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> Sh::Varyings {
+        use vertex::Stored;
+        let vin = self.vertex_in(mesh, i);
+        let packed = Sh::Stored::pack(&self.shading.vertex(&vin));
+        if let Some(s) = scratch.get_mut(i) {
+            s.st = packed;
+        }
+        packed.unpack()
     }
 
     /// The data of a vertex the shader may read: in model space when the shader lights there this
@@ -682,13 +691,7 @@ where
         let b = self.slot_geometry(mesh, idx[1], scratch);
         let c = self.slot_geometry(mesh, idx[2], scratch);
         if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
-            let clip = idx.map(|i| self.mvp.transform_point(mesh.position(i)));
-            let codes = clip.map(|p| outcode(&p));
-            if trivially_outside(&clip, codes) {
-                stats.outside += 1;
-                return Front::Skip;
-            }
-            return Front::Clip { idx, clip, codes };
+            return self.front_clip(mesh, idx, stats);
         }
         let xs = [a.0, b.0, c.0].map(i64::from);
         let ys = [a.1, b.1, c.1].map(i64::from);
@@ -720,6 +723,24 @@ where
         }
     }
 
+    /// The front end's rare path, a triangle with a vertex outside the guard band: its
+    /// clip-space vertices for the clipper, or nothing when it lies wholly outside one plane.
+    #[inline(never)]
+    fn front_clip<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        idx: [usize; 3],
+        stats: &mut RenderStats,
+    ) -> Front<S, BITS> {
+        let clip = [0, 1, 2].map(|k| self.mvp.transform_point(mesh.position(idx[k])));
+        let codes = [0, 1, 2].map(|k| outcode(&clip[k]));
+        if trivially_outside(&clip, codes) {
+            stats.outside += 1;
+            return Front::Skip;
+        }
+        Front::Clip { idx, clip, codes }
+    }
+
     /// The front end for a triangle that has passed it once this frame (a band's binned
     /// triangle): its vertices' slots, without the tests.
     #[inline(always)]
@@ -734,9 +755,8 @@ where
         let b = self.slot_geometry(mesh, idx[1], scratch);
         let c = self.slot_geometry(mesh, idx[2], scratch);
         if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
-            let clip = idx.map(|i| self.mvp.transform_point(mesh.position(i)));
-            let codes = clip.map(|p| outcode(&p));
-            return Front::Clip { idx, clip, codes };
+            let mut ignored = RenderStats::default();
+            return self.front_clip(mesh, idx, &mut ignored);
         }
         Front::Inside {
             idx,

@@ -21,7 +21,7 @@
 use crate::geom::{PixelRect, SubPoint};
 use crate::raster::edge::row_at_or_below;
 use crate::raster::interp::{Compare, DepthTest};
-use crate::raster::triangle::setup::{covers_a_centre, walk_spans, Sorted, SpanSink};
+use crate::raster::triangle::setup::{covers_a_centre, walk_spans_once, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::{DepthSpan, Surface};
 
@@ -339,5 +339,5 @@ where
         compare,
         _v: core::marker::PhantomData,
     };
-    walk_spans(&t, s, &clip, &mut sink)
+    walk_spans_once(&t, s, &clip, &mut sink)
 }
