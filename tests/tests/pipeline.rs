@@ -961,6 +961,100 @@ fn zero_length_normals() {
 }
 
 #[test]
+fn depth_buffer_too_small_is_an_error_and_draws_nothing() {
+    use embedded_graphics_core::geometry::{Point, Size};
+    use embedded_graphics_core::primitives::Rectangle;
+    use rasterizer_core::pipeline::shading::Unlit;
+    use rasterizer_core::pipeline::DrawError;
+    let cube = model("unit_cube.obj");
+    let scene = Scene::camera([1.5, 1.2, 2.0], [0.0; 3], 60, 0.1, 100.0);
+    let t = scene.transforms();
+    // A 64 x 48 target; the depth buffer (zw x zh) is indexed by target pixels.
+    let draw = |viewport: Viewport, zw: u32, zh: u32| {
+        let mut z = vec![u16::MAX; (zw * zh) as usize];
+        let depth = DepthBuffer::new(&mut z, zw, zh, Compare::Less).unwrap();
+        let mut p: Pipeline<Fx16, _, _, _> = Pipeline::new(
+            &t,
+            viewport,
+            CullClockwise,
+            depth,
+            Unlit {
+                color: Rgb888::WHITE,
+            },
+        );
+        let mut mock = StrictMock::<Rgb888>::new(64, 48);
+        let mut scratch = vec![VertexSlot::EMPTY; cube.positions.len()];
+        let result = p.draw(&mut AnyTarget::new(&mut mock), &cube.mesh(), &mut scratch);
+        (result, mock.calls.pixels)
+    };
+    let rect = |x, y, w, h| Rectangle::new(Point::new(x, y), Size::new(w, h));
+    let full = Viewport::new(64, 48);
+    let (result, pixels) = draw(full, 1, 1);
+    assert_eq!(
+        result,
+        Err(DrawError::DepthTooSmall {
+            needed: rect(0, 0, 64, 48)
+        })
+    );
+    assert_eq!(pixels, 0, "nothing is drawn");
+    // One row or one column short.
+    assert!(matches!(
+        draw(full, 64, 47).0,
+        Err(DrawError::DepthTooSmall { .. })
+    ));
+    assert!(matches!(
+        draw(full, 63, 48).0,
+        Err(DrawError::DepthTooSmall { .. })
+    ));
+    let (result, pixels) = draw(full, 64, 48);
+    assert!(
+        result.is_ok() && pixels > 300,
+        "{result:?}: {pixels} pixels"
+    );
+    // Only the viewport within the target needs depths: a viewport reaching over the top-left
+    // corner needs the 30 x 30 pixels it shares with the target...
+    let over_corner = Viewport {
+        x: -10,
+        y: -10,
+        width: 40,
+        height: 40,
+    };
+    assert_eq!(
+        draw(over_corner, 29, 30).0,
+        Err(DrawError::DepthTooSmall {
+            needed: rect(0, 0, 30, 30)
+        })
+    );
+    let (result, pixels) = draw(over_corner, 30, 30);
+    assert!(
+        result.is_ok() && pixels > 100,
+        "{result:?}: {pixels} pixels"
+    );
+    // ...one inside it the pixels up to its right and bottom edges...
+    let inside = Viewport {
+        x: 16,
+        y: 8,
+        width: 32,
+        height: 24,
+    };
+    assert_eq!(
+        draw(inside, 32, 24).0,
+        Err(DrawError::DepthTooSmall {
+            needed: rect(16, 8, 32, 24)
+        })
+    );
+    assert!(draw(inside, 48, 32).0.is_ok());
+    // ...and one off the target none at all (and draws nothing).
+    let off = Viewport {
+        x: 100,
+        y: 0,
+        width: 32,
+        height: 24,
+    };
+    assert_eq!(draw(off, 1, 1), (Ok(draw(off, 1, 1).0.unwrap()), 0));
+}
+
+#[test]
 fn invalid_indices_are_skipped_and_counted() {
     use rasterizer_core::pipeline::Mesh;
     let scene = origin_camera(60, 0.5, 50.0);
