@@ -28,20 +28,19 @@ set -euo pipefail
 # back faces culled, default numerics).
 DEFAULT_COMBINATION=m1
 PHONG_COMBINATION=m1_phong
-# The default configuration in 16-row bands. m1_band16_cached is the closest count3d has today; its
-# RAM and code size are those of the stack test's and nostd-check's configuration of the same name
-# below (keep the two in step when switching).
-BAND16_COMBINATION=m1_band16_cached
-BAND16_MEMORY=gouraud_depth_cull_banded16_cached
+# The default configuration in 16-row bands (with its vertex scratch); its RAM and code size are
+# those of the stack test's and nostd-check's configuration named below (keep the two in step).
+BAND16_COMBINATION=m1_band16
+BAND16_MEMORY=gouraud_depth_cull_banded16
 
 # The mesh scenes, one line each: SCENE, the count3d combinations whose lines WORKLOADS.md
 # requires (all that --quick runs), `|`, the others. A combination is counted as renderer
 # `ours-COMBINATION` unless it is one of the above or is written COMBINATION=RENDERER. A scene
 # with euc also gets the ours/euc ratio and count3d's picture comparison.
 MESH_SCENES=(
-    "M1 $DEFAULT_COMBINATION $PHONG_COMBINATION $BAND16_COMBINATION euc | m1_cached m1_nodepth m1_nocull m1_unlit m1_flat m1_unlit_nodepth_nocull m1_wireframe m1_depth_always m1_cull_keepall m1_band8 m1_band16 m1_band32 m1_band240"
-    "M2 $DEFAULT_COMBINATION euc | m1_cached m1_unlit m1_flat m1_phong m1_wireframe"
-    "M3 $DEFAULT_COMBINATION euc | m1_cached m1_unlit m1_flat m1_phong m1_wireframe"
+    "M1 $DEFAULT_COMBINATION $PHONG_COMBINATION $BAND16_COMBINATION euc | m1_noscratch m1_nodepth m1_nocull m1_unlit m1_flat m1_unlit_nodepth_nocull m1_wireframe m1_depth_always m1_cull_keepall m1_band8 m1_band16_noscratch m1_band32 m1_band240"
+    "M2 $DEFAULT_COMBINATION euc | m1_noscratch m1_unlit m1_flat m1_phong m1_wireframe"
+    "M3 $DEFAULT_COMBINATION euc | m1_noscratch m1_unlit m1_flat m1_phong m1_wireframe"
     # M4, once count3d draws it, is one more line, e.g.: "M4 m4=ours m1=ours-untextured euc | ..."
 )
 
@@ -52,8 +51,8 @@ MEMORY_JOBS=(
     "ours gouraud_depth_cull_draw"
     "ours-band16 $BAND16_MEMORY"
     ""
-    "ours-m1_cached gouraud_depth_cull_cached"
-    "ours-m1_band16 gouraud_depth_cull_banded16"
+    "ours-m1_noscratch gouraud_depth_cull_noscratch"
+    "ours-m1_band16_noscratch gouraud_depth_cull_banded16_noscratch"
 )
 
 SCENES_2D=(L1 T1 T2 G1)

@@ -1,5 +1,6 @@
-//! The 3D pipeline with arbitrary (NaN-free) fixed-point matrices and vertices: no panic, and the
-//! banded render equals the whole-frame render for an arbitrary band height.
+//! The 3D pipeline with arbitrary (NaN-free) fixed-point matrices and vertices: no panic, a short
+//! vertex scratch draws what a full one draws, and the banded render equals the whole-frame render
+//! for an arbitrary band height and scratch length.
 #![no_main]
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
@@ -8,7 +9,9 @@ use libfuzzer_sys::fuzz_target;
 use rasterizer_core::math::{Fx16, Mat4, Vec3};
 use rasterizer_core::pipeline::cull::NoCull;
 use rasterizer_core::pipeline::shading::VertexColors;
-use rasterizer_core::pipeline::{Banding, BinEntry, Mesh, Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::{
+    Banding, BinEntry, Mesh, Pipeline, Transforms, VertexSlot, Viewport,
+};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer};
 use rasterizer_core::target::Framebuffer;
 
@@ -24,6 +27,11 @@ fuzz_target!(|data: &[u8]| {
         return;
     }
     let rows = (words[16] as u32 % H) + 1;
+    // Scratch lengths for the short whole-frame draw and the banded one.
+    let (short, band_slots) = (
+        (words[16] >> 8) as u8 as usize,
+        (words[16] >> 16) as u8 as usize,
+    );
     let mut m = [[Fx16::ZERO; 4]; 4];
     for (k, w) in words.drain(..16).enumerate() {
         m[k / 4][k % 4] = Fx16::from_bits(w);
@@ -42,8 +50,9 @@ fuzz_target!(|data: &[u8]| {
     let colors: Vec<Rgb888> = (0..n)
         .map(|i| Rgb888::new(i as u8 * 40, 255 - i as u8 * 7, 128))
         .collect();
-    let tris: Vec<[u16; 3]> = (0..n / 3)
-        .map(|t| [3 * t as u16, 3 * t as u16 + 1, 3 * t as u16 + 2])
+    // A strip: each vertex shared by up to three triangles, as the scratch expects.
+    let tris: Vec<[u16; 3]> = (0..n.saturating_sub(2))
+        .map(|t| [t as u16, t as u16 + 1, t as u16 + 2])
         .collect();
     let mesh = Mesh {
         positions: &pos,
@@ -65,20 +74,28 @@ fuzz_target!(|data: &[u8]| {
         let mut p =
             Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
         let mut fb = Framebuffer::<Rgb565>::new(&mut whole, W, H).unwrap();
-        let _ = p.draw(&mut fb, &mesh);
-        let _ = p.draw_wireframe(&mut fb, &mesh, Rgb565::WHITE);
+        let mut scratch = vec![VertexSlot::EMPTY; n];
+        let _ = p.draw(&mut fb, &mesh, &mut scratch);
+        let _ = p.draw_wireframe(&mut fb, &mesh, &mut scratch, Rgb565::WHITE);
         let _ = fb.pixel(Point::zero());
     }
-    // Wireframe was drawn on top above; redraw the fill alone for the comparison.
-    let mut fill = vec![0u16; (W * H) as usize];
-    {
+    // Wireframe was drawn on top above; redraw the fill alone for the comparison, with a full
+    // scratch and with a short one.
+    let fill_with = |slots: usize| {
+        let mut fill = vec![0u16; (W * H) as usize];
         let mut z = vec![u16::MAX; (W * H) as usize];
         let depth = DepthBuffer::new(&mut z, W, H, Compare::LessEqual).unwrap();
         let mut p =
             Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
         let mut fb = Framebuffer::<Rgb565>::new(&mut fill, W, H).unwrap();
-        let _ = p.draw(&mut fb, &mesh);
-    }
+        let stats = p.draw(&mut fb, &mesh, &mut vec![VertexSlot::EMPTY; slots]);
+        (fill, stats)
+    };
+    let (fill, stats) = fill_with(n);
+    assert!(
+        fill_with(short) == (fill.clone(), stats),
+        "a scratch of {short} of {n} slots differs from a full one"
+    );
     let mut banded = vec![0u16; (W * H) as usize];
     {
         let mut z = vec![u16::MAX; (W * rows) as usize];
@@ -94,7 +111,8 @@ fuzz_target!(|data: &[u8]| {
             background: Rgb565::BLACK,
             clear_depth: u16::MAX,
         };
-        let _ = p.draw_banded(&mesh, &banding, &mut band, &mut bins, &mut [], |b| {
+        let mut scratch = vec![VertexSlot::EMPTY; band_slots];
+        let _ = p.draw_banded(&mesh, &banding, &mut band, &mut bins, &mut scratch, |b| {
             let y0 = b.y0() as usize * W as usize;
             let d = b.framebuffer().as_slice();
             banded[y0..y0 + d.len()].copy_from_slice(d);
@@ -102,6 +120,6 @@ fuzz_target!(|data: &[u8]| {
     }
     assert_eq!(
         fill, banded,
-        "bands of {rows} rows differ from the whole frame"
+        "bands of {rows} rows ({band_slots} scratch slots) differ from the whole frame"
     );
 });

@@ -8,7 +8,7 @@ use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::mesh::PackedMesh;
 use rasterizer_core::pipeline::cull::NoCull;
 use rasterizer_core::pipeline::shading::GouraudLit;
-use rasterizer_core::pipeline::{MeshSource, Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::{MeshSource, Pipeline, Transforms, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer};
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::Framebuffer;
@@ -92,7 +92,8 @@ fn render(path: &Path) -> (Vec<u8>, usize) {
     let mut buf = vec![0u8; (W * H * 3) as usize];
     let mut fb = Framebuffer::<Rgb888>::new(&mut buf, W, H).unwrap();
     fb.clear(Rgb888::BLACK).unwrap();
-    let stats = p.draw(&mut fb, &mesh).unwrap();
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.vertices()];
+    let stats = p.draw(&mut fb, &mesh, &mut scratch).unwrap();
     assert!(
         stats.drawn > 0,
         "{}: nothing drawn {stats:?}",

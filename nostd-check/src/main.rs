@@ -82,15 +82,15 @@ where
     Ok(())
 }
 
-/// The 3D entry points: packed mesh, pipeline draws (filled, cached, wireframe, banded) with the
-/// float-free default stages.
+/// The 3D entry points: packed mesh, pipeline draws (filled, wireframe, banded; with a short
+/// vertex scratch and with none) with the float-free default stages.
 #[cfg(feature = "all")]
 fn draw_3d(buf: &mut [u16]) -> u32 {
     use rasterizer_core::math::{Fx16, Vec3};
     use rasterizer_core::mesh::PackedMesh;
     use rasterizer_core::pipeline::cull::{CullClockwise, NoCull};
     use rasterizer_core::pipeline::shading::{FlatLit, PhongLit, Unlit};
-    use rasterizer_core::pipeline::{Banding, BinEntry, CachedVertex, Pipeline, Viewport};
+    use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, VertexSlot, Viewport};
     use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
     use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 
@@ -128,16 +128,15 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
             depth,
             PhongLit::<Fx16, Rgb565, 2>::new(lighting.clone()),
         );
-        let mut cache = [CachedVertex::default(); 16];
-        drawn += pl
-            .draw_cached(&mut fb, &mesh, &mut cache)
-            .map_or(0, |s| s.drawn);
+        // Shorter than the mesh: the first 16 vertices are kept, the others processed per triangle.
+        let mut scratch = [VertexSlot::EMPTY; 16];
+        drawn += pl.draw(&mut fb, &mesh, &mut scratch).map_or(0, |s| s.drawn);
     }
     let mut pl =
         Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, NoDepth, Unlit { color: Rgb565::RED });
-    drawn += pl.draw(&mut fb, &mesh).map_or(0, |s| s.drawn);
+    drawn += pl.draw(&mut fb, &mesh, &mut []).map_or(0, |s| s.drawn);
     drawn += pl
-        .draw_wireframe(&mut fb, &mesh, Rgb565::WHITE)
+        .draw_wireframe(&mut fb, &mesh, &mut [], Rgb565::WHITE)
         .map_or(0, |s| s.drawn);
     // Bands of 8 rows.
     let mut band_z = [u16::MAX; 64 * 8];
@@ -151,6 +150,7 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
         );
         let mut band = [0u16; 64 * 8];
         let mut bins = [BinEntry::ZERO; 1024];
+        let mut scratch = [VertexSlot::EMPTY; 64];
         let banding = Banding {
             width: 64,
             height: 48,
@@ -159,7 +159,7 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
             clear_depth: u16::MAX,
         };
         drawn += pl
-            .draw_banded(&mesh, &banding, &mut band, &mut bins, &mut [], |b| {
+            .draw_banded(&mesh, &banding, &mut band, &mut bins, &mut scratch, |b| {
                 black_box(b.framebuffer().as_slice());
             })
             .map_or(0, |s| s.drawn);

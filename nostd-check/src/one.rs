@@ -5,8 +5,9 @@
 //!
 //! 3D: one shading feature (`unlit`, `flat`, `gouraud`, `phong`), optionally `depth` (a 16-bit
 //! depth buffer, `Compare::Less`), `cull` (`CullClockwise`) and the draw call (`draw` by default,
-//! `cached` for `draw_cached`, `banded` for `draw_banded` in 16-row bands, both for banded with a
-//! vertex cache). The scene is M1: the packed Suzanne, 320 x 240 Rgb565, one directional light.
+//! `banded` for `draw_banded` in 16-row bands), each with a vertex scratch of one slot per mesh
+//! vertex, or with an empty one with `noscratch`. The scene is M1: the packed Suzanne, 320 x 240
+//! Rgb565, one directional light.
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, each one call into a 320 x 240 Rgb565
 //! framebuffer. No feature at all gives the empty baseline (start-up and panic handler only).
 //!
@@ -36,8 +37,8 @@ compile_error!("choose at most one shading feature: unlit, flat, gouraud or phon
     any(
         feature = "depth",
         feature = "cull",
-        feature = "cached",
-        feature = "banded"
+        feature = "banded",
+        feature = "noscratch"
     ),
     not(any(
         feature = "unlit",
@@ -47,7 +48,7 @@ compile_error!("choose at most one shading feature: unlit, flat, gouraud or phon
     ))
 ))]
 compile_error!(
-    "depth, cull, cached and banded need a shading feature: unlit, flat, gouraud or phong"
+    "depth, cull, banded and noscratch need a shading feature: unlit, flat, gouraud or phong"
 );
 
 /// A whole 320 x 240 Rgb565 frame (a static, for the 2D calls and the whole-frame 3D draws) as a
@@ -148,8 +149,8 @@ mod three_d {
     use rasterizer_core::mesh::PackedMesh;
     use rasterizer_core::pipeline::{Pipeline, Viewport};
 
-    /// Suzanne's vertices: the length of the vertex cache.
-    #[cfg(feature = "cached")]
+    /// Suzanne's vertices: the length of the vertex scratch.
+    #[cfg(not(feature = "noscratch"))]
     const VERTICES: usize = 507;
     /// Suzanne's triangles: bins for the worst case, every triangle visible.
     #[cfg(feature = "banded")]
@@ -172,10 +173,9 @@ mod three_d {
     #[cfg(feature = "phong")]
     type Sh = rasterizer_core::pipeline::shading::PhongLit<Fx16, Rgb565, 1>;
 
-    /// A vertex cache entry of the chosen shading.
-    type Cached = rasterizer_core::pipeline::CachedVertex<
-        Fx16,
-        <Sh as rasterizer_core::pipeline::shading::Shading<Fx16>>::Varyings,
+    /// A vertex scratch slot of the chosen shading.
+    type Slot = rasterizer_core::pipeline::VertexSlot<
+        <Sh as rasterizer_core::pipeline::shading::Shading<Fx16>>::Stored,
     >;
 
     #[cfg(feature = "depth")]
@@ -185,8 +185,11 @@ mod three_d {
     #[cfg(feature = "banded")]
     static mut BINS: [rasterizer_core::pipeline::BinEntry; TRIANGLES] =
         [rasterizer_core::pipeline::BinEntry::ZERO; TRIANGLES];
-    #[cfg(feature = "cached")]
-    static mut CACHE: core::mem::MaybeUninit<[Cached; VERTICES]> = core::mem::MaybeUninit::uninit();
+    // Uninitialised, so that it lies in .bss (an initialised static's image would cost flash); the
+    // draw call needs no particular contents anyway, but the slots are written once below so that
+    // the array is initialised.
+    #[cfg(not(feature = "noscratch"))]
+    static mut SCRATCH: core::mem::MaybeUninit<[Slot; VERTICES]> = core::mem::MaybeUninit::uninit();
 
     #[cfg(feature = "unlit")]
     fn shading() -> Sh {
@@ -242,22 +245,22 @@ mod three_d {
         };
         #[cfg(not(feature = "depth"))]
         let depth = rasterizer_core::raster::interp::NoDepth;
-        #[cfg(feature = "cached")]
-        let cache: &mut [Cached] = {
-            // SAFETY: the only reference to CACHE, made once; every entry is written before the
+        #[cfg(not(feature = "noscratch"))]
+        let scratch: &mut [Slot] = {
+            // SAFETY: the only reference to SCRATCH, made once; every slot is written before the
             // array is treated as initialised.
             #[allow(static_mut_refs)]
-            let cache = unsafe { &mut CACHE };
-            let first = cache.as_mut_ptr().cast::<Cached>();
+            let scratch = unsafe { &mut SCRATCH };
+            let first = scratch.as_mut_ptr().cast::<Slot>();
             for i in 0..VERTICES {
                 // SAFETY: `i` is within the array.
-                unsafe { first.add(i).write(Cached::default()) };
+                unsafe { first.add(i).write(Slot::EMPTY) };
             }
-            // SAFETY: all VERTICES entries were written above.
-            unsafe { cache.assume_init_mut() }
+            // SAFETY: all VERTICES slots were written above.
+            unsafe { scratch.assume_init_mut() }
         };
-        #[cfg(not(feature = "cached"))]
-        let cache: &mut [Cached] = &mut [];
+        #[cfg(feature = "noscratch")]
+        let scratch: &mut [Slot] = &mut [];
         let mut pl =
             Pipeline::<Fx16, _, _, Sh>::new(&xf, Viewport::new(W, H), cull, depth, shading());
 
@@ -266,13 +269,7 @@ mod three_d {
             let Some(mut fb) = super::frame() else {
                 return 0;
             };
-            #[cfg(feature = "cached")]
-            let stats = pl.draw_cached(&mut fb, &mesh, cache);
-            #[cfg(not(feature = "cached"))]
-            let stats = {
-                let _ = &cache;
-                pl.draw(&mut fb, &mesh)
-            };
+            let stats = pl.draw(&mut fb, &mesh, scratch);
             black_box(fb.as_slice());
             stats.map_or(0, |s| s.drawn)
         }
@@ -289,7 +286,7 @@ mod three_d {
                 background: Rgb565::new(0, 0, 0),
                 clear_depth: u16::MAX,
             };
-            pl.draw_banded(&mesh, &banding, band, bins, cache, |b| {
+            pl.draw_banded(&mesh, &banding, band, bins, scratch, |b| {
                 // Where firmware would start the display's DMA.
                 black_box(b.framebuffer().as_slice());
             })

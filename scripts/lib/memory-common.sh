@@ -8,7 +8,7 @@
 NOSTD_DIR="$TARGET_DIR/nostd-variants"
 
 # features_of CONFIGURATION: the nostd-check features of a configuration named as the stack test
-# names it (SHADING_DEPTH_CULL_MODE[_cached], or a 2D primitive; `all` and `empty` have none).
+# names it (SHADING_DEPTH_CULL_MODE[_noscratch], or a 2D primitive; `all` and `empty` have none).
 features_of() {
     case "$1" in
     line) echo line2d ;;
@@ -24,10 +24,10 @@ features_of() {
         [ "$2" = depth ] && f="$f,depth"
         [ "$3" = cull ] && f="$f,cull"
         case "$4" in
-        cached) f="$f,cached" ;;
+        noscratch) f="$f,noscratch" ;;
         banded16) f="$f,banded" ;;
         esac
-        [ "${5:-}" = cached ] && f="$f,cached"
+        [ "${5:-}" = noscratch ] && f="$f,noscratch"
         echo "$f"
         ;;
     esac

@@ -1,8 +1,12 @@
-//! Band rendering gives exactly the whole-frame picture, for every band height, on meshes and on
-//! random triangle soups (with and without a depth test, where draw order matters).
+//! Band rendering gives exactly the whole-frame picture (and the same statistics), for every band
+//! height, with a full vertex scratch, a short one and none, on meshes and on random triangle soups
+//! (with and without a depth test, where draw order matters); bins stay 4 bytes for any mesh size
+//! and any number of bands.
 
+use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
+use embedded_graphics_core::primitives::Rectangle;
 use proptest::prelude::*;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::numerics::{
@@ -12,8 +16,8 @@ use rasterizer_core::numerics::{
 use rasterizer_core::pipeline::cull::{CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{GouraudLit, Shading, VertexColors};
 use rasterizer_core::pipeline::{
-    BandError, Banding, BinEntry, CachedVertex, Mesh, MeshSource, Pipeline, Transforms, Viewport,
-    DEFAULT_BITS,
+    BandError, Banding, BinEntry, Mesh, MeshSource, Pipeline, RenderStats, Transforms, VertexSlot,
+    Viewport, DEFAULT_BITS,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::target::Framebuffer;
@@ -46,12 +50,41 @@ fn transforms(w: u32, h: u32, yaw: i32) -> Transforms<Fx16> {
 // The M1 lighting, shared with the benchmarks.
 use host_tools::scenes3d::lighting;
 
+/// How much vertex scratch a draw gets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Scratch {
+    /// One slot per mesh vertex.
+    Full,
+    /// Slots for the first half of the vertices.
+    Half,
+    /// None.
+    Empty,
+}
+
+impl Scratch {
+    const ALL: [Scratch; 3] = [Scratch::Full, Scratch::Half, Scratch::Empty];
+
+    /// A scratch of this size for `mesh`.
+    fn slots<St: rasterizer_core::pipeline::Packed>(
+        self,
+        mesh: &impl MeshSource<Fx16>,
+    ) -> Vec<VertexSlot<St>> {
+        let n = match self {
+            Scratch::Full => mesh.vertex_count(),
+            Scratch::Half => mesh.vertex_count() / 2,
+            Scratch::Empty => 0,
+        };
+        vec![VertexSlot::EMPTY; n]
+    }
+}
+
+/// A whole-frame draw with a full scratch: the picture every banded draw must give.
 fn whole_frame<M, C, D, Sh, N>(
     mesh: &M,
     w: u32,
     h: u32,
     mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, false, N>,
-) -> Vec<u16>
+) -> (Vec<u16>, RenderStats)
 where
     M: MeshSource<Fx16>,
     C: rasterizer_core::pipeline::cull::Cull,
@@ -62,8 +95,10 @@ where
     let mut whole = vec![0u16; (w * h) as usize];
     let mut fb = Framebuffer::<Rgb565>::new(&mut whole, w, h).unwrap();
     fb.clear(Rgb565::BLACK).unwrap();
-    p.draw(&mut fb, mesh).unwrap();
-    whole
+    let stats = p
+        .draw(&mut fb, mesh, &mut Scratch::Full.slots(mesh))
+        .unwrap();
+    (whole, stats)
 }
 
 fn banded<M, C, D, Sh, N>(
@@ -71,8 +106,9 @@ fn banded<M, C, D, Sh, N>(
     w: u32,
     h: u32,
     rows: u32,
+    scratch: Scratch,
     mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, false, N>,
-) -> Vec<u16>
+) -> (Vec<u16>, RenderStats)
 where
     M: MeshSource<Fx16>,
     C: rasterizer_core::pipeline::cull::Cull,
@@ -81,7 +117,9 @@ where
     N: Numerics,
 {
     let mut band = vec![0u16; (w * rows.min(h)) as usize];
-    let mut bins = vec![BinEntry::default(); mesh.triangle_count()];
+    // A bin per triangle, and a filler for each gap of 65,535 (at most one per 65,535 triangles).
+    let mut bins =
+        vec![BinEntry::default(); mesh.triangle_count() + mesh.triangle_count() / 65_535];
     let mut out = vec![0u16; (w * h) as usize];
     let banding = Banding {
         width: w,
@@ -90,16 +128,28 @@ where
         background: Rgb565::BLACK,
         clear_depth: u16::MAX,
     };
-    p.draw_banded(mesh, &banding, &mut band, &mut bins, &mut [], |b| {
-        let y0 = b.y0() as usize * w as usize;
-        let data = b.framebuffer().as_slice();
-        out[y0..y0 + data.len()].copy_from_slice(data);
-    })
-    .unwrap();
-    out
+    let mut slots = scratch.slots(mesh);
+    let mut next_row = 0;
+    let stats = p
+        .draw_banded(mesh, &banding, &mut band, &mut bins, &mut slots, |b| {
+            // Bands come top to bottom, each `rows` high but the last.
+            assert_eq!(b.y0(), next_row);
+            let y0 = b.y0() as usize * w as usize;
+            let data = b.framebuffer().as_slice();
+            out[y0..y0 + data.len()].copy_from_slice(data);
+            next_row += rows as i32;
+        })
+        .unwrap();
+    assert_eq!(
+        next_row as u32,
+        h.div_ceil(rows) * rows,
+        "every band handed on once"
+    );
+    (out, stats)
 }
 
-/// The whole frame, then the same scene in bands of each height, compared pixel for pixel.
+/// The whole frame, then the same scene in bands of each height, compared pixel for pixel and
+/// statistic for statistic: with the scratch sizes `scratch` gives for a band height.
 fn compare_bands<M, C, Sh>(
     mesh: &M,
     w: u32,
@@ -107,6 +157,7 @@ fn compare_bands<M, C, Sh>(
     make: &dyn Fn() -> (C, Sh),
     depth: Option<Compare>,
     rows_list: &[u32],
+    scratch: &dyn Fn(u32) -> Vec<Scratch>,
 ) where
     M: MeshSource<Fx16>,
     C: rasterizer_core::pipeline::cull::Cull,
@@ -130,30 +181,29 @@ fn compare_bands<M, C, Sh>(
             whole_frame(mesh, w, h, Pipeline::new(&xf, vp, c, NoDepth, sh))
         }
     };
+    let (whole, whole_stats) = whole;
     for &rows in rows_list {
-        let out = match depth {
-            Some(cmp) => {
-                let r = rows.min(h);
-                let mut z = vec![u16::MAX; (w * r) as usize];
-                let (c, sh) = make();
-                banded(
-                    mesh,
-                    w,
-                    h,
-                    rows,
-                    Pipeline::new(&xf, vp, c, DepthBuffer::new(&mut z, w, r, cmp).unwrap(), sh),
-                )
-            }
-            None => {
-                let (c, sh) = make();
-                banded(mesh, w, h, rows, Pipeline::new(&xf, vp, c, NoDepth, sh))
-            }
-        };
-        let differ = whole.iter().zip(&out).filter(|(a, b)| a != b).count();
-        assert_eq!(
-            differ, 0,
-            "{differ} pixels differ with bands of {rows} rows"
-        );
+        for s in scratch(rows) {
+            let (out, stats) = match depth {
+                Some(cmp) => {
+                    let r = rows.min(h);
+                    let mut z = vec![u16::MAX; (w * r) as usize];
+                    let (c, sh) = make();
+                    let d = DepthBuffer::new(&mut z, w, r, cmp).unwrap();
+                    banded(mesh, w, h, rows, s, Pipeline::new(&xf, vp, c, d, sh))
+                }
+                None => {
+                    let (c, sh) = make();
+                    banded(mesh, w, h, rows, s, Pipeline::new(&xf, vp, c, NoDepth, sh))
+                }
+            };
+            let differ = whole.iter().zip(&out).filter(|(a, b)| a != b).count();
+            assert_eq!(
+                differ, 0,
+                "{differ} pixels differ with bands of {rows} rows ({s:?} scratch)"
+            );
+            assert_eq!(stats, whole_stats, "bands of {rows} rows ({s:?} scratch)");
+        }
     }
 }
 
@@ -179,11 +229,16 @@ fn suzanne_bands_for_every_numerics() {
     fn check<N: Numerics>(mesh: &Mesh<'_, Fx16, u32>) {
         let (w, h) = (160u32, 120u32);
         let mut z = vec![u16::MAX; (w * h) as usize];
-        let whole = whole_frame(mesh, w, h, pipeline::<N>(&mut z, h));
-        for rows in [1u32, 7, 16, 120] {
+        let (whole, _) = whole_frame(mesh, w, h, pipeline::<N>(&mut z, h));
+        for (rows, scratch) in [
+            (1u32, Scratch::Full),
+            (7, Scratch::Empty),
+            (16, Scratch::Half),
+            (120, Scratch::Full),
+        ] {
             let mut z = vec![u16::MAX; (w * rows) as usize];
-            let out = banded(mesh, w, h, rows, pipeline::<N>(&mut z, rows));
-            assert!(out == whole, "{rows} rows differ");
+            let (out, _) = banded(mesh, w, h, rows, scratch, pipeline::<N>(&mut z, rows));
+            assert!(out == whole, "{rows} rows differ ({scratch:?} scratch)");
         }
     }
     let m = suzanne();
@@ -212,11 +267,13 @@ fn suzanne_every_band_height() {
         },
         Some(Compare::Less),
         &rows,
+        // Each scratch size in turn: a third of the heights each.
+        &|rows| vec![Scratch::ALL[rows as usize % 3]],
     );
 }
 
 #[test]
-fn suzanne_m1_size_common_band_heights_with_cache() {
+fn suzanne_m1_size_common_band_heights_with_and_without_scratch() {
     let m = suzanne();
     let mesh = m.mesh();
     let (w, h) = (320u32, 240u32);
@@ -232,13 +289,21 @@ fn suzanne_m1_size_common_band_heights_with_cache() {
             depth,
             GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
         );
-        p.draw(&mut fb, &mesh).unwrap();
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+        let stats = p.draw(&mut fb, &mesh, &mut scratch).unwrap();
+        assert_eq!((stats.drawn, stats.culled), (609, 359));
     }
-    for rows in [8u32, 16, 32, 240] {
+    for (rows, scratch) in [
+        (8u32, Scratch::Full),
+        (16, Scratch::Full),
+        (16, Scratch::Empty),
+        (32, Scratch::Half),
+        (240, Scratch::Full),
+    ] {
         let mut band = vec![0u16; (w * rows) as usize];
         let mut zb = vec![u16::MAX; (w * rows) as usize];
         let mut bins = vec![BinEntry::default(); 1000];
-        let mut cache = vec![CachedVertex::default(); mesh.vertex_count()];
+        let mut slots = scratch.slots(&mesh);
         let depth = DepthBuffer::new(&mut zb, w, rows, Compare::Less).unwrap();
         let mut p = Pipeline::<_, _, _, _>::new(
             &transforms(w, h, 30),
@@ -256,14 +321,14 @@ fn suzanne_m1_size_common_band_heights_with_cache() {
             clear_depth: u16::MAX,
         };
         let stats = p
-            .draw_banded(&mesh, &banding, &mut band, &mut bins, &mut cache, |b| {
+            .draw_banded(&mesh, &banding, &mut band, &mut bins, &mut slots, |b| {
                 let y0 = b.y0() as usize * w as usize;
                 let data = b.framebuffer().as_slice();
                 out[y0..y0 + data.len()].copy_from_slice(data);
             })
             .unwrap();
         assert_eq!((stats.drawn, stats.culled), (609, 359));
-        assert_eq!(whole, out, "bands of {rows} rows");
+        assert_eq!(whole, out, "bands of {rows} rows ({scratch:?} scratch)");
     }
 }
 
@@ -309,6 +374,270 @@ fn band_errors_are_typed() {
         "{err:?}"
     );
     assert!(!called, "nothing is drawn when the bins are too few");
+    // The count it asks for is enough, and one fewer is not.
+    let Err(BandError::TooFewBins { needed, .. }) =
+        p.draw_banded(&mesh, &banding(8), &mut band, &mut [], &mut [], |_| {})
+    else {
+        panic!("no bins must be too few");
+    };
+    assert!(needed > 100, "{needed} bins for Suzanne");
+    let mut bins = vec![BinEntry::default(); needed];
+    assert_eq!(
+        p.draw_banded(
+            &mesh,
+            &banding(8),
+            &mut band,
+            &mut bins[..needed - 1],
+            &mut [],
+            |_| {}
+        )
+        .unwrap_err(),
+        BandError::TooFewBins {
+            needed,
+            actual: needed - 1
+        }
+    );
+    let mut bands = 0;
+    p.draw_banded(&mesh, &banding(8), &mut band, &mut bins, &mut [], |_| {
+        bands += 1
+    })
+    .unwrap();
+    assert_eq!(bands, 6);
+}
+
+#[test]
+fn band_depth_buffer_too_small_is_an_error() {
+    let m = suzanne();
+    let mesh = m.mesh();
+    let (w, h, rows) = (64u32, 48u32, 8u32);
+    let banding = Banding {
+        width: w,
+        height: h,
+        rows,
+        background: Rgb565::BLACK,
+        clear_depth: u16::MAX,
+    };
+    let draw = |viewport: Viewport, zw: u32, zh: u32| {
+        let mut z = vec![u16::MAX; (zw * zh) as usize];
+        let depth = DepthBuffer::new(&mut z, zw, zh, Compare::Less).unwrap();
+        let mut p = Pipeline::<_, _, _, _>::new(
+            &transforms(w, h, 0),
+            viewport,
+            CullClockwise,
+            depth,
+            GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
+        );
+        let mut band = vec![0u16; (w * rows) as usize];
+        let mut bins = vec![BinEntry::default(); mesh.triangle_count()];
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+        let mut called = false;
+        let result = p.draw_banded(&mesh, &banding, &mut band, &mut bins, &mut scratch, |_| {
+            called = true
+        });
+        assert_eq!(
+            called,
+            result.is_ok(),
+            "bands drawn although the draw failed"
+        );
+        result
+    };
+    let band_rect = |x, wd, ht| Rectangle::new(Point::new(x, 0), Size::new(wd, ht));
+    // One row short, one column short.
+    let full = Viewport::new(w, h);
+    assert_eq!(
+        draw(full, w, rows - 1).unwrap_err(),
+        BandError::DepthTooSmall {
+            needed: band_rect(0, w, rows)
+        }
+    );
+    assert_eq!(
+        draw(full, w - 1, rows).unwrap_err(),
+        BandError::DepthTooSmall {
+            needed: band_rect(0, w, rows)
+        }
+    );
+    assert!(draw(full, w, rows).is_ok());
+    // A buffer of a whole frame holds every band too.
+    assert!(draw(full, w, h).is_ok());
+    // Only the band within the viewport needs depths: a viewport of the left half needs half a
+    // band, one that starts further right needs the columns up to its right edge.
+    let left = Viewport::new(w / 2, h);
+    assert!(draw(left, w / 2, rows).is_ok());
+    let right = Viewport {
+        x: 8,
+        y: 0,
+        width: w / 2,
+        height: h,
+    };
+    assert_eq!(
+        draw(right, w / 2, rows).unwrap_err(),
+        BandError::DepthTooSmall {
+            needed: band_rect(8, w / 2, rows)
+        }
+    );
+    assert!(draw(right, w / 2 + 8, rows).is_ok());
+}
+
+/// A mesh of `count` triangles of which only those in `visible` lie in front of the camera: the
+/// others alternate between a degenerate triangle (zero area, culled) and one behind the camera
+/// (outside). The visible ones overlap, each in its own colour, so that a frame drawn without a
+/// depth test shows their order.
+fn sparse_mesh(visible: &[usize], count: usize) -> (Vec<Vec3<Fx16>>, Vec<Rgb888>, Vec<[u16; 3]>) {
+    let v = |x: i32, y: i32, z: i32| {
+        Vec3::new(
+            Fx16::from_ratio(i64::from(x), 8),
+            Fx16::from_ratio(i64::from(y), 8),
+            Fx16::from_ratio(i64::from(z), 8),
+        )
+    };
+    let mut positions = vec![
+        // Behind the camera at z = 3.
+        v(-8, -8, 40),
+        v(8, -8, 40),
+        v(0, 8, 40),
+        // In front of it.
+        v(0, 0, 0),
+    ];
+    let mut colors = vec![Rgb888::WHITE; positions.len()];
+    let mut tris: Vec<[u16; 3]> = (0..count)
+        .map(|t| if t % 2 == 0 { [3, 3, 3] } else { [0, 1, 2] })
+        .collect();
+    // Each visible triangle its own, shifted a little to the right and down from the last, all
+    // overlapping (counter-clockwise, as seen from the camera).
+    for (k, &t) in visible.iter().enumerate() {
+        let d = 2 * k as i32;
+        let base = positions.len() as u16;
+        positions.extend([v(-8 + d, -6 - d, 0), v(8 + d, -6 - d, 0), v(d, 8 - d, 0)]);
+        let c = [Rgb888::RED, Rgb888::GREEN, Rgb888::BLUE][k % 3];
+        colors.extend([c; 3]);
+        tris[t] = [base, base + 1, base + 2];
+    }
+    (positions, colors, tris)
+}
+
+#[test]
+fn bins_span_gaps_beyond_65535_triangles() {
+    let (w, h) = (64u32, 48u32);
+    // (visible triangles, mesh size, bins the frame needs: one per visible triangle plus a filler
+    // per 65,535 triangles skipped beyond the 16-bit step).
+    let cases: [(&[usize], usize, usize); 5] = [
+        (&[0, 70_000], 70_001, 3),
+        (&[0, 65_535], 65_536, 2),
+        (&[0, 65_536], 65_537, 3),
+        (&[70_000], 70_001, 2),
+        (&[3, 140_003, 140_004], 140_010, 5),
+    ];
+    for (visible, count, needed) in cases {
+        let (pos, colors, tris) = sparse_mesh(visible, count);
+        let mesh = Mesh {
+            positions: &pos,
+            normals: None,
+            colors: Some(&colors),
+            triangles: &tris,
+        };
+        let make = || {
+            Pipeline::<_, _, _, _>::new(
+                &transforms(w, h, 0),
+                Viewport::new(w, h),
+                NoCull,
+                NoDepth,
+                VertexColors::<Rgb565>::new(),
+            )
+        };
+        let (whole, whole_stats) = whole_frame(&mesh, w, h, make());
+        let hidden = (0..count as u32).filter(|t| !visible.contains(&(*t as usize)));
+        let culled = hidden.clone().filter(|t| t % 2 == 0).count() as u32;
+        assert_eq!(
+            whole_stats,
+            RenderStats {
+                triangles: count as u32,
+                invalid: 0,
+                outside: hidden.count() as u32 - culled,
+                clipped: 0,
+                culled,
+                drawn: visible.len() as u32,
+            },
+            "{visible:?}"
+        );
+        // Every visible triangle shows: the last one drawn on top, the others around it.
+        for k in 0..visible.len() {
+            let c = RawU16::from(Rgb565::from(
+                [Rgb888::RED, Rgb888::GREEN, Rgb888::BLUE][k % 3],
+            ))
+            .into_inner();
+            let n = whole.iter().filter(|&&p| p == c).count();
+            assert!(n > 20, "{visible:?}: triangle {k} shows at {n} pixels");
+        }
+        let banding = Banding {
+            width: w,
+            height: h,
+            rows: 8,
+            background: Rgb565::BLACK,
+            clear_depth: u16::MAX,
+        };
+        let mut band = vec![0u16; (w * 8) as usize];
+        let mut scratch = vec![VertexSlot::EMPTY; pos.len()];
+        let mut bins = vec![BinEntry::ZERO; needed];
+        assert_eq!(
+            make()
+                .draw_banded(
+                    &mesh,
+                    &banding,
+                    &mut band,
+                    &mut bins[..needed - 1],
+                    &mut scratch,
+                    |_| {}
+                )
+                .unwrap_err(),
+            BandError::TooFewBins {
+                needed,
+                actual: needed - 1
+            },
+            "{visible:?}"
+        );
+        for rows in [1u32, 8, 48] {
+            for s in Scratch::ALL {
+                let (out, stats) = banded(&mesh, w, h, rows, s, make());
+                assert!(
+                    out == whole,
+                    "{visible:?}: bands of {rows} rows ({s:?} scratch)"
+                );
+                assert_eq!(stats, whole_stats, "{visible:?}");
+            }
+        }
+        let mut out = vec![0u16; (w * h) as usize];
+        make()
+            .draw_banded(&mesh, &banding, &mut band, &mut bins, &mut scratch, |b| {
+                let y0 = b.y0() as usize * w as usize;
+                let data = b.framebuffer().as_slice();
+                out[y0..y0 + data.len()].copy_from_slice(data);
+            })
+            .unwrap();
+        assert!(out == whole, "{visible:?}: exactly {needed} bins");
+    }
+}
+
+#[test]
+fn more_than_256_bands_match_the_whole_frame() {
+    // Band numbers beyond a byte: an entry's first and last band count groups of bands then.
+    let m = suzanne();
+    let mesh = m.mesh();
+    for (w, h, rows) in [(40u32, 600u32, 2u32), (40, 600, 1), (24, 1000, 3)] {
+        compare_bands(
+            &mesh,
+            w,
+            h,
+            &|| {
+                (
+                    CullClockwise,
+                    GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
+                )
+            },
+            Some(Compare::Less),
+            &[rows],
+            &|_| Scratch::ALL.to_vec(),
+        );
+    }
 }
 
 /// A random triangle soup with per-vertex colours, in a box in front of the camera.
@@ -345,6 +674,14 @@ proptest! {
         // Without a depth test overlapping triangles show the last one drawn, so this also checks
         // that bands keep the mesh order.
         let cmp = depth.then_some(Compare::LessEqual);
-        compare_bands(&mesh, w, h, &|| (NoCull, VertexColors::<Rgb565>::new()), cmp, &[rows]);
+        compare_bands(
+            &mesh,
+            w,
+            h,
+            &|| (NoCull, VertexColors::<Rgb565>::new()),
+            cmp,
+            &[rows],
+            &|_| Scratch::ALL.to_vec(),
+        );
     }
 }

@@ -7,7 +7,7 @@ use proptest::prelude::*;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Scalar, Vec3};
 use rasterizer_core::pipeline::cull::CullClockwise;
 use rasterizer_core::pipeline::shading::Unlit;
-use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::NoDepth;
 
 fn transforms<S: Scalar>(yaw: u16, dist: i32, fov: i32) -> Transforms<S> {
@@ -115,7 +115,12 @@ fn f32_pipeline_renders_the_same_cube_as_fixed_point() {
                 color: Rgb888::WHITE,
             },
         );
-        p.draw(fb, &Mesh::new(&corners, &faces)).unwrap();
+        p.draw(
+            fb,
+            &Mesh::new(&corners, &faces),
+            &mut [VertexSlot::EMPTY; 8],
+        )
+        .unwrap();
     });
     let b = render(&mut |fb| {
         let mut p = Pipeline::<f32, _, _, _, 4>::new(
@@ -127,7 +132,12 @@ fn f32_pipeline_renders_the_same_cube_as_fixed_point() {
                 color: Rgb888::WHITE,
             },
         );
-        p.draw(fb, &Mesh::new(&corners_f, &faces)).unwrap();
+        p.draw(
+            fb,
+            &Mesh::new(&corners_f, &faces),
+            &mut [VertexSlot::EMPTY; 8],
+        )
+        .unwrap();
     });
     let differing = a.chunks(3).zip(b.chunks(3)).filter(|(x, y)| x != y).count();
     let covered = a.chunks(3).filter(|x| x[0] != 0).count();

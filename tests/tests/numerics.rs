@@ -13,13 +13,17 @@ use rasterizer_core::numerics::{
     Standard,
 };
 use rasterizer_core::pipeline::cull::CullClockwise;
-use rasterizer_core::pipeline::shading::Unlit;
-use rasterizer_core::pipeline::{Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::shading::{Shading, Unlit};
+use rasterizer_core::pipeline::{Pipeline, Transforms, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::{
     fill_triangle_interp_with, Compare, DepthBuffer, ScreenVertex,
 };
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::target::{AnyTarget, Framebuffer};
 
+/// Exact division and exact span starts: what the other knobs are measured against. (`Standard`
+/// starts spans with the pipeline's wrapping planes; `fill_triangle_interp_with` treats that as
+/// exact, the pipeline as its fused span loop.)
+type Exact = Custom<ExactDivide, 16, ExactSpans>;
 type Recip = Custom<ReciprocalDivide, 16, ExactSpans>;
 type Newton = Custom<NewtonDivide, 16, ExactSpans>;
 type Gradient = Custom<ExactDivide, 16, GradientSpans>;
@@ -179,7 +183,7 @@ proptest! {
     /// rounded planes (at 16 fractional bits and spans of at most 96 pixels).
     #[test]
     fn gradient_spans_within_one_step(v in prop::array::uniform3(vertex())) {
-        let exact = draw_one::<Standard>(v);
+        let exact = draw_one::<Exact>(v);
         let gradient = draw_one::<Gradient>(v);
         let (color, depth) = compare(&exact, &gradient);
         prop_assert!(color <= 1 && depth <= 1, "colour {} depth {}", color, depth);
@@ -189,7 +193,7 @@ proptest! {
     /// most 96 pixels the error grows by at most 96 / 2^(FRAC + 1) units, plus one for rounding.
     #[test]
     fn fewer_fraction_bits_within_their_bound(v in prop::array::uniform3(vertex())) {
-        let exact = draw_one::<Standard>(v);
+        let exact = draw_one::<Exact>(v);
         let f12 = draw_one::<Custom<ExactDivide, 12, ExactSpans>>(v);
         let f8 = draw_one::<Custom<ExactDivide, 8, GradientSpans>>(v);
         // Depth is in whole units: 96 / 2^13 < 1, 96 / 2^9 < 1.
@@ -220,7 +224,7 @@ fn coverage_is_independent_of_numerics() {
         let covered = |d: &(Vec<Rgb888>, Vec<u16>)| -> Vec<bool> {
             d.1.iter().map(|&z| z != u16::MAX).collect()
         };
-        let base = covered(&draw_one::<Standard>(v));
+        let base = covered(&draw_one::<Exact>(v));
         // Depth 65535 may be a real depth: compare only where the exact draw has another value.
         for other in [
             covered(&draw_one::<Gradient>(v)),
@@ -228,10 +232,7 @@ fn coverage_is_independent_of_numerics() {
         ] {
             for (i, (&a, &b)) in base.iter().zip(&other).enumerate() {
                 if a {
-                    assert!(
-                        b || draw_one::<Standard>(v).1[i] >= u16::MAX - 1,
-                        "pixel {i}"
-                    );
+                    assert!(b || draw_one::<Exact>(v).1[i] >= u16::MAX - 1, "pixel {i}");
                 }
             }
         }
@@ -274,4 +275,123 @@ fn projection_near_the_format_limit_is_exact() {
     let n = i128::from(w - y) * (i128::from(height) << 4);
     let d = i128::from(2 * w);
     assert_eq!(i128::from(exact.0.y), (2 * n + d).div_euclid(2 * d));
+}
+
+/// Suzanne (M1 scene, 160 x 120, depth buffer, back faces culled) drawn with `shading` through
+/// numerics `N`: the colours and the depth buffer.
+fn suzanne_with<C, Sh, N>(shading: Sh) -> (Vec<C>, Vec<u16>)
+where
+    C: PixelColor + Default,
+    Sh: Shading<Fx16, Color = C>,
+    N: Numerics,
+{
+    let (w, h) = (160u32, 120u32);
+    let loaded = host_tools::obj::LoadedMesh::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj"),
+    )
+    .unwrap();
+    let colors: Vec<Rgb888> = loaded
+        .positions
+        .iter()
+        .map(|p| {
+            let ch = |v: Fx16| (v.to_bits().clamp(-65536, 65535) + 65536) as u32 * 255 / 131_071;
+            Rgb888::new(ch(p.x) as u8, ch(p.y) as u8, ch(p.z) as u8)
+        })
+        .collect();
+    let mut mesh = loaded.mesh();
+    mesh.colors = Some(&colors);
+    let mut pixels = vec![C::default(); (w * h) as usize];
+    let mut depth = vec![u16::MAX; (w * h) as usize];
+    let db = DepthBuffer::new(&mut depth, w, h, Compare::Less).unwrap();
+    let mut p = Pipeline::<_, _, _, _>::new(
+        &host_tools::scenes3d::transforms(),
+        Viewport::new(w, h),
+        CullClockwise,
+        db,
+        shading,
+    )
+    .with_numerics::<N>();
+    let mut target = tests::StrictMock::<C>::new(w, h);
+    target.allow_overdraw = true;
+    let mut scratch = vec![VertexSlot::EMPTY; loaded.positions.len()];
+    p.draw(&mut AnyTarget::new(&mut target), &mesh, &mut scratch)
+        .unwrap();
+    for (i, px) in pixels.iter_mut().enumerate() {
+        if let Some(c) = target.get(i as i32 % w as i32, i as i32 / w as i32) {
+            *px = c;
+        }
+    }
+    (pixels, depth)
+}
+
+/// The default numerics' fused span loop (`SpanStart::Wrapping`) against exact span starts, for
+/// one shading model: the same pixels covered, depths within one step, and colours within one
+/// step of each channel except where the nearest triangle changed (its depth differs).
+fn wrapping_against_exact<C, Sh>(name: &str, shading: Sh, max_step: [u8; 3])
+where
+    C: PixelColor + Default + RgbColor + core::fmt::Debug,
+    Sh: Shading<Fx16, Color = C> + Clone,
+{
+    let (wc, wd) = suzanne_with::<C, Sh, Standard>(shading.clone());
+    let (ec, ed) = suzanne_with::<C, Sh, Exact>(shading);
+    let covered = |d: &[u16]| d.iter().filter(|&&z| z != u16::MAX).count();
+    assert!(covered(&ed) > 3000, "{name}: {} pixels", covered(&ed));
+    let mut worst = 0;
+    let mut differ = 0;
+    for i in 0..wd.len() {
+        assert_eq!(
+            wd[i] == u16::MAX,
+            ed[i] == u16::MAX,
+            "{name}: pixel {i} covered by one only"
+        );
+        let dz = wd[i].abs_diff(ed[i]);
+        assert!(
+            dz <= 1,
+            "{name}: pixel {i}: depth {} against {}",
+            wd[i],
+            ed[i]
+        );
+        let (a, b) = (wc[i], ec[i]);
+        let step = [
+            a.r().abs_diff(b.r()),
+            a.g().abs_diff(b.g()),
+            a.b().abs_diff(b.b()),
+        ];
+        if step != [0; 3] {
+            differ += 1;
+        }
+        if dz == 0 {
+            for c in 0..3 {
+                worst = worst.max(step[c]);
+                assert!(
+                    step[c] <= max_step[c],
+                    "{name}: pixel {i}: {a:?} against {b:?}"
+                );
+            }
+        }
+    }
+    println!("{name}: {differ} pixels differ, at most {worst} steps where depths agree");
+}
+
+/// A regression test for the Phong shader in the fused span loop: its 16.16 normals and positions
+/// times `2^FUSED_FRAC` overflowed the loop's 32 bits, so whole faces were lit wrongly.
+#[test]
+fn wrapping_spans_match_exact_spans_for_every_shading_model() {
+    use host_tools::scenes3d::lighting;
+    use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, VertexColors};
+    let one = [1; 3];
+    wrapping_against_exact::<Rgb565, _>(
+        "unlit 565",
+        Unlit {
+            color: Rgb565::CYAN,
+        },
+        [0; 3],
+    );
+    wrapping_against_exact::<Rgb565, _>("flat 565", FlatLit::new(lighting()), [0; 3]);
+    wrapping_against_exact::<Rgb565, _>("vertex colours 565", VertexColors::new(), one);
+    wrapping_against_exact::<Rgb888, _>("vertex colours 888", VertexColors::new(), one);
+    wrapping_against_exact::<Rgb565, _>("Gouraud 565", GouraudLit::new(lighting()), one);
+    wrapping_against_exact::<Rgb888, _>("Gouraud 888", GouraudLit::new(lighting()), one);
+    wrapping_against_exact::<Rgb565, _>("Phong 565", PhongLit::new(lighting()), one);
+    wrapping_against_exact::<Rgb888, _>("Phong 888", PhongLit::new(lighting()), one);
 }

@@ -12,7 +12,9 @@ use proptest::test_runner::TestRunner;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
 use rasterizer_core::pipeline::shading::Unlit;
-use rasterizer_core::pipeline::{Pipeline, RenderStats, Transforms, Viewport};
+use rasterizer_core::pipeline::{
+    MeshSource, Pipeline, RenderStats, Transforms, VertexSlot, Viewport,
+};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::target::AnyTarget;
 use tests::StrictMock;
@@ -363,7 +365,11 @@ fn draw_ids<C: Cull, D: DepthTest>(
     mock.allow_overdraw = allow_overdraw;
     let mut p: Pipeline<Fx16, C, D, FaceIds> =
         Pipeline::new(t, Viewport::new(size.0, size.1), cull, depth, FaceIds);
-    let stats = p.draw(&mut AnyTarget::new(&mut mock), &fm.mesh()).unwrap();
+    let mesh = fm.mesh();
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+    let stats = p
+        .draw(&mut AnyTarget::new(&mut mock), &mesh, &mut scratch)
+        .unwrap();
     (ids_of(&mock, size.0, size.1), stats)
 }
 
@@ -706,8 +712,9 @@ fn camera_inside_mesh() {
                 color: Rgb888::WHITE,
             },
         );
+        let mut scratch = vec![VertexSlot::EMPTY; cube.positions.len()];
         let stats = p
-            .draw(&mut AnyTarget::new(&mut mock), &cube.mesh())
+            .draw(&mut AnyTarget::new(&mut mock), &cube.mesh(), &mut scratch)
             .unwrap();
         assert_eq!(mock.calls.pixels, (W * H) as usize, "{eye:?}: {stats:?}");
         assert_eq!(mock.written().len(), (W * H) as usize, "{eye:?}");
@@ -721,7 +728,7 @@ fn camera_inside_mesh() {
                 color: Rgb888::WHITE,
             },
         );
-        p.draw(&mut AnyTarget::new(&mut mock), &cube.mesh())
+        p.draw(&mut AnyTarget::new(&mut mock), &cube.mesh(), &mut scratch)
             .unwrap();
         assert_eq!(
             mock.calls.pixels, 0,
@@ -934,7 +941,9 @@ fn zero_length_normals() {
             NoDepth,
             GouraudLit::<Fx16, Rgb888, 2>::new(lighting.clone()),
         );
-        p.draw(&mut AnyTarget::new(&mut mock), &mesh).unwrap();
+        let mut scratch = vec![VertexSlot::EMPTY; ico.positions.len()];
+        p.draw(&mut AnyTarget::new(&mut mock), &mesh, &mut scratch)
+            .unwrap();
         check(&mock, "Gouraud");
         let mut mock = StrictMock::new(W, H);
         let mut p: Pipeline<Fx16, _, _, _> = Pipeline::new(
@@ -944,9 +953,105 @@ fn zero_length_normals() {
             NoDepth,
             PhongLit::<Fx16, Rgb888, 2>::new(lighting),
         );
-        p.draw(&mut AnyTarget::new(&mut mock), &mesh).unwrap();
+        let mut scratch = vec![VertexSlot::EMPTY; ico.positions.len()];
+        p.draw(&mut AnyTarget::new(&mut mock), &mesh, &mut scratch)
+            .unwrap();
         check(&mock, "Phong");
     }
+}
+
+#[test]
+fn depth_buffer_too_small_is_an_error_and_draws_nothing() {
+    use embedded_graphics_core::geometry::{Point, Size};
+    use embedded_graphics_core::primitives::Rectangle;
+    use rasterizer_core::pipeline::shading::Unlit;
+    use rasterizer_core::pipeline::DrawError;
+    let cube = model("unit_cube.obj");
+    let scene = Scene::camera([1.5, 1.2, 2.0], [0.0; 3], 60, 0.1, 100.0);
+    let t = scene.transforms();
+    // A 64 x 48 target; the depth buffer (zw x zh) is indexed by target pixels.
+    let draw = |viewport: Viewport, zw: u32, zh: u32| {
+        let mut z = vec![u16::MAX; (zw * zh) as usize];
+        let depth = DepthBuffer::new(&mut z, zw, zh, Compare::Less).unwrap();
+        let mut p: Pipeline<Fx16, _, _, _> = Pipeline::new(
+            &t,
+            viewport,
+            CullClockwise,
+            depth,
+            Unlit {
+                color: Rgb888::WHITE,
+            },
+        );
+        let mut mock = StrictMock::<Rgb888>::new(64, 48);
+        let mut scratch = vec![VertexSlot::EMPTY; cube.positions.len()];
+        let result = p.draw(&mut AnyTarget::new(&mut mock), &cube.mesh(), &mut scratch);
+        (result, mock.calls.pixels)
+    };
+    let rect = |x, y, w, h| Rectangle::new(Point::new(x, y), Size::new(w, h));
+    let full = Viewport::new(64, 48);
+    let (result, pixels) = draw(full, 1, 1);
+    assert_eq!(
+        result,
+        Err(DrawError::DepthTooSmall {
+            needed: rect(0, 0, 64, 48)
+        })
+    );
+    assert_eq!(pixels, 0, "nothing is drawn");
+    // One row or one column short.
+    assert!(matches!(
+        draw(full, 64, 47).0,
+        Err(DrawError::DepthTooSmall { .. })
+    ));
+    assert!(matches!(
+        draw(full, 63, 48).0,
+        Err(DrawError::DepthTooSmall { .. })
+    ));
+    let (result, pixels) = draw(full, 64, 48);
+    assert!(
+        result.is_ok() && pixels > 300,
+        "{result:?}: {pixels} pixels"
+    );
+    // Only the viewport within the target needs depths: a viewport reaching over the top-left
+    // corner needs the 30 x 30 pixels it shares with the target...
+    let over_corner = Viewport {
+        x: -10,
+        y: -10,
+        width: 40,
+        height: 40,
+    };
+    assert_eq!(
+        draw(over_corner, 29, 30).0,
+        Err(DrawError::DepthTooSmall {
+            needed: rect(0, 0, 30, 30)
+        })
+    );
+    let (result, pixels) = draw(over_corner, 30, 30);
+    assert!(
+        result.is_ok() && pixels > 100,
+        "{result:?}: {pixels} pixels"
+    );
+    // ...one inside it the pixels up to its right and bottom edges...
+    let inside = Viewport {
+        x: 16,
+        y: 8,
+        width: 32,
+        height: 24,
+    };
+    assert_eq!(
+        draw(inside, 32, 24).0,
+        Err(DrawError::DepthTooSmall {
+            needed: rect(16, 8, 32, 24)
+        })
+    );
+    assert!(draw(inside, 48, 32).0.is_ok());
+    // ...and one off the target none at all (and draws nothing).
+    let off = Viewport {
+        x: 100,
+        y: 0,
+        width: 32,
+        height: 24,
+    };
+    assert_eq!(draw(off, 1, 1), (Ok(draw(off, 1, 1).0.unwrap()), 0));
 }
 
 #[test]
@@ -987,7 +1092,10 @@ fn invalid_indices_are_skipped_and_counted() {
             colors: Some(&colors),
             triangles: tris,
         };
-        let stats = p.draw(&mut AnyTarget::new(&mut mock), &mesh).unwrap();
+        let mut scratch = [VertexSlot::EMPTY; 4];
+        let stats = p
+            .draw(&mut AnyTarget::new(&mut mock), &mesh, &mut scratch)
+            .unwrap();
         (ids_of(&mock, W, H), stats)
     };
     let (img_all, stats_all) = render(&all);
@@ -1024,6 +1132,42 @@ fn extreme_bits() -> impl Strategy<Value = i32> {
     ]
 }
 
+/// Draws the mesh filled with vertex colours, as a wireframe and filled with Phong lighting into
+/// one target, and returns its pixels and the three draws' statistics. `scratch` slots are given
+/// to each draw (fewer than the mesh's vertices is allowed).
+fn draw_extreme_once<C: Cull + Copy, D1: DepthTest, D2: DepthTest>(
+    p1: &mut Pipeline<Fx16, C, D1, rasterizer_core::pipeline::shading::VertexColors<Rgb888>>,
+    p2: &mut Pipeline<Fx16, C, D2, rasterizer_core::pipeline::shading::PhongLit<Fx16, Rgb888, 1>>,
+    mesh: &rasterizer_core::pipeline::Mesh<'_, Fx16, u8>,
+    scratch: usize,
+) -> (Vec<Option<Rgb888>>, [RenderStats; 3]) {
+    // Overdraw is allowed (several overlapping triangles); the target still panics on any write
+    // out of bounds.
+    let mut mock = StrictMock::<Rgb888>::new(64, 48);
+    mock.allow_overdraw = true;
+    // Each run starts from cleared depth buffers.
+    p1.depth.start_band(0, u16::MAX);
+    p2.depth.start_band(0, u16::MAX);
+    let mut s1 = vec![VertexSlot::EMPTY; scratch];
+    let filled = p1
+        .draw(&mut AnyTarget::new(&mut mock), mesh, &mut s1)
+        .unwrap();
+    let wire = p1
+        .draw_wireframe(&mut AnyTarget::new(&mut mock), mesh, &mut s1, Rgb888::RED)
+        .unwrap();
+    let mut s2 = vec![VertexSlot::EMPTY; scratch];
+    let phong = p2
+        .draw(&mut AnyTarget::new(&mut mock), mesh, &mut s2)
+        .unwrap();
+    let pixels = (0..48)
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .map(|(x, y)| mock.get(x, y))
+        .collect();
+    (pixels, [filled, wire, phong])
+}
+
+/// [`draw_extreme_once`] with a full, an empty and a half scratch: no panic, no write out of
+/// bounds, and the same pixels and statistics whatever the scratch.
 fn draw_extreme<C: Cull + Copy, D: DepthTest>(
     t: &Transforms<Fx16>,
     positions: &[Vec3<Fx16>],
@@ -1043,15 +1187,8 @@ fn draw_extreme<C: Cull + Copy, D: DepthTest>(
         colors: None,
         triangles: tris,
     };
-    // Overdraw is allowed (several overlapping triangles); the target still panics on any write
-    // out of bounds.
-    let mut mock = StrictMock::<Rgb888>::new(64, 48);
-    mock.allow_overdraw = true;
-    let mut p: Pipeline<Fx16, C, D, _> =
+    let mut p1: Pipeline<Fx16, C, D, _> =
         Pipeline::new(t, size, cull, d1, VertexColors::<Rgb888>::new());
-    p.draw(&mut AnyTarget::new(&mut mock), &mesh).unwrap();
-    p.draw_wireframe(&mut AnyTarget::new(&mut mock), &mesh, Rgb888::RED)
-        .unwrap();
     let material = Material {
         ambient: Rgb888::new(20, 20, 20),
         diffuse: Rgb888::WHITE,
@@ -1064,14 +1201,22 @@ fn draw_extreme<C: Cull + Copy, D: DepthTest>(
         position: positions[1],
         color: Rgb888::WHITE,
     });
-    let mut p: Pipeline<Fx16, C, D, _> = Pipeline::new(
+    let mut p2: Pipeline<Fx16, C, D, _> = Pipeline::new(
         t,
         size,
         cull,
         d2,
         PhongLit::<Fx16, Rgb888, 1>::new(lighting),
     );
-    p.draw(&mut AnyTarget::new(&mut mock), &mesh).unwrap();
+    let n = positions.len();
+    let full = draw_extreme_once(&mut p1, &mut p2, &mesh, n);
+    for len in [0, n / 2] {
+        let short = draw_extreme_once(&mut p1, &mut p2, &mesh, len);
+        assert!(
+            short == full,
+            "a scratch of {len} of {n} slots changed the frame"
+        );
+    }
 }
 
 proptest! {
@@ -1172,8 +1317,13 @@ fn depth_test_is_order_invariant() {
         let db = DepthBuffer::new(&mut eq, W, H, Compare::Equal).unwrap();
         let mut p: Pipeline<Fx16, _, _, _> =
             Pipeline::new(&t, Viewport::new(W, H), NoCull, db, FaceIds);
-        p.draw(&mut AnyTarget::new(&mut counter), &base.mesh())
-            .unwrap();
+        let mut scratch = vec![VertexSlot::EMPTY; base.positions.len()];
+        p.draw(
+            &mut AnyTarget::new(&mut counter),
+            &base.mesh(),
+            &mut scratch,
+        )
+        .unwrap();
         let ties = counter.counts.iter().filter(|&&c| c > 1).count();
         let mut worst = 0;
         for seed in 1..=4 {

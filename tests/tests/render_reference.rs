@@ -22,7 +22,7 @@ use rasterizer_core::pipeline::cull::CullClockwise;
 use rasterizer_core::pipeline::shading::{
     FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
 };
-use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::target::Framebuffer;
@@ -171,7 +171,8 @@ fn fill<Sh: Shading<Fx16, Color = Rgb888>>(
         depth,
         shading,
     );
-    let Ok(stats) = p.draw(fb, mesh);
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+    let stats = p.draw(fb, mesh, &mut scratch).unwrap();
     assert!(stats.drawn > 0, "nothing drawn: {stats:?}");
 }
 
@@ -214,7 +215,9 @@ fn render(model: Model, style: Style) -> Vec<u8> {
                     color: Rgb888::WHITE,
                 },
             );
-            let Ok(stats) = p.draw_wireframe(&mut fb, &mesh, Rgb888::new(120, 220, 160));
+            let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+            let Ok(stats) =
+                p.draw_wireframe(&mut fb, &mesh, &mut scratch, Rgb888::new(120, 220, 160));
             assert!(stats.drawn > 0, "nothing drawn: {stats:?}");
         }
         Style::Unlit => {

@@ -1,5 +1,5 @@
 //! Peak stack of every render call, measured by painting the stack, and the RAM each configuration
-//! needs besides (framebuffer, depth buffer, band buffers, bins, vertex cache), for
+//! needs besides (framebuffer, depth buffer, band buffers, bins, vertex scratch), for
 //! `docs/MEMORY.md` (`scripts/memory.sh` collects the `MEMORY` lines this test prints).
 //!
 //! # Method
@@ -51,7 +51,7 @@ use rasterizer_core::mesh::PackedMesh;
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
 use rasterizer_core::pipeline::{
-    BandError, Banding, BinEntry, CachedVertex, Pipeline, RenderStats, Viewport,
+    BandError, Banding, BinEntry, Pipeline, RenderStats, VertexSlot, Viewport,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::raster::line::draw_line;
@@ -75,62 +75,64 @@ const BAND_ROWS: u32 = 16;
 static SUZANNE: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
 
 /// Upper bounds on the peak stack in bytes: (configuration, debug build, release build). Each is
-/// the figure measured on 2026-11-22 (rustc 1.95.0, rasterizer-core of commit ca08cce) times 1.5,
-/// rounded up to 64 bytes; see the module documentation.
+/// the figure measured (rustc 1.95.0) times 1.5, rounded up to 64 bytes; see the module
+/// documentation. The 2D primitives were measured on 2026-11-22 with rasterizer-core of commit
+/// ca08cce, the 3D configurations on 2026-11-24 with edc64e5 (the vertex scratch and the fused span
+/// loop: about half the stack of the draws before it).
 const BOUNDS: &[(&str, usize, usize)] = &[
     ("line", 3136, 768),
     ("triangle", 10560, 384),
     ("gouraud_triangle", 13056, 1088),
     ("polygon", 6208, 1728),
-    ("flat_depth_cull_draw", 44992, 4544),
-    ("flat_depth_nocull_draw", 44928, 4544),
-    ("flat_nodepth_cull_draw", 35008, 4480),
-    ("flat_nodepth_nocull_draw", 35008, 4416),
-    ("flat_depth_cull_cached", 45120, 4608),
-    ("flat_depth_nocull_cached", 45056, 4544),
-    ("flat_nodepth_cull_cached", 35136, 4480),
-    ("flat_nodepth_nocull_cached", 35136, 4480),
-    ("flat_depth_cull_banded16", 47360, 4928),
-    ("flat_depth_nocull_banded16", 47296, 4864),
-    ("flat_nodepth_cull_banded16", 37376, 4800),
-    ("flat_nodepth_nocull_banded16", 37376, 4800),
-    ("gouraud_depth_cull_draw", 45632, 6144),
-    ("gouraud_depth_nocull_draw", 45632, 6144),
-    ("gouraud_nodepth_cull_draw", 35648, 5952),
-    ("gouraud_nodepth_nocull_draw", 35648, 5952),
-    ("gouraud_depth_cull_cached", 45760, 6144),
-    ("gouraud_depth_nocull_cached", 45760, 6144),
-    ("gouraud_nodepth_cull_cached", 35776, 5952),
-    ("gouraud_nodepth_nocull_cached", 35776, 5952),
-    ("gouraud_depth_cull_banded16", 48000, 6464),
-    ("gouraud_depth_nocull_banded16", 48000, 6464),
-    ("gouraud_nodepth_cull_banded16", 38016, 6272),
-    ("gouraud_nodepth_nocull_banded16", 38016, 6272),
-    ("gouraud_depth_cull_banded16_cached", 48000, 6464),
-    ("unlit_depth_cull_draw", 43584, 4224),
-    ("unlit_depth_nocull_draw", 43584, 4224),
-    ("unlit_nodepth_cull_draw", 33664, 4096),
-    ("unlit_nodepth_nocull_draw", 33664, 4096),
-    ("unlit_depth_cull_cached", 43712, 4224),
-    ("unlit_depth_nocull_cached", 43712, 4224),
-    ("unlit_nodepth_cull_cached", 33792, 4160),
-    ("unlit_nodepth_nocull_cached", 33792, 4160),
-    ("unlit_depth_cull_banded16", 46016, 4544),
-    ("unlit_depth_nocull_banded16", 46016, 4544),
-    ("unlit_nodepth_cull_banded16", 36032, 4416),
-    ("unlit_nodepth_nocull_banded16", 36032, 4416),
-    ("phong_depth_cull_draw", 49664, 7488),
-    ("phong_depth_nocull_draw", 49664, 7552),
-    ("phong_nodepth_cull_draw", 39680, 7296),
-    ("phong_nodepth_nocull_draw", 39680, 7296),
-    ("phong_depth_cull_cached", 49792, 7552),
-    ("phong_depth_nocull_cached", 49792, 7552),
-    ("phong_nodepth_cull_cached", 39808, 7296),
-    ("phong_nodepth_nocull_cached", 39808, 7360),
-    ("phong_depth_cull_banded16", 52032, 7872),
-    ("phong_depth_nocull_banded16", 52032, 7872),
-    ("phong_nodepth_cull_banded16", 42048, 7616),
-    ("phong_nodepth_nocull_banded16", 42048, 7616),
+    ("flat_depth_cull_draw", 36928, 2880),
+    ("flat_depth_nocull_draw", 36928, 2880),
+    ("flat_nodepth_cull_draw", 26944, 2496),
+    ("flat_nodepth_nocull_draw", 26944, 2496),
+    ("flat_depth_cull_noscratch", 36928, 2880),
+    ("flat_depth_nocull_noscratch", 36928, 2880),
+    ("flat_nodepth_cull_noscratch", 26944, 2496),
+    ("flat_nodepth_nocull_noscratch", 26944, 2496),
+    ("flat_depth_cull_banded16", 40832, 3328),
+    ("flat_depth_nocull_banded16", 40832, 3328),
+    ("flat_nodepth_cull_banded16", 29952, 3008),
+    ("flat_nodepth_nocull_banded16", 29952, 3008),
+    ("gouraud_depth_cull_draw", 36480, 3392),
+    ("gouraud_depth_nocull_draw", 36480, 3392),
+    ("gouraud_nodepth_cull_draw", 27520, 3712),
+    ("gouraud_nodepth_nocull_draw", 27520, 3712),
+    ("gouraud_depth_cull_noscratch", 36480, 3392),
+    ("gouraud_depth_nocull_noscratch", 36480, 3392),
+    ("gouraud_nodepth_cull_noscratch", 27520, 3712),
+    ("gouraud_nodepth_nocull_noscratch", 27520, 3712),
+    ("gouraud_depth_cull_banded16", 41088, 3776),
+    ("gouraud_depth_nocull_banded16", 41088, 3776),
+    ("gouraud_nodepth_cull_banded16", 31104, 4032),
+    ("gouraud_nodepth_nocull_banded16", 31104, 4096),
+    ("gouraud_depth_cull_banded16_noscratch", 41088, 3776),
+    ("unlit_depth_cull_draw", 30848, 1920),
+    ("unlit_depth_nocull_draw", 30848, 1920),
+    ("unlit_nodepth_cull_draw", 20864, 1536),
+    ("unlit_nodepth_nocull_draw", 20864, 1536),
+    ("unlit_depth_cull_noscratch", 30848, 1920),
+    ("unlit_depth_nocull_noscratch", 30848, 1920),
+    ("unlit_nodepth_cull_noscratch", 20864, 1536),
+    ("unlit_nodepth_nocull_noscratch", 20864, 1536),
+    ("unlit_depth_cull_banded16", 36416, 2432),
+    ("unlit_depth_nocull_banded16", 36416, 2432),
+    ("unlit_nodepth_cull_banded16", 25600, 2112),
+    ("unlit_nodepth_nocull_banded16", 25600, 2112),
+    ("phong_depth_cull_draw", 40000, 3648),
+    ("phong_depth_nocull_draw", 40000, 3648),
+    ("phong_nodepth_cull_draw", 29632, 3712),
+    ("phong_nodepth_nocull_draw", 29632, 3648),
+    ("phong_depth_cull_noscratch", 40000, 3648),
+    ("phong_depth_nocull_noscratch", 40000, 3648),
+    ("phong_nodepth_cull_noscratch", 29632, 3712),
+    ("phong_nodepth_nocull_noscratch", 29632, 3648),
+    ("phong_depth_cull_banded16", 44096, 4096),
+    ("phong_depth_nocull_banded16", 44096, 4032),
+    ("phong_nodepth_cull_banded16", 32704, 4096),
+    ("phong_nodepth_nocull_banded16", 32704, 4096),
 ];
 
 /// Why a measurement is not a figure.
@@ -255,49 +257,44 @@ use host_tools::scenes3d::{lighting, transforms};
 /// How the frame is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Mode {
-    /// `draw` into a whole 320 x 240 framebuffer.
+    /// `draw` into a whole 320 x 240 framebuffer, with one scratch slot per mesh vertex.
     Draw,
-    /// `draw_cached` with one cache entry per mesh vertex.
-    Cached,
-    /// `draw_banded` in 16-row bands, without a vertex cache.
+    /// `draw` with an empty scratch (every vertex processed by each triangle that uses it).
+    NoScratch,
+    /// `draw_banded` in 16-row bands, with one scratch slot per mesh vertex.
     Banded,
-    /// `draw_banded` in 16-row bands, with one cache entry per mesh vertex.
-    BandedCached,
+    /// `draw_banded` in 16-row bands, with an empty scratch.
+    BandedNoScratch,
 }
 
 impl Mode {
     fn name(self) -> &'static str {
         match self {
             Mode::Draw => "draw",
-            Mode::Cached => "cached",
+            Mode::NoScratch => "noscratch",
             Mode::Banded => "banded16",
-            Mode::BandedCached => "banded16_cached",
+            Mode::BandedNoScratch => "banded16_noscratch",
         }
+    }
+
+    /// Whether the draw gets a scratch slot per mesh vertex.
+    fn scratch(self) -> bool {
+        matches!(self, Mode::Draw | Mode::Banded)
     }
 }
 
 type Pipe<C, D, Sh> = Pipeline<Fx16, C, D, Sh>;
-type Cache<Sh> = CachedVertex<Fx16, <Sh as Shading<Fx16>>::Varyings>;
+type Slot<Sh> = VertexSlot<<Sh as Shading<Fx16>>::Stored>;
 
 #[inline(never)]
 fn render_draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
     p: &mut Pipe<C, D, Sh>,
     fb: &mut Framebuffer<'_, Rgb565>,
     mesh: &PackedMesh<'_>,
+    scratch: &mut [Slot<Sh>],
 ) -> RenderStats {
-    let Ok(stats) = p.draw(fb, mesh);
-    stats
-}
-
-#[inline(never)]
-fn render_cached<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
-    p: &mut Pipe<C, D, Sh>,
-    fb: &mut Framebuffer<'_, Rgb565>,
-    mesh: &PackedMesh<'_>,
-    cache: &mut [Cache<Sh>],
-) -> RenderStats {
-    let Ok(stats) = p.draw_cached(fb, mesh, cache);
-    stats
+    p.draw(fb, mesh, scratch)
+        .expect("the depth buffer covers the frame")
 }
 
 /// A banded frame; each finished band is handed to `black_box`, where firmware would start the
@@ -308,7 +305,7 @@ fn render_banded<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
     mesh: &PackedMesh<'_>,
     band: &mut [u16],
     bins: &mut [BinEntry],
-    cache: &mut [Cache<Sh>],
+    scratch: &mut [Slot<Sh>],
 ) -> Result<RenderStats, BandError> {
     let banding = Banding {
         width: W,
@@ -317,7 +314,7 @@ fn render_banded<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
         background: Rgb565::BLACK,
         clear_depth: u16::MAX,
     };
-    p.draw_banded(mesh, &banding, band, bins, cache, |b| {
+    p.draw_banded(mesh, &banding, band, bins, scratch, |b| {
         black_box(b.framebuffer().as_slice());
     })
 }
@@ -333,8 +330,8 @@ struct Figures {
     band_depth: usize,
     bins: usize,
     visible: usize,
-    cache: usize,
-    cache_entry: usize,
+    scratch: usize,
+    slot: usize,
     pipeline: usize,
     drawn: u32,
 }
@@ -344,7 +341,7 @@ impl Figures {
     fn line(&self) -> String {
         format!(
             "MEMORY {} stack={} framebuffer={} depth={} band={} band_depth={} bins={} \
-             visible={} cache={} cache_entry={} pipeline={} drawn={}",
+             visible={} scratch={} slot={} pipeline={} drawn={}",
             self.name,
             self.stack,
             self.framebuffer,
@@ -353,8 +350,8 @@ impl Figures {
             self.band_depth,
             self.bins,
             self.visible,
-            self.cache,
-            self.cache_entry,
+            self.scratch,
+            self.slot,
             self.pipeline,
             self.drawn,
         )
@@ -380,7 +377,7 @@ where
     let uses_depth = D::ENABLED;
     let mut fig = Figures {
         pipeline: size_of::<Pipe<C, D, Sh>>(),
-        cache_entry: size_of::<Cache<Sh>>(),
+        slot: size_of::<Slot<Sh>>(),
         depth: if uses_depth {
             depth_rows as usize * W as usize * size_of::<u16>()
         } else {
@@ -389,26 +386,21 @@ where
         ..Figures::default()
     };
     let vertices = mesh.vertices();
-    let with_cache = matches!(mode, Mode::Cached | Mode::BandedCached);
-    let mut cache = vec![Cache::<Sh>::default(); if with_cache { vertices } else { 0 }];
-    fig.cache = cache.len() * size_of::<Cache<Sh>>();
+    let mut scratch = vec![Slot::<Sh>::EMPTY; if mode.scratch() { vertices } else { 0 }];
+    fig.scratch = scratch.len() * size_of::<Slot<Sh>>();
     let mut drawn = 0;
     match mode {
-        Mode::Draw | Mode::Cached => {
+        Mode::Draw | Mode::NoScratch => {
             let (words, bytes) = rgb565_bytes(H);
             fig.framebuffer = bytes;
             let mut buf = vec![0u16; words];
             let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
-            let cell = core::cell::RefCell::new((&mut p, &mut fb, &mut cache));
+            let cell = core::cell::RefCell::new((&mut p, &mut fb, &mut scratch));
             fig.stack = peak(
                 &mut || {
                     let mut g = cell.borrow_mut();
-                    let (p, fb, cache) = &mut *g;
-                    let stats = if with_cache {
-                        render_cached(p, fb, &mesh, cache)
-                    } else {
-                        render_draw(p, fb, &mesh)
-                    };
+                    let (p, fb, scratch) = &mut *g;
+                    let stats = render_draw(p, fb, &mesh, scratch);
                     drawn = black_box(stats).drawn;
                 },
                 &mut || {
@@ -418,14 +410,14 @@ where
                 },
             );
         }
-        Mode::Banded | Mode::BandedCached => {
+        Mode::Banded | Mode::BandedNoScratch => {
             let (words, bytes) = rgb565_bytes(BAND_ROWS);
             fig.band = bytes;
             fig.band_depth = fig.depth;
             fig.depth = 0;
             let mut band = vec![0u16; words];
             // Exactly as many bins as the frame has visible triangles: a draw without bins says.
-            let visible = match render_banded(&mut p, &mesh, &mut band, &mut [], &mut cache) {
+            let visible = match render_banded(&mut p, &mesh, &mut band, &mut [], &mut scratch) {
                 Err(BandError::TooFewBins { needed, .. }) => needed,
                 other => panic!("expected TooFewBins, got {other:?}"),
             };
@@ -434,7 +426,7 @@ where
             let mut bins = vec![BinEntry::default(); visible];
             fig.stack = peak(
                 &mut || {
-                    let stats = render_banded(&mut p, &mesh, &mut band, &mut bins, &mut cache);
+                    let stats = render_banded(&mut p, &mesh, &mut band, &mut bins, &mut scratch);
                     drawn = black_box(stats.unwrap()).drawn;
                 },
                 // Each band starts from the background and a cleared depth buffer.
@@ -460,8 +452,8 @@ where
 {
     let mut fig = on_fresh_stack(move || {
         let rows = match mode {
-            Mode::Draw | Mode::Cached => H,
-            Mode::Banded | Mode::BandedCached => BAND_ROWS,
+            Mode::Draw | Mode::NoScratch => H,
+            Mode::Banded | Mode::BandedNoScratch => BAND_ROWS,
         };
         let mut z = vec![u16::MAX; (W * rows) as usize];
         if depth {
@@ -506,7 +498,7 @@ where
     Sh: Shading<Fx16, Color = Rgb565> + 'static,
 {
     let mut figures = Vec::new();
-    for mode in [Mode::Draw, Mode::Cached, Mode::Banded] {
+    for mode in [Mode::Draw, Mode::NoScratch, Mode::Banded] {
         for depth in [true, false] {
             for cull in [true, false] {
                 let name = format!(
@@ -544,13 +536,13 @@ fn stack_flat() {
 #[test]
 fn stack_gouraud() {
     let mut figures = shading_configs("gouraud", || GouraudLit::<Fx16, Rgb565, 1>::new(lighting()));
-    // M1 in bands with the vertex cache too.
+    // M1 in bands without the vertex scratch too.
     figures.push(config(
-        "gouraud_depth_cull_banded16_cached",
+        "gouraud_depth_cull_banded16_noscratch",
         || CullClockwise,
         || GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
         true,
-        Mode::BandedCached,
+        Mode::BandedNoScratch,
     ));
     report(&figures);
 }
@@ -645,13 +637,13 @@ fn stack_2d() {
 fn type_sizes() {
     let mesh = PackedMesh::parse(SUZANNE).expect("packed Suzanne");
     println!(
-        "MEMORY types bin_entry={} cached_unlit={} cached_flat={} cached_gouraud={} \
-         cached_phong={} polygon8={} mesh_vertices={} mesh_triangles={}",
+        "MEMORY types bin_entry={} slot_unlit={} slot_flat={} slot_gouraud={} \
+         slot_phong={} polygon8={} mesh_vertices={} mesh_triangles={}",
         size_of::<BinEntry>(),
-        size_of::<Cache<Unlit<Rgb565>>>(),
-        size_of::<Cache<FlatLit<Fx16, Rgb565, 1>>>(),
-        size_of::<Cache<GouraudLit<Fx16, Rgb565, 1>>>(),
-        size_of::<Cache<PhongLit<Fx16, Rgb565, 1>>>(),
+        size_of::<Slot<Unlit<Rgb565>>>(),
+        size_of::<Slot<FlatLit<Fx16, Rgb565, 1>>>(),
+        size_of::<Slot<GouraudLit<Fx16, Rgb565, 1>>>(),
+        size_of::<Slot<PhongLit<Fx16, Rgb565, 1>>>(),
         size_of::<Polygon<8>>(),
         mesh.vertices(),
         mesh.triangles(),

@@ -1,15 +1,16 @@
 //! Stress: thousands of random scenes rendered whole-frame and in bands (which must agree to the
-//! bit), and compared with the independent f64 reference renderer, where every differing pixel
-//! must lie within one pixel of an edge or be a depth tie (the f64 depths of the two triangles
-//! within 64 of 65,535 steps, [`TIE`]). One pixel is the projection bound of `tests/pipeline.rs` for
-//! vertices just beyond the near plane (15/16 px); most differences are far closer (counted).
+//! bit; the bands with a full vertex scratch in every other scene, with none in the others), and
+//! compared with the independent f64 reference renderer, where every differing pixel must lie
+//! within one pixel of an edge or be a depth tie (the f64 depths of the two triangles within 64 of
+//! 65,535 steps, [`TIE`]). One pixel is the projection bound of `tests/pipeline.rs` for vertices
+//! just beyond the near plane (15/16 px); most differences are far closer (counted).
 //! `STRESS_SCENES` sets the count (CI: 1,000).
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tools::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::pipeline::cull::NoCull;
-use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, Transforms, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::{Compare, DepthBuffer};
 use rasterizer_core::target::Framebuffer;
 
@@ -98,7 +99,8 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
             let depth = DepthBuffer::new(&mut z, W, H, Compare::Less).unwrap();
             let mut p = Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, FaceIds);
             let mut fb = Framebuffer::<Rgb888>::new(&mut whole, W, H).unwrap();
-            p.draw(&mut fb, &mesh.mesh()).unwrap();
+            let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
+            p.draw(&mut fb, &mesh.mesh(), &mut scratch).unwrap();
         }
         // Bands of a random height.
         let rows = 1 + (rng.next() % u64::from(H)) as u32;
@@ -116,11 +118,21 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
                 background: Rgb888::BLACK,
                 clear_depth: u16::MAX,
             };
-            p.draw_banded(&mesh.mesh(), &banding, &mut band, &mut bins, &mut [], |b| {
-                let at = b.y0() as usize * W as usize * 3;
-                let d = b.framebuffer().as_slice();
-                banded[at..at + d.len()].copy_from_slice(d);
-            })
+            // A full scratch in every other scene, none in the others: the same pixels.
+            let slots = if scene % 2 == 0 { positions.len() } else { 0 };
+            let mut scratch = vec![VertexSlot::EMPTY; slots];
+            p.draw_banded(
+                &mesh.mesh(),
+                &banding,
+                &mut band,
+                &mut bins,
+                &mut scratch,
+                |b| {
+                    let at = b.y0() as usize * W as usize * 3;
+                    let d = b.framebuffer().as_slice();
+                    banded[at..at + d.len()].copy_from_slice(d);
+                },
+            )
             .unwrap();
         }
         assert_eq!(
