@@ -8,13 +8,16 @@
 //! scene): a combination is a pipeline type, the scene is data. The mesh is loaded, the pipeline
 //! built and one warm frame drawn outside the counted function; the colour and depth buffers are
 //! cleared outside it too. Then exactly one call of `frame_<COMBINATION>` draws the counted frame.
-//! Every combination is its own monomorphized `Pipeline` type and its own `#[inline(never)]`
+//! Every draw has a vertex scratch of one slot per mesh vertex (the caller's RAM, allocated outside
+//! the count) except the `_noscratch` ones, whose empty scratch makes every triangle process its
+//! vertices again. Every combination is its own monomorphized `Pipeline` type and its own `#[inline(never)]`
 //! function; each function also hands its own name to `black_box`, so that no two of them are
 //! identical and none can be merged into another (rustc runs LLVM's function merging).
 //!
 //! | combination | shading | depth | culling | draw |
 //! |---|---|---|---|---|
 //! | `m1` | `GouraudLit` | `DepthBuffer` (`Less`) | `CullClockwise` | `draw` |
+//! | `m1_noscratch` | `GouraudLit` | `DepthBuffer` (`Less`) | `CullClockwise` | `draw`, empty scratch |
 //! | `m1_nodepth` | `GouraudLit` | `NoDepth` | `CullClockwise` | `draw` |
 //! | `m1_nocull` | `GouraudLit` | `DepthBuffer` (`Less`) | `NoCull` | `draw` |
 //! | `m1_unlit` | `Unlit` | `DepthBuffer` (`Less`) | `CullClockwise` | `draw` |
@@ -22,10 +25,9 @@
 //! | `m1_phong` | `PhongLit` | `DepthBuffer` (`Less`) | `CullClockwise` | `draw` |
 //! | `m1_unlit_nodepth_nocull` | `Unlit` | `NoDepth` | `NoCull` | `draw` |
 //! | `m1_wireframe` | - | - | `CullClockwise` | `draw_wireframe` |
-//! | `m1_cached` | `GouraudLit` | `DepthBuffer` (`Less`) | `CullClockwise` | `draw_cached` |
 //! | `m1_depth_always` | `GouraudLit` | `DepthBuffer` (`Always`) | `CullClockwise` | `draw` |
 //! | `m1_cull_keepall` | `GouraudLit` | `DepthBuffer` (`Less`) | `KeepAll` (runtime "keep") | `draw` |
-//! | `m1_band8` ... `m1_band240`, `m1_band16_cached` | `GouraudLit` | band `DepthBuffer` | `CullClockwise` | `draw_banded` |
+//! | `m1_band8` ... `m1_band240`, `m1_band16_noscratch` | `GouraudLit` | band `DepthBuffer` | `CullClockwise` | `draw_banded` |
 //! | `euc` | euc 0.5.3, Gouraud in `f32` | `f32` buffer | back faces | `euc::Pipeline::draw` |
 //!
 //! `m1_depth_always` and `m1_cull_keepall` are the controls for "an effect turned off costs no more

@@ -874,7 +874,10 @@ fn m1_target(f: &Figures) -> String {
         "not met"
     };
     let cached = noscratch.map_or_else(String::new, |c| {
-        format!(" (without its vertex scratch, `ours-m1_noscratch`, {})", int(c))
+        format!(
+            " (without its vertex scratch, `ours-m1_noscratch`, {})",
+            int(c)
+        )
     });
     format!(
         "The default configuration (`ours`) costs **{}** instructions per M1 triangle{cached}; \
@@ -1174,13 +1177,19 @@ mod tests {
     }
 
     #[test]
-    fn band_names_give_rows_and_cache() {
+    fn band_names_give_rows_and_scratch() {
         assert_eq!(band_rows("ours-m1_band8"), Some(8));
-        assert_eq!(band_rows("ours-m1_band16_cached"), Some(16));
+        assert_eq!(band_rows("ours-m1_band16_noscratch"), Some(16));
         assert_eq!(band_rows("ours-band16"), Some(16));
-        assert_eq!(band_rows("ours-m1_cached"), None);
-        let f = Figures::parse("M1\tours-band16\tscratch_bytes\t20280\n").unwrap();
-        assert!(band_cached(&f, "ours-band16"));
-        assert!(!band_cached(&Figures::default(), "ours-band16"));
+        assert_eq!(band_rows("ours-m1_noscratch"), None);
+        assert!(band_scratch(&Figures::default(), "ours-m1_band8"));
+        assert!(!band_scratch(
+            &Figures::default(),
+            "ours-m1_band16_noscratch"
+        ));
+        let f = Figures::parse("M1\tours-band16\tscratch_bytes\t8112\n").unwrap();
+        assert!(band_scratch(&f, "ours-band16"));
+        let f = Figures::parse("M1\tours-band16\tscratch_bytes\t0\n").unwrap();
+        assert!(!band_scratch(&f, "ours-band16"));
     }
 }

@@ -13,7 +13,7 @@ use rasterizer_core::geom::SubPoint;
 use rasterizer_core::math::{Fx16, Mat4, Vec3};
 use rasterizer_core::pipeline::cull::NoCull;
 use rasterizer_core::pipeline::shading::Unlit;
-use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, Viewport};
+use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, VertexSlot, Viewport};
 use rasterizer_core::raster::interp::NoDepth;
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
@@ -386,7 +386,11 @@ fn draw_quad(vp: Viewport) -> BTreeSet<(i32, i32)> {
     let mut buf = vec![0u8; 64 * 48 * 3];
     let mut fb = Framebuffer::<Rgb888>::new(&mut buf, 64, 48).unwrap();
     quad_pipeline(vp)
-        .draw(&mut fb, &Mesh::new(&positions, &triangles))
+        .draw(
+            &mut fb,
+            &Mesh::new(&positions, &triangles),
+            &mut [VertexSlot::EMPTY; 4],
+        )
         .unwrap();
     let lit: BTreeSet<(i32, i32)> = buf
         .chunks(3)

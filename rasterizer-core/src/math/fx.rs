@@ -360,8 +360,9 @@ mod tests {
 
     #[test]
     fn rsqrt_is_close() {
+        // r ≈ 2^k / sqrt(v) within a few units of r's last bit: r² v within 8 parts in 2^30 of
+        // 2^2k (an error of one unit in r moves r² v by two parts in 2^30 at most).
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut worst = 0.0f64;
         for i in 0..300_000u64 {
             x ^= x << 13;
             x ^= x >> 7;
@@ -373,10 +374,10 @@ mod tests {
             };
             let (r, k) = super::rsqrt_u64(v);
             assert!((1 << 30..=1 << 31).contains(&r), "{v}: {r}");
-            let exact = 2f64.powi(k as i32) / (v as f64).sqrt();
-            worst = worst.max((r as f64 - exact).abs());
+            let product = u128::from(r) * u128::from(r) * u128::from(v);
+            let exact = 1u128 << (2 * k);
+            assert!(product.abs_diff(exact) <= (exact >> 30) * 8, "{v}: {r} {k}");
         }
-        assert!(worst <= 3.0, "worst error {worst} units");
     }
 
     #[test]

@@ -27,7 +27,7 @@ use crate::clip::polygon::{
 use crate::geom::{PixelRect, SubPoint};
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
 use crate::numerics::{reciprocal, Divide, Numerics, SpanStart, Standard};
-use crate::raster::fused::{fill_fused, FusedColor, FusedVertex};
+use crate::raster::fused::{fill_fused, FusedColor, FusedVertex, Precision};
 use crate::raster::interp::{fill_triangle_interp_with, DepthTest, ScreenVertex};
 use crate::raster::line::draw_line;
 use crate::shade::MAX_VARYINGS;
@@ -892,9 +892,11 @@ where
             &mut self.depth,
             fv,
             &self.area,
-            Sh::FUSED_FRAC,
-            Sh::FUSED_OFFSET,
-            N::FRAC,
+            Precision {
+                frac: Sh::FUSED_FRAC,
+                offset: Sh::FUSED_OFFSET,
+                depth_frac: N::FRAC,
+            },
             ShaderColor::<S, Sh>(&self.shading, core::marker::PhantomData),
         )
     }

@@ -84,7 +84,7 @@ fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3] {
     for c in 0..3 {
         let f = channel_frac(C::MAX[c]);
         // num <= 255 den, so the product stays below 2^40 den.
-        let n = num[c] * u64::from(C::MAX[c]) << f;
+        let n = (num[c] * u64::from(C::MAX[c])) << f;
         let d = den * 255;
         out[c] = ((n + d / 2) / d) as i32 + (1 << (f - 1));
     }
@@ -144,7 +144,9 @@ impl<C> VertexColors<C> {
     }
 }
 
-/// The colour shaders' values: the three channels at the target's depth ([`target_channels`]).
+/// The colour shaders' values: the three channels at the target's depth, each with as many
+/// fractional bits as keep it below 2^16 and half a step added, so that the fused loop rounds with
+/// a shift.
 impl<S: Scalar, C: ShadeColor> Shading<S> for VertexColors<C> {
     type Color = C;
     type Varyings = [i32; 3];
@@ -287,6 +289,8 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
     type Varyings = [i32; 6];
     type Stored = [i32; 6];
     const NEEDS_WORLD: bool = true;
+    // 16.16 normals and positions use all 32 bits: no room for more fractional bits.
+    const FUSED_FRAC: u32 = 0;
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
         self.frame.is_some()

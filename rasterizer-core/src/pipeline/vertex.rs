@@ -12,6 +12,8 @@
 pub trait Packed: Copy + core::fmt::Debug {
     /// Not shaded yet.
     const EMPTY: Self;
+    /// All bits zero: what a `static` scratch starts as (in `.bss`, costing no flash).
+    const ZERO: Self;
     /// True for [`Packed::EMPTY`] (a value a shader may also produce is only recomputed).
     fn is_empty(&self) -> bool;
 }
@@ -26,6 +28,7 @@ pub trait Stored<V>: Packed {
 
 impl<const N: usize> Packed for [i32; N] {
     const EMPTY: Self = [i32::MIN; N];
+    const ZERO: Self = [0; N];
     #[inline(always)]
     fn is_empty(&self) -> bool {
         self.first() == Some(&i32::MIN)
@@ -46,6 +49,7 @@ impl<const N: usize> Stored<[i32; N]> for [i32; N] {
 
 impl Packed for [u16; 3] {
     const EMPTY: Self = [u16::MAX; 3];
+    const ZERO: Self = [0; 3];
     #[inline(always)]
     fn is_empty(&self) -> bool {
         self[0] == u16::MAX
@@ -64,12 +68,10 @@ impl Stored<[i32; 3]> for [u16; 3] {
     }
 }
 
-/// Marks a slot whose vertex has not been transformed this frame.
-pub(crate) const UNSEEN: i32 = i32::MIN;
 /// Marks a slot whose vertex lies outside the clip volume's guard band (its outcode is in `y`).
 pub(crate) const OUTSIDE: i32 = i32::MIN + 1;
-/// The smallest screen x a projected vertex keeps, above the two marks (far outside the guard
-/// band, so it never draws anyway).
+/// The smallest screen x a projected vertex keeps, above the mark (far outside the guard band, so
+/// it never draws anyway).
 pub(crate) const X_MIN: i32 = i32::MIN + 2;
 
 /// One mesh vertex's work for the frame: its screen position and depth, and its packed shader
@@ -77,8 +79,8 @@ pub(crate) const X_MIN: i32 = i32::MIN + 2;
 /// (16 bytes a slot) for Gouraud and vertex colours, `[i32; 0]` (12 bytes) for unlit and flat
 /// shading, `[i32; 6]` (36 bytes) for Phong.
 ///
-/// Make the scratch with [`VertexSlot::EMPTY`] (`[VertexSlot::EMPTY; 507]`); a draw call resets
-/// the slots it uses, so their contents between frames do not matter.
+/// Make the scratch with [`VertexSlot::EMPTY`] (`[VertexSlot::EMPTY; 507]`); a draw call fills
+/// the slots it uses when it starts, so their contents before it do not matter.
 #[derive(Debug, Clone, Copy)]
 pub struct VertexSlot<St = [u16; 3]> {
     pub(crate) x: i32,
@@ -88,12 +90,12 @@ pub struct VertexSlot<St = [u16; 3]> {
 }
 
 impl<St: Packed> VertexSlot<St> {
-    /// An unused slot.
+    /// An unused slot, all bits zero (so a `static` scratch costs no flash).
     pub const EMPTY: Self = Self {
-        x: UNSEEN,
+        x: 0,
         y: 0,
         z: 0,
-        st: St::EMPTY,
+        st: St::ZERO,
     };
 }
 

@@ -161,8 +161,8 @@ impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
         }
         *stored = nz;
         let mut acc = self.acc;
-        for k in 0..V::LEN.min(MAX_VARYINGS) {
-            acc[k] = acc[k].wrapping_add(self.step[k].wrapping_mul(i as u32));
+        for (a, step) in acc.iter_mut().zip(&self.step).take(V::LEN) {
+            *a = a.wrapping_add(step.wrapping_mul(i as u32));
         }
         Some(self.pixel.color(&acc))
     }
@@ -248,15 +248,26 @@ where
     }
 }
 
+/// The fixed-point scale of a fused triangle's planes.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Precision {
+    /// Fractional bits of the shader's values.
+    pub frac: u32,
+    /// Added to each value at a span's start, in units of its last fractional bit.
+    pub offset: u32,
+    /// Fractional bits of depth (at most 16).
+    pub depth_frac: u32,
+}
+
 /// A screen vertex of the fused path: sub-pixel position, depth (0 nearest) and the shader's
 /// values.
 pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
 
 /// Fills a triangle with a depth test and interpolated values through the fused span loop.
 ///
-/// The shader's values get `vfrac` fractional bits and `voffset` added (`pixel` receives each
-/// pixel's values as `value 2^vfrac + voffset`, wrapping); depth gets `zfrac` (at most 16) and is
-/// rounded to whole steps. `area` (not empty) is the rectangle the anchors are kept in: the
+/// The shader's values get `precision.frac` fractional bits and `precision.offset` added
+/// (`pixel` receives each pixel's values as `value 2^frac + offset`, wrapping); depth gets
+/// `precision.depth_frac` fractional bits and is rounded to whole steps. `area` (not empty) is the rectangle the anchors are kept in: the
 /// viewport, the same for every band.
 // One copy per pipeline type, called from both the inside and the clipped path: the set-up is
 // per triangle, so the call costs little, and the code is not duplicated.
@@ -266,9 +277,7 @@ pub(crate) fn fill_fused<S, D, V, P, const BITS: u32>(
     depth: &mut D,
     vertices: &[FusedVertex<V, BITS>; 3],
     area: &PixelRect,
-    vfrac: u32,
-    voffset: u32,
-    zfrac: u32,
+    precision: Precision,
     pixel: P,
 ) -> Result<(), S::Error>
 where
@@ -277,6 +286,11 @@ where
     V: Varyings,
     P: FusedColor<S::Color>,
 {
+    let Precision {
+        frac: vfrac,
+        offset: voffset,
+        depth_frac: zfrac,
+    } = precision;
     let Some(t) = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0]) else {
         return Ok(());
     };

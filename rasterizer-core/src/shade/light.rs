@@ -399,8 +399,8 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
                     }
                 }
             };
-            for c in 0..3 {
-                sum[c] += u64::from(terms.diffuse[c]) * u64::from(diffuse)
+            for (c, sum) in sum.iter_mut().enumerate() {
+                *sum += u64::from(terms.diffuse[c]) * u64::from(diffuse)
                     + u64::from(terms.specular[c]) * u64::from(specular);
             }
         }
@@ -511,7 +511,12 @@ fn unit30_near(v: [i64; 3], frac: u32) -> Option<[i64; 3]> {
             let d = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - one;
             if d.unsigned_abs() < (one >> 12) as u64 {
                 // r = (3 - |v|²) / 2 = 1 - d / 2, in 2.30 (d / 2 in units of 2^-2frac).
-                let r = (1i64 << 30) - (d >> (2 * frac - 29));
+                let half = if 2 * frac >= 29 {
+                    d >> (2 * frac - 29)
+                } else {
+                    d << (29 - 2 * frac)
+                };
+                let r = (1i64 << 30) - half;
                 let sh = frac;
                 return Some(v.map(|c| (c * r + (1 << (sh - 1))) >> sh));
             }

@@ -259,7 +259,9 @@ mod tests {
             };
             // Whole pixels now and then, so that vertices fall on rows and edges.
             let w = if next(4) == 0 { 16 } else { 1 };
-            let v = [0, 1, 2].map(|_| SubPoint::<4>::new((next(60 * 16) - 80) / w * w, (next(50 * 16) - 80) / w * w));
+            let v = [0, 1, 2].map(|_| {
+                SubPoint::<4>::new((next(60 * 16) - 80) / w * w, (next(50 * 16) - 80) / w * w)
+            });
             let Some(t) = Sorted::new(&v) else { continue };
             let (mut a, mut b) = (Spans(std::vec::Vec::new()), Spans(std::vec::Vec::new()));
             let _ = walk_spans(&t, 16, &clip, &mut a);
