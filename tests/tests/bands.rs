@@ -117,9 +117,8 @@ where
     N: Numerics,
 {
     let mut band = vec![0u16; (w * rows.min(h)) as usize];
-    // A bin per triangle, and a filler for each gap of 65,535 (at most one per 65,535 triangles).
-    let mut bins =
-        vec![BinEntry::default(); mesh.triangle_count() + mesh.triangle_count() / 65_535];
+    // A bin per triangle, and a filler for each gap of 255 (at most one per 255 triangles).
+    let mut bins = vec![BinEntry::default(); mesh.triangle_count() + mesh.triangle_count() / 255];
     let mut out = vec![0u16; (w * h) as usize];
     let banding = Banding {
         width: w,
@@ -515,17 +514,34 @@ fn sparse_mesh(visible: &[usize], count: usize) -> (Vec<Vec3<Fx16>>, Vec<Rgb888>
     (positions, colors, tris)
 }
 
+/// The bins a frame needs: one per visible triangle, plus a filler per 255 triangles of a gap
+/// beyond the 8-bit step to it.
+fn bins_needed(visible: &[usize]) -> usize {
+    let mut prev = 0;
+    let mut n = 0;
+    for &t in visible {
+        n += 1 + (t - prev).saturating_sub(1) / 255;
+        prev = t;
+    }
+    n
+}
+
 #[test]
-fn bins_span_gaps_beyond_65535_triangles() {
+fn bins_span_gaps_beyond_255_triangles() {
     let (w, h) = (64u32, 48u32);
-    // (visible triangles, mesh size, bins the frame needs: one per visible triangle plus a filler
-    // per 65,535 triangles skipped beyond the 16-bit step).
-    let cases: [(&[usize], usize, usize); 5] = [
-        (&[0, 70_000], 70_001, 3),
-        (&[0, 65_535], 65_536, 2),
-        (&[0, 65_536], 65_537, 3),
-        (&[70_000], 70_001, 2),
-        (&[3, 140_003, 140_004], 140_010, 5),
+    // (visible triangles, mesh size, bins the frame needs).
+    let cases: [(&[usize], usize, usize); 7] = [
+        (&[0, 255], 256, 2),
+        (&[0, 256], 257, 3),
+        (&[0, 510], 511, 3),
+        (&[0, 511], 512, 4),
+        (&[0, 70_000], 70_001, bins_needed(&[0, 70_000])),
+        (&[70_000], 70_001, bins_needed(&[70_000])),
+        (
+            &[3, 140_003, 140_004],
+            140_010,
+            bins_needed(&[3, 140_003, 140_004]),
+        ),
     ];
     for (visible, count, needed) in cases {
         let (pos, colors, tris) = sparse_mesh(visible, count);
@@ -618,8 +634,8 @@ fn bins_span_gaps_beyond_65535_triangles() {
 }
 
 #[test]
-fn more_than_256_bands_match_the_whole_frame() {
-    // Band numbers beyond a byte: an entry's first and last band count groups of bands then.
+fn more_than_16_bands_match_the_whole_frame() {
+    // Band numbers beyond four bits: an entry's first and last band count groups of bands then.
     let m = suzanne();
     let mesh = m.mesh();
     for (w, h, rows) in [(40u32, 600u32, 2u32), (40, 600, 1), (24, 1000, 3)] {

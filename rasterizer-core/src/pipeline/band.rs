@@ -15,31 +15,39 @@ use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
-/// A visible triangle's place in a banded frame ([`Pipeline::draw_banded`]): 4 bytes a triangle.
+/// A visible triangle's place in a banded frame ([`Pipeline::draw_banded`]): 2 bytes a triangle.
 ///
 /// Entries are kept in mesh order, each holding the distance to the previous entry's triangle
-/// (so any mesh size fits 16 bits: a gap beyond 65,535 triangles takes filler entries) and the
-/// first and last band it touches (in groups of bands when a frame has more than 256).
+/// (a gap beyond 255 triangles takes filler entries) and the first and last band it touches, 4
+/// bits each: in groups of bands when a frame has more than 16, so that a triangle may be handed
+/// to a band of its group it does not reach (where it draws nothing).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct BinEntry {
-    step: u16,
-    first: u8,
-    last: u8,
+    step: u8,
+    /// The first band (group) in the high four bits, the last in the low four.
+    bands: u8,
 }
 
 impl BinEntry {
     /// An empty entry, for initialising a `static` array of bins.
-    pub const ZERO: BinEntry = BinEntry {
-        step: 0,
-        first: 0,
-        last: 0,
-    };
-    /// A filler: moves the triangle index on by 65,535 and touches no band.
+    pub const ZERO: BinEntry = BinEntry { step: 0, bands: 0 };
+    /// A filler: moves the triangle index on by 255 and touches no band (first after last).
     const FILLER: BinEntry = BinEntry {
-        step: u16::MAX,
-        first: 1,
-        last: 0,
+        step: u8::MAX,
+        bands: 0x10,
     };
+
+    /// The first band (group) it touches.
+    #[inline(always)]
+    fn first(self) -> u8 {
+        self.bands >> 4
+    }
+
+    /// The last band (group) it touches.
+    #[inline(always)]
+    fn last(self) -> u8 {
+        self.bands & 15
+    }
 }
 
 /// How a frame is cut into bands ([`Pipeline::draw_banded`]).
@@ -180,7 +188,7 @@ where
     /// The pipeline's depth stage must hold `banding.rows` rows too (a [`DepthBuffer`] of
     /// `width` x `rows`); it is cleared to `banding.clear_depth` before each band. Triangles are
     /// binned once per frame (`bins` holds one [`BinEntry`] per visible triangle, plus a filler
-    /// for every gap of 65,535 triangles without one), so each band draws only the triangles that
+    /// for every gap of 255 triangles without one), so each band draws only the triangles that
     /// touch it, in mesh order. `scratch` is as in [`Pipeline::draw`]: with a slot per vertex,
     /// each vertex is transformed and shaded once a frame, however many bands use it. The pixels
     /// are exactly those of a whole-frame [`Pipeline::draw`] of the same scene, for any band
@@ -231,8 +239,8 @@ where
             ..RenderStats::default()
         };
         let bands = height.div_ceil(rows);
-        // Bands per unit of an entry's first and last, so that a u8 holds any band.
-        let group = i64::from(bands.div_ceil(256));
+        // Bands per unit of an entry's first and last, so that four bits hold any band.
+        let group = i64::from(bands.div_ceil(16));
         let band_rows = i64::from(rows) * group;
         let mut count = 0usize;
         let mut wanted = 0usize;
@@ -252,14 +260,14 @@ where
             if top >= bottom {
                 continue;
             }
-            while t - prev > usize::from(u16::MAX) {
+            while t - prev > usize::from(u8::MAX) {
                 push(BinEntry::FILLER);
-                prev += usize::from(u16::MAX);
+                prev += usize::from(u8::MAX);
             }
+            let (first, last) = ((top / band_rows) as u8, ((bottom - 1) / band_rows) as u8);
             push(BinEntry {
-                step: (t - prev) as u16,
-                first: (top / band_rows) as u8,
-                last: ((bottom - 1) / band_rows) as u8,
+                step: (t - prev) as u8,
+                bands: first << 4 | last,
             });
             prev = t;
         }
@@ -276,7 +284,10 @@ where
         let mut scratch_stats = RenderStats::default();
         for b in 0..bands {
             let unit = (i64::from(b) / group) as u8;
-            while let Some(e) = bins.get(lo).filter(|e| e.last < unit || e.first > e.last) {
+            while let Some(e) = bins
+                .get(lo)
+                .filter(|e| e.last() < unit || e.first() > e.last())
+            {
                 lo_t += usize::from(e.step);
                 lo += 1;
             }
@@ -294,7 +305,7 @@ where
                 let mut t = lo_t;
                 for e in &bins[lo..] {
                     t += usize::from(e.step);
-                    if e.first <= unit && unit <= e.last {
+                    if e.first() <= unit && unit <= e.last() {
                         let front = self.front_again(mesh, t, scratch);
                         let Ok(()) =
                             self.draw_front(&mut target, mesh, front, scratch, &mut scratch_stats);

@@ -533,6 +533,24 @@ where
                 // The outcode itself is only needed by the clipper, which computes its own.
                 return (OUTSIDE, 1, 0);
             }
+            if N::DIVIDE == Divide::Exact {
+                // Pipeline::project's exact divide, the same roundings, for a point known to be
+                // inside: w > 0, x + w and w - y in [-3w, 5w], z + w in [0, 2w]. A numerator made
+                // non-negative by whole multiples of 2w takes an unsigned division.
+                let d = 2 * w;
+                let vp = &self.viewport;
+                let ratio = |n: i64, scale: i64| {
+                    let lift = (3 * scale + 1) / 2;
+                    ((n * scale + w + d * lift) as u64 / d as u64) as i64 - lift
+                };
+                let scale_x = i64::from(vp.width) << BITS;
+                let scale_y = i64::from(vp.height) << BITS;
+                let clamp = |v: i64| v.clamp(i64::from(X_MIN), i64::from(i32::MAX)) as i32;
+                let sx = clamp(ratio(x + w, scale_x) + (i64::from(vp.x) << BITS));
+                let sy = clamp(ratio(w - y, scale_y) + (i64::from(vp.y) << BITS));
+                let z = (((z + w) * 65535 + w) as u64 / d as u64).min(65535) as u16;
+                return (sx, sy, z);
+            }
             let clip = Vec4::new(
                 S::from_raw(x),
                 S::from_raw(y),
@@ -578,53 +596,31 @@ where
         use vertex::{Packed, Stored};
         match scratch.get(i) {
             Some(s) if !s.st.is_empty() => s.st.unpack(),
-            _ => self.shade_vertex(mesh, i, scratch),
+            _ => {
+                let space = Space {
+                    model: &self.model,
+                    normal_matrix: &self.normal_matrix,
+                    model_space: self.model_space,
+                };
+                let packed = shade_vertex(&mut self.shading, &space, mesh, i, None);
+                if let Some(s) = scratch.get_mut(i) {
+                    s.st = packed;
+                }
+                packed.unpack()
+            }
         }
-    }
-
-    /// Shades vertex `i` and keeps its packed values in its slot, if it has one. Out of line:
-    /// once per vertex and frame, and one copy of the lighting for every caller.
-    #[inline(never)]
-    fn shade_vertex<M: MeshSource<S>>(
-        &mut self,
-        mesh: &M,
-        i: usize,
-        scratch: &mut [VertexSlot<Sh::Stored>],
-    ) -> Sh::Varyings {
-        use vertex::Stored;
-        let vin = self.vertex_in(mesh, i);
-        let packed = Sh::Stored::pack(&self.shading.vertex(&vin));
-        if let Some(s) = scratch.get_mut(i) {
-            s.st = packed;
-        }
-        packed.unpack()
     }
 
     /// The data of a vertex the shader may read: in model space when the shader lights there this
     /// frame, in world space otherwise.
     #[inline(always)]
     fn vertex_in<M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
-        let color = mesh.color(i).unwrap_or(Rgb888::WHITE);
-        if !Sh::NEEDS_WORLD {
-            return VertexIn {
-                position: Vec3::default(),
-                normal: Vec3::default(),
-                color,
-            };
-        }
-        let normal = mesh.normal(i).unwrap_or_default();
-        if self.model_space {
-            return VertexIn {
-                position: mesh.position(i),
-                normal,
-                color,
-            };
-        }
-        VertexIn {
-            position: self.model.transform_point(mesh.position(i)).xyz(),
-            normal: self.normal_matrix.transform_dir(normal),
-            color,
-        }
+        let space = Space {
+            model: &self.model,
+            normal_matrix: &self.normal_matrix,
+            model_space: self.model_space,
+        };
+        space.vertex_in::<Sh, M>(mesh, i)
     }
 
     /// The shader values of a triangle's three vertices. A lit shader on a mesh without normals
@@ -638,19 +634,36 @@ where
         scratch: &mut [VertexSlot<Sh::Stored>],
     ) -> [Sh::Varyings; 3] {
         if Sh::NEEDS_WORLD && !mesh.has_normals() {
-            let mut vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
-            let e1 = vin[1].position - vin[0].position;
-            let normal = e1.cross(vin[2].position - vin[0].position);
-            for v in &mut vin {
-                v.normal = normal;
-            }
-            return [0, 1, 2].map(|k| self.shading.vertex(&vin[k]));
+            return self.face_normal_values(mesh, idx);
         }
         [
             self.slot_values(mesh, idx[0], scratch),
             self.slot_values(mesh, idx[1], scratch),
             self.slot_values(mesh, idx[2], scratch),
         ]
+    }
+
+    /// The shader values of a triangle of a mesh without normals: its face normal at all three
+    /// vertices. Out of line: one copy for every caller.
+    #[inline(never)]
+    fn face_normal_values<M: MeshSource<S>>(
+        &mut self,
+        mesh: &M,
+        idx: [usize; 3],
+    ) -> [Sh::Varyings; 3] {
+        use vertex::Stored;
+        let space = Space {
+            model: &self.model,
+            normal_matrix: &self.normal_matrix,
+            model_space: self.model_space,
+        };
+        let p = [0, 1, 2].map(|k| space.position(mesh, idx[k]));
+        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+        let mut out = [Sh::Varyings::default(); 3];
+        for (&i, o) in idx.iter().zip(&mut out) {
+            *o = shade_vertex(&mut self.shading, &space, mesh, i, Some(normal)).unpack();
+        }
+        out
     }
 
     /// Starts a frame: the shader learns the space it lights in, and the scratch's slots for the
@@ -732,8 +745,12 @@ where
         idx: [usize; 3],
         stats: &mut RenderStats,
     ) -> Front<S, BITS> {
-        let clip = [0, 1, 2].map(|k| self.mvp.transform_point(mesh.position(idx[k])));
-        let codes = [0, 1, 2].map(|k| outcode(&clip[k]));
+        let mut clip = [Vec4::default(); 3];
+        let mut codes = [0; 3];
+        for k in 0..3 {
+            clip[k] = self.mvp.transform_point(mesh.position(idx[k]));
+            codes[k] = outcode(&clip[k]);
+        }
         if trivially_outside(&clip, codes) {
             stats.outside += 1;
             return Front::Skip;
@@ -1039,6 +1056,73 @@ fn viewport_edges<const BITS: u32>(vp: &Viewport) -> [i64; 4] {
         x + (i64::from(vp.width) << BITS),
         y + (i64::from(vp.height) << BITS),
     ]
+}
+
+/// Where a shader's vertices are taken from: the model and normal matrices, and whether the
+/// shader lights in model space this frame.
+struct Space<'a, S> {
+    model: &'a Mat4<S>,
+    normal_matrix: &'a Mat4<S>,
+    model_space: bool,
+}
+
+impl<S: Scalar> Space<'_, S> {
+    /// Vertex `i`'s position where the shader lights.
+    #[inline(always)]
+    fn position<M: MeshSource<S>>(&self, mesh: &M, i: usize) -> Vec3<S> {
+        if self.model_space {
+            mesh.position(i)
+        } else {
+            self.model.transform_point(mesh.position(i)).xyz()
+        }
+    }
+
+    /// The data of vertex `i` the shader may read.
+    #[inline(always)]
+    fn vertex_in<Sh: Shading<S>, M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
+        let color = mesh.color(i).unwrap_or(Rgb888::WHITE);
+        if !Sh::NEEDS_WORLD {
+            return VertexIn {
+                position: Vec3::default(),
+                normal: Vec3::default(),
+                color,
+            };
+        }
+        let normal = mesh.normal(i).unwrap_or_default();
+        if self.model_space {
+            return VertexIn {
+                position: mesh.position(i),
+                normal,
+                color,
+            };
+        }
+        VertexIn {
+            position: self.model.transform_point(mesh.position(i)).xyz(),
+            normal: self.normal_matrix.transform_dir(normal),
+            color,
+        }
+    }
+}
+
+/// Shades vertex `i` into its packed values, with the given normal instead of its own when there
+/// is one (a face normal). Out of line, once per vertex and frame, with one copy of the vertex
+/// shading for every caller; it takes only the shader and the matrices, so a caller's other state
+/// stays in registers across the call. A hint, not a rule: a build for size keeps it out of line,
+/// a build for speed may inline it.
+#[inline]
+fn shade_vertex<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
+    shading: &mut Sh,
+    space: &Space<'_, S>,
+    mesh: &M,
+    i: usize,
+    normal: Option<Vec3<S>>,
+) -> Sh::Stored {
+    use vertex::Stored;
+    let mut vin = space.vertex_in::<Sh, M>(mesh, i);
+    if let Some(n) = normal {
+        vin.normal = n;
+    }
+    Sh::Stored::pack(&shading.vertex(&vin))
 }
 
 /// A shader as the fused span loop's colour source.
