@@ -1,6 +1,6 @@
 //! Band rendering gives exactly the whole-frame picture (and the same statistics), for every band
 //! height, with a full vertex scratch, a short one and none, on meshes and on random triangle soups
-//! (with and without a depth test, where draw order matters); bins stay 4 bytes for any mesh size
+//! (with and without a depth test, where draw order matters); bins stay 2 bytes for any mesh size
 //! and any number of bands.
 
 use embedded_graphics_core::pixelcolor::raw::RawU16;

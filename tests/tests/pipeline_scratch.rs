@@ -305,8 +305,8 @@ fn vertex_slot_sizes_are_as_documented() {
     assert_eq!(size_of::<Slot<Unlit<Rgb565>>>(), 12);
     assert_eq!(size_of::<Slot<FlatLit<Fx16, Rgb565, 1>>>(), 12);
     assert_eq!(size_of::<Slot<PhongLit<Fx16, Rgb565, 1>>>(), 36);
-    // `BinEntry`: 4 bytes a visible triangle.
-    assert_eq!(size_of::<BinEntry>(), 4);
+    // `BinEntry`: 2 bytes a visible triangle.
+    assert_eq!(size_of::<BinEntry>(), 2);
 }
 
 #[test]
