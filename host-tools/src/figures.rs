@@ -88,10 +88,20 @@ mod target {
     pub const PER_PRIMITIVE_2D: &[(&str, f64)] = &[("L1", 1200.0), ("T1", 450.0), ("G1", 1000.0)];
     /// T2's share of LIMIT.
     pub const T2_LIMIT_SHARE: f64 = 0.60;
-    /// Instructions per M1 triangle.
-    pub const M1_PER_TRIANGLE: f64 = 1000.0;
+    /// Instructions per mesh triangle, the default configuration (`ours`).
+    pub const M1_PER_TRIANGLE: f64 = 1300.0;
+    /// The same for M2 and M3.
+    pub const M2_PER_TRIANGLE: f64 = 900.0;
+    /// The same for M3.
+    pub const M3_PER_TRIANGLE: f64 = 600.0;
+    /// Phong-lit M1, per triangle.
+    pub const PHONG_PER_TRIANGLE: f64 = 4000.0;
     /// A 16-row banded frame against the whole frame drawn the same way.
     pub const BAND16_RATIO: f64 = 1.25;
+    /// All the RAM of M1 in 16-row bands, and the `.text` of the M1 link check, in bytes.
+    pub const BAND16_RAM: f64 = 32768.0;
+    /// The `.text` of the no_std link check built with the M1 configuration.
+    pub const TEXT: f64 = 32768.0;
 }
 
 /// One figure.
@@ -887,6 +897,74 @@ fn m1_target(f: &Figures) -> String {
     )
 }
 
+/// The speed and size targets of the 3D pipeline against the figures.
+fn targets(f: &Figures) -> String {
+    let mut t = Table::new(&["figure", "now", "target", "met?"], "lrrl");
+    let verdict = |v: Option<f64>, target: f64| match v {
+        Some(v) if v <= target => "yes",
+        Some(_) => "no",
+        None => "-",
+    };
+    let per = |scene: &str, r: &str| f.get(scene, r, "per_primitive");
+    let rows: [(&str, Option<f64>, f64, bool); 7] = [
+        (
+            "M1 whole frame, per triangle",
+            per("M1", "ours"),
+            target::M1_PER_TRIANGLE,
+            false,
+        ),
+        (
+            "M2 whole frame, per triangle",
+            per("M2", "ours"),
+            target::M2_PER_TRIANGLE,
+            false,
+        ),
+        (
+            "M3 whole frame, per triangle",
+            per("M3", "ours"),
+            target::M3_PER_TRIANGLE,
+            false,
+        ),
+        (
+            "M1 Phong, per triangle",
+            per("M1", "ours-phong"),
+            target::PHONG_PER_TRIANGLE,
+            false,
+        ),
+        (
+            "M1 in 16-row bands, against the whole frame",
+            ratio(
+                f.get("M1", "ours-band16", "instructions"),
+                f.get("M1", "ours", "instructions"),
+            ),
+            target::BAND16_RATIO,
+            true,
+        ),
+        (
+            "M1 in 16-row bands, all RAM (bytes)",
+            f.get("M1", "ours-band16", "ram_bytes"),
+            target::BAND16_RAM,
+            false,
+        ),
+        (
+            "`.text` of the no_std check, M1 configuration (bytes)",
+            f.get("M1", "ours", "text_bytes"),
+            target::TEXT,
+            false,
+        ),
+    ];
+    for (what, now, target, fraction) in rows {
+        let show = |v: f64| if fraction { dec(v, 3) } else { int(v) };
+        t.row(&[
+            what.to_string(),
+            or_dash(now, show),
+            show(target),
+            verdict(now, target).to_string(),
+        ]);
+    }
+    t.done()
+}
+
 fn readme_speed(f: &Figures) -> String {
     let mut t = Table::new(
         &["scene (320x240 Rgb565)", "ours", "embedded-graphics"],
@@ -1001,6 +1079,7 @@ pub fn blocks(f: &Figures) -> Vec<Block> {
         b("BENCHMARKS.md", "m1-bands", m1_bands(f)),
         b("BENCHMARKS.md", "m1-memory", m1_memory(f)),
         b("BENCHMARKS.md", "m1-target", m1_target(f)),
+        b("BENCHMARKS.md", "targets", targets(f)),
         b("BENCHMARKS.md", "scenes-3d", scenes_3d(f)),
         b("BENCHMARKS.md", "ours-vs-euc", ours_vs_euc(f, false)),
         b("BENCHMARKS.md", "same-picture", same_picture(f)),

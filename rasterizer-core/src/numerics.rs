@@ -41,7 +41,9 @@ pub enum SpanStart {
     /// arithmetic, exact at an anchor pixel of the triangle with the gradients rounded to the
     /// fractional bits, so a pixel's value is a function of its position alone (bands match the
     /// whole frame) and a pixel `d` pixels from the anchor is within `(d + 1) / 2` units of the
-    /// last fractional bit of the exact plane. Depth, the values and the colour of each pixel
+    /// last fractional bit of the exact plane (16 fractional bits whatever
+    /// [`Numerics::FRAC`] says; depth is rounded down, as [`SpanStart::Exact`] rounds it).
+    /// Depth, the values and the colour of each pixel
     /// are computed in one loop, with the rounding folded into the span's start. Perspective-
     /// correct interpolation uses [`SpanStart::Exact`] instead.
     Wrapping,
@@ -52,8 +54,10 @@ pub trait Numerics {
     /// The divide method of the perspective divide.
     const DIVIDE: Divide;
     /// Fractional bits of interpolated values and depth as they step across a triangle
-    /// (4 to 16). Depth is a 16-bit integer and Gouraud colours carry 8 fractional bits, so fewer
-    /// bits show as steps only across long spans.
+    /// (4 to 16) with [`SpanStart::Exact`] and [`SpanStart::Gradient`]. Depth is a 16-bit integer
+    /// and Gouraud colours carry 8 fractional bits, so fewer bits show as steps only across long
+    /// spans. [`SpanStart::Wrapping`] ignores it: its 32-bit planes always step the shader's
+    /// values and depth with 16 fractional bits, which costs nothing more.
     const FRAC: u32;
     /// How spans start.
     const SPANS: SpanStart;

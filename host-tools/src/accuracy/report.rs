@@ -399,8 +399,9 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
          `perspective_with::<N>`, and its `rasterizer_core::numerics` type: the divide method \
          (exact division per coordinate; one reciprocal per vertex, then multiplications; a \
          64-entry table and two Newton steps, no division), the fractional bits of interpolated \
-         colour and depth, and the span starts (exact, or from gradients rounded once per \
-         triangle).\n\
+         colour and depth (with exact or gradient span starts), and the span starts (32-bit \
+         wrapping planes in the fused loop, the default; exact; or from gradients rounded once \
+         per triangle).\n\
          - **Instructions**: callgrind `--toggle-collect='*counted_frame*'` on the hidden \
          `accuracy-count CONFIGURATION` command, one M1 frame into Rgb565 after a warm frame, \
          release build, x86-64. The sine table is read only when matrices are built, so its size \
@@ -427,8 +428,8 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
     let _ = write!(
         s,
         "The library's default is **16.16 geometry, 6 sub-pixel bits (26.6 screen coordinates), \
-         the 256-entry sine table, exact division in the perspective divide, 16 fractional bits in \
-         the interpolation of colour and depth with exactly rounded span starts, affine \
+         the 256-entry sine table, exact division in the perspective divide, 32-bit wrapping span \
+         planes (exact at an anchor pixel, 16 fractional bits for colour and depth), affine \
          interpolation** (`rasterizer_core::numerics::Standard`). On M1 its vertices land within {:.3} px of \
          their exact place (mean {:.4} px), {} of the covered pixels show another triangle than \
          the f64 render, colours are off by at most {} steps (mean {:.3}), and {} of the pixels \
@@ -563,6 +564,12 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
                 thousands(c as u64),
                 signed_pct(c, dc)
             );
+            if label == "24.8" {
+                line.push_str(
+                    " (its 8 fractional bits carry the model matrix too coarsely to light in \
+                     model space, so it lights in world space)",
+                );
+            }
         }
         match r.errors.first() {
             Some(Ok(e)) => {
@@ -601,13 +608,17 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
             b.screen.good.map_or("-".into(), width_fmt)
         );
     }
-    let knob_line = |s: &mut String, what: &str, labels: &[&str]| {
+    let knob_against = |s: &mut String, what: &str, labels: &[&str], reference: &str| {
+        let Some(base) = find(reference) else { return };
+        let Some(Ok(de)) = base.errors.first().cloned() else {
+            return;
+        };
         let parts: Vec<String> = labels
             .iter()
             .filter_map(|l| find(l))
             .filter_map(|r| {
                 let e = r.errors.first()?.as_ref().ok()?;
-                let c = match (cost(r), cost(d)) {
+                let c = match (cost(r), cost(base)) {
                     (Some(c), Some(dc)) => format!("{}, ", signed_pct(c, dc)),
                     _ => String::new(),
                 };
@@ -623,7 +634,7 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
         if !parts.is_empty() {
             let _ = writeln!(
                 s,
-                "- **{what}** (default: {} wrong, vertices {:.3} px, colour mean {:.3}): {}.",
+                "- **{what}** (`{reference}`: {} wrong, vertices {:.3} px, colour mean {:.3}): {}.",
                 pct(de.wrong_share()),
                 de.vertex_max,
                 de.color_mean(),
@@ -631,13 +642,21 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
             );
         }
     };
+    let knob_line =
+        |s: &mut String, what: &str, labels: &[&str]| knob_against(s, what, labels, DEFAULT);
     knob_line(s, "Sub-pixel bits", &["bits0", "bits2", "bits4", "bits8"]);
     knob_line(
         s,
-        "Sine table",
+        "Sine table (with 16 entries or fewer the model matrix is too far from a rotation for \
+         lighting in model space, so the vertices are lit in world space)",
         &["table4", "table16", "table64", "table1024"],
     );
-    knob_line(s, "Perspective-correct interpolation", &["perspective"]);
+    knob_line(
+        s,
+        "Perspective-correct interpolation (drawn by the general span engine with exact span \
+         starts, not the fused wrapping loop)",
+        &["perspective"],
+    );
     knob_line(
         s,
         "Divide method (x86-64 divides in hardware, so a division-free method cannot be cheaper \
@@ -646,8 +665,15 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
     );
     knob_line(
         s,
-        "Interpolation bits and span starts",
-        &["frac12", "frac8", "frac4", "gradient"],
+        "Span starts (the general span engine, as against the default's fused wrapping loop)",
+        &["exact-spans", "gradient"],
+    );
+    knob_against(
+        s,
+        "Interpolation bits (a knob of the general engine's exact span starts; the wrapping \
+         planes always carry 16 bits)",
+        &["frac12", "frac8", "frac4"],
+        "exact-spans",
     );
     let _ = writeln!(s);
     conclusion(s, sweep);
@@ -710,8 +736,8 @@ fn conclusion(s: &mut String, sweep: &Sweep) {
     }
     if let (Some(t64), Some(t1024)) = (m1("table64"), m1("table1024")) {
         parts.push(format!(
-            "the sine table costs flash, not work per frame (its counts differ only through the \
-             slightly different picture): 256 entries (1 KiB) give the vertices of 1,024 entries \
+            "the sine table costs flash, not work per frame, as long as the rotation it builds \
+             is close enough to one for lighting in model space: 256 entries (1 KiB) give the vertices of 1,024 entries \
              ({:.4} against {:.4} px), 64 entries (256 bytes) {:.4} px, 16 entries {}",
             d.vertex_max,
             t1024.vertex_max,

@@ -912,7 +912,6 @@ where
             Precision {
                 frac: Sh::FUSED_FRAC,
                 offset: Sh::FUSED_OFFSET,
-                depth_frac: N::FRAC,
             },
             ShaderColor::<S, Sh>(&self.shading, core::marker::PhantomData),
         )

@@ -54,8 +54,9 @@ struct Shape {
     cross: i64,
     /// The anchor pixel.
     anchor: (i64, i64),
-    /// Its centre minus `v0`, in sub-pixel units.
-    offset: (i64, i64),
+    /// Its centre minus `v0`, in half sub-pixel units (a centre is half a unit off the grid
+    /// when there are no sub-pixel bits).
+    offset2: (i64, i64),
     /// Every product of the set-up fits `i64` (edges below 2^28 sub-pixels and the anchor on
     /// the top vertex's own pixel); otherwise the planes are set up in `i128`.
     narrow: bool,
@@ -81,19 +82,26 @@ impl Shape {
         // The value changes by a / cross per sub-pixel step in x and b / cross in y.
         let a = d1 * self.e2.1 - d2 * self.e1.1;
         let b = d2 * self.e1.0 - d1 * self.e2.0;
-        // Below this, a << (BITS + frac) and the gradients times the anchor's offset (at most
-        // half a pixel) stay below 2^62.
+        // Below this, a << (BITS + frac) stays below 2^60.
         let limit = 1i64 << (60 - BITS - frac);
-        let (fa, gx, gy) = if self.narrow && a.abs() < limit && b.abs() < limit {
-            let gx = round_div(a << (BITS + frac), self.cross);
-            let gy = round_div(b << (BITS + frac), self.cross);
-            // The anchor lies within half a pixel of v0: its value from the rounded gradients is
-            // within one unit of the last bit, with no division.
-            let n = gx * self.offset.0 + gy * self.offset.1;
-            let fa = (f[0] << frac) + ((n + ((1 << BITS) >> 1)) >> BITS);
-            (fa, gx, gy)
-        } else {
-            self.plane_wide::<BITS>(f[0], a, b, frac)
+        // Gradients below this times the doubled offsets (at most one pixel) stay below 2^61.
+        let steep = 1i64 << (61 - BITS);
+        let gradients = (self.narrow && a.abs() < limit && b.abs() < limit)
+            .then(|| {
+                (
+                    round_div(a << (BITS + frac), self.cross),
+                    round_div(b << (BITS + frac), self.cross),
+                )
+            })
+            .filter(|(gx, gy)| gx.abs() < steep && gy.abs() < steep);
+        let (fa, gx, gy) = match gradients {
+            Some((gx, gy)) => {
+                // The anchor's centre lies within half a pixel of v0: its value from the rounded
+                // gradients is within one unit of the last bit, with no division.
+                let n = gx * self.offset2.0 + gy * self.offset2.1;
+                ((f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1)), gx, gy)
+            }
+            None => self.plane_wide::<BITS>(f[0], a, b, frac),
         };
         let (ax, ay) = (self.anchor.0 as u32, self.anchor.1 as u32);
         let (gx, gy) = (gx as u32, gy as u32);
@@ -107,16 +115,16 @@ impl Shape {
         }
     }
 
-    /// [`Shape::plane`] for large triangles or a far anchor: the same values, in `i128`. Only the
-    /// low 32 bits of each result matter.
+    /// [`Shape::plane`] for large triangles, steep planes or a far anchor: the anchor's value
+    /// exactly rounded, in `i128`. Only the low 32 bits of each result matter.
     #[inline(never)]
     #[cold]
     fn plane_wide<const BITS: u32>(&self, f0: i64, a: i64, b: i64, frac: u32) -> (i64, i64, i64) {
         let (a, b, d) = (i128::from(a), i128::from(b), i128::from(self.cross));
         let gx = round_div_wide(a << (BITS + frac), d);
         let gy = round_div_wide(b << (BITS + frac), d);
-        let n = (a * i128::from(self.offset.0) + b * i128::from(self.offset.1)) << frac;
-        let fa = (i128::from(f0) << frac) + round_div_wide(n, d);
+        let n = (a * i128::from(self.offset2.0) + b * i128::from(self.offset2.1)) << frac;
+        let fa = (i128::from(f0) << frac) + round_div_wide(n, 2 * d);
         // Truncating keeps the low bits, all the wrapping arithmetic needs.
         (fa as i64, gx as i64, gy as i64)
     }
@@ -136,7 +144,6 @@ struct DepthPixels<'p, P, V, const LESS: bool> {
     step: [u32; MAX_VARYINGS],
     z: u32,
     dz: u32,
-    zfrac: u32,
     compare: Compare,
     pixel: &'p P,
     _v: core::marker::PhantomData<V>,
@@ -149,7 +156,7 @@ impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
     fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
         // Only depth steps with every pixel; the values of a pixel that passes are computed from
         // its index (most pixels of a dense mesh fail the test).
-        let nz = (self.z >> self.zfrac) as u16;
+        let nz = (self.z >> Z_FRAC) as u16;
         self.z = self.z.wrapping_add(self.dz);
         let pass = if LESS {
             nz < *stored
@@ -175,7 +182,6 @@ struct Fused<'a, S: Surface, D, V, P> {
     pixel: P,
     values: [Plane32; MAX_VARYINGS],
     z: Plane32,
-    zfrac: u32,
     less: bool,
     compare: Compare,
     _v: core::marker::PhantomData<V>,
@@ -219,14 +225,13 @@ where
         if zrow.is_empty() {
             return Ok(());
         }
-        let (z, dz, zfrac, compare) = (self.z.at(x0, row), self.z.gx, self.zfrac, self.compare);
+        let (z, dz, compare) = (self.z.at(x0, row), self.z.gx, self.compare);
         if self.less {
             let pixels = DepthPixels::<P, V, true> {
                 acc,
                 step,
                 z,
                 dz,
-                zfrac,
                 compare,
                 pixel,
                 _v: core::marker::PhantomData,
@@ -238,7 +243,6 @@ where
                 step,
                 z,
                 dz,
-                zfrac,
                 compare,
                 pixel,
                 _v: core::marker::PhantomData,
@@ -255,9 +259,11 @@ pub(crate) struct Precision {
     pub frac: u32,
     /// Added to each value at a span's start, in units of its last fractional bit.
     pub offset: u32,
-    /// Fractional bits of depth (at most 16).
-    pub depth_frac: u32,
 }
+
+/// Fractional bits of depth. Always the full 16: fewer would save nothing in 32-bit planes, and
+/// the bound that keeps the wrapping values in range needs them on large viewports.
+const Z_FRAC: u32 = 16;
 
 /// A screen vertex of the fused path: sub-pixel position, depth (0 nearest) and the shader's
 /// values.
@@ -266,9 +272,10 @@ pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
 /// Fills a triangle with a depth test and interpolated values through the fused span loop.
 ///
 /// The shader's values get `precision.frac` fractional bits and `precision.offset` added
-/// (`pixel` receives each pixel's values as `value 2^frac + offset`, wrapping); depth gets
-/// `precision.depth_frac` fractional bits and is rounded to whole steps. `area` (not empty) is the rectangle the anchors are kept in: the
-/// viewport, the same for every band.
+/// (`pixel` receives each pixel's values as `value 2^frac + offset`, wrapping); depth gets 16
+/// fractional bits and is rounded down to whole steps, or to the nearest when a vertex lies on
+/// the near plane (depth 0), where rounding down could wrap. `area` (not empty) is the
+/// rectangle the anchors are kept in: the viewport, the same for every band.
 // One copy per pipeline type, called from both the inside and the clipped path: the set-up is
 // per triangle, so the call costs little, and the code is not duplicated.
 #[inline(never)]
@@ -289,7 +296,6 @@ where
     let Precision {
         frac: vfrac,
         offset: voffset,
-        depth_frac: zfrac,
     } = precision;
     let Some(t) = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0]) else {
         return Ok(());
@@ -325,7 +331,7 @@ where
         e2,
         cross: t.cross.abs(),
         anchor,
-        offset: (anchor.0 * s + s / 2 - v0.0, anchor.1 * s + s / 2 - v0.1),
+        offset2: (2 * (anchor.0 * s - v0.0) + s, 2 * (anchor.1 * s - v0.1) + s),
         narrow: anchor == own && small(e1.0) && small(e1.1) && small(e2.0) && small(e2.1),
     };
     let [o0, o1, o2] = t.order;
@@ -337,7 +343,11 @@ where
     }
     let z = if D::ENABLED {
         let f = |o: usize| i64::from(vertices[o].1);
-        shape.plane::<BITS>([f(o0), f(o1), f(o2)], zfrac, (1 << zfrac) >> 1)
+        // Rounded down, as the exact interpolator does; a plane that reaches depth 0 at a
+        // vertex is rounded to the nearest step, so no pixel wraps below 0.
+        let near = vertices.iter().any(|v| v.1 == 0);
+        let offset = if near { 1 << (Z_FRAC - 1) } else { 0 };
+        shape.plane::<BITS>([f(o0), f(o1), f(o2)], Z_FRAC, offset)
     } else {
         Plane32::default()
     };
@@ -348,7 +358,6 @@ where
         pixel,
         values,
         z,
-        zfrac,
         less: compare == Compare::Less,
         compare,
         _v: core::marker::PhantomData,
