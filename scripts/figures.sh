@@ -302,20 +302,24 @@ if wanted M1; then
         fi
         r="${job%% *}"
         config="${job#* }"
-        if [ -z "${MEM[release.$config.stack]:-}" ]; then
-            echo "figures.sh: the stack test printed no MEMORY line for $config (see $log)" >&2
-            exit 1
-        fi
+        # A missing key would only fail inside a command substitution, which does not stop the
+        # script: check every key here.
+        for key in stack depth band band_depth bins visible scratch pipeline framebuffer; do
+            if [ -z "${MEM[release.$config.$key]:-}" ]; then
+                echo "figures.sh: the stack test printed no $key for $config (see $log)" >&2
+                exit 1
+            fi
+        done
         # Everything the frame needs besides the mesh and the output (the framebuffer).
         ram=0
-        for part in depth band band_depth bins cache stack; do ram=$((ram + $(m "$part"))); done
+        for part in depth band band_depth bins scratch stack; do ram=$((ram + $(m "$part"))); done
         emit_count M1 "$r" ram_bytes "$ram"
         emit M1 "$r" depth_bytes "$(m depth)"
         emit M1 "$r" band_bytes "$(m band)"
         emit M1 "$r" band_depth_bytes "$(m band_depth)"
         emit M1 "$r" bins_bytes "$(m bins)"
         emit M1 "$r" binned_triangles "$(m visible)"
-        emit M1 "$r" scratch_bytes "$(m cache)"
+        emit M1 "$r" scratch_bytes "$(m scratch)"
         emit_count M1 "$r" stack_bytes "$(m stack)"
         emit_count M1 "$r" pipeline_bytes "$(m pipeline)"
         emit M1 "$r" framebuffer_bytes "$(m framebuffer)"
