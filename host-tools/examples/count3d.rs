@@ -257,7 +257,10 @@ fn banded(
         let y0 = b.y0() as usize * WIDTH as usize;
         let data = b.framebuffer().as_slice();
         let w = WIDTH as usize;
-        for (dst, src) in out[y0..y0 + data.len()].chunks_exact_mut(w).zip(data.chunks_exact(w)) {
+        for (dst, src) in out[y0..y0 + data.len()]
+            .chunks_exact_mut(w)
+            .zip(data.chunks_exact(w))
+        {
             // Opaque, so that the rows are not merged back into one block copy.
             dst.copy_from_slice(std::hint::black_box(src));
         }
