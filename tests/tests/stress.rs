@@ -191,3 +191,78 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
         "{differing} of {compared} pixels differ"
     );
 }
+
+/// A case `fuzz/pipeline3d` found: an arbitrary projection matrix whose clipped polygon projects
+/// to points near the ends of `i32`, where the polygon's signed area overflowed `i64` (a panic in
+/// debug builds, a wrong facing in release). The harness's decoding, kept to the one draw.
+#[test]
+fn clipped_polygon_near_i32_limits_has_an_exact_area() {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use rasterizer_core::pipeline::shading::VertexColors;
+    use rasterizer_core::pipeline::Mesh;
+    // The fuzzer's input, byte for byte.
+    let data: [u8; 115] = [
+        0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b,
+        0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b,
+        0x7b, 0x7b, 0x00, 0x60, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b,
+        0x7b, 0x7b, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00,
+        0x00, 0x00, 0x00, 0x00, 0x00, 0x05, 0xeb, 0x14, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+        0x00, 0x00, 0x00, 0x14, 0x14, 0x2d, 0x00, 0x20, 0x14, 0x14, 0x14, 0x14, 0x04, 0xe3, 0xec,
+        0xeb, 0xfb, 0xeb, 0xeb, 0xeb, 0xbb, 0x14, 0x14, 0x04, 0xec, 0x7b, 0xff, 0xff, 0xff, 0xff,
+        0x00, 0x20, 0x14, 0x14, 0x14, 0x14, 0x14, 0x7b, 0x7b, 0x8a,
+    ];
+    let words: Vec<i32> = data
+        .chunks_exact(4)
+        .map(|b| i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    let mut m = [[Fx16::ZERO; 4]; 4];
+    for (k, w) in words[..16].iter().enumerate() {
+        m[k / 4][k % 4] = Fx16::from_bits(*w);
+    }
+    let rest = &words[17..];
+    let n = rest.len() / 3;
+    let pos: Vec<Vec3<Fx16>> = (0..n)
+        .map(|i| {
+            Vec3::new(
+                Fx16::from_bits(rest[3 * i]),
+                Fx16::from_bits(rest[3 * i + 1]),
+                Fx16::from_bits(rest[3 * i + 2]),
+            )
+        })
+        .collect();
+    let colors: Vec<Rgb888> = (0..n)
+        .map(|i| Rgb888::new(i as u8 * 40, 255 - i as u8 * 7, 128))
+        .collect();
+    let tris: Vec<[u16; 3]> = (0..n.saturating_sub(2))
+        .map(|t| [t as u16, t as u16 + 1, t as u16 + 2])
+        .collect();
+    let mesh = Mesh {
+        positions: &pos,
+        normals: None,
+        colors: Some(&colors),
+        triangles: &tris,
+    };
+    let xf = Transforms {
+        model: Mat4::identity(),
+        view: Mat4::identity(),
+        projection: Mat4::from_rows(m),
+    };
+    let (w, h) = (32, 24);
+    let mut buf = vec![0u16; (w * h) as usize];
+    let mut z = vec![u16::MAX; (w * h) as usize];
+    let depth = DepthBuffer::new(&mut z, w, h, Compare::LessEqual).unwrap();
+    let mut p = Pipeline::<_, _, _, _>::new(
+        &xf,
+        Viewport::new(w, h),
+        NoCull,
+        depth,
+        VertexColors::<Rgb565>::new(),
+    );
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, w, h).unwrap();
+    let stats = p
+        .draw(&mut fb, &mesh, &mut vec![VertexSlot::EMPTY; n])
+        .unwrap();
+    assert_eq!(stats.triangles as usize, tris.len());
+    // The triangle reaches the clipper: the case exercises the clipped path.
+    assert!(stats.clipped > 0, "{stats:?}");
+}

@@ -1134,18 +1134,21 @@ impl<S: Scalar, Sh: Shading<S>> FusedColor<Sh::Color> for ShaderColor<'_, S, Sh>
     }
 }
 
-/// The signed doubled area of a convex polygon of screen points.
+/// The signed doubled area of a convex polygon of screen points, saturated to `i64` (its sign
+/// and whether it is zero are exact).
 fn polygon_area<const BITS: u32>(points: impl Iterator<Item = SubPoint<BITS>> + Clone) -> i64 {
     let mut it = points.clone();
     let Some(a) = it.next() else { return 0 };
-    let mut area = 0i64;
+    // Projected points may lie anywhere in i32 (the projection clamps there): differences need 33
+    // bits and their products 66, so the sum is taken in i128.
+    let mut area = 0i128;
     let mut prev: Option<SubPoint<BITS>> = None;
+    let d = |p: i32, q: i32| i128::from(p) - i128::from(q);
     for c in it {
         if let Some(b) = prev {
-            area += (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
-                - (i64::from(c.x) - i64::from(a.x)) * (i64::from(b.y) - i64::from(a.y));
+            area += d(b.x, a.x) * d(c.y, a.y) - d(c.x, a.x) * d(b.y, a.y);
         }
         prev = Some(c);
     }
-    area
+    area.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
 }
