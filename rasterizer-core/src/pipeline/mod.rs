@@ -946,7 +946,8 @@ where
     /// Draws a mesh filled with the pipeline's shading, depth test and culling.
     ///
     /// `scratch` holds one [`VertexSlot`] per mesh vertex (its contents on entry do not matter):
-    /// each vertex is transformed, projected and shaded once, by the first triangle that needs it.
+    /// each vertex is transformed and projected once when the draw begins, and shaded once, by the
+    /// first visible triangle that uses it (a vertex of back faces only is never lit).
     /// A vertex beyond the scratch's length is processed again by every triangle that uses it
     /// (about six times for a closed mesh): a short scratch, even an empty one, is slower, never
     /// wrong, and draws the same pixels.
