@@ -48,7 +48,7 @@ fuzz_target!(|data: &[u8]| {
         })
         .collect();
     let colors: Vec<Rgb888> = (0..n)
-        .map(|i| Rgb888::new(i as u8 * 40, 255 - i as u8 * 7, 128))
+        .map(|i| Rgb888::new((i as u8).wrapping_mul(40), 255 - i as u8 * 7, 128))
         .collect();
     // A strip: each vertex shared by up to three triangles, as the scratch expects.
     let tris: Vec<[u16; 3]> = (0..n.saturating_sub(2))

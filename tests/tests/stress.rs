@@ -231,7 +231,7 @@ fn clipped_polygon_near_i32_limits_has_an_exact_area() {
         })
         .collect();
     let colors: Vec<Rgb888> = (0..n)
-        .map(|i| Rgb888::new(i as u8 * 40, 255 - i as u8 * 7, 128))
+        .map(|i| Rgb888::new((i as u8).wrapping_mul(40), 255 - i as u8 * 7, 128))
         .collect();
     let tris: Vec<[u16; 3]> = (0..n.saturating_sub(2))
         .map(|t| [t as u16, t as u16 + 1, t as u16 + 2])
