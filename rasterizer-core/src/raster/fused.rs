@@ -19,9 +19,8 @@
 //! wrapping arithmetic needs no clamp per pixel.
 
 use crate::geom::{PixelRect, SubPoint};
-use crate::raster::edge::row_at_or_below;
 use crate::raster::interp::{Compare, DepthTest};
-use crate::raster::triangle::setup::{covers_a_centre, walk_spans_once, Sorted, SpanSink};
+use crate::raster::triangle::setup::{misses_every_centre, walk_spans_once, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::{DepthSpan, Surface};
 
@@ -303,18 +302,8 @@ where
     let [v0, v1, v2] = t.v;
     let s = 1i64 << BITS;
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    // A triangle between two rows or two columns of pixel centres, or outside the clip area,
-    // covers no pixel: skip the set-up. Conservative: the span walk decides coverage exactly.
-    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
-    let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
-    let cols = row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
-    if rows.is_empty() || cols.is_empty() {
-        return Ok(());
-    }
-    // With at most four pixel centres in reach, the span walk first says whether the triangle
-    // covers any, before the planes are set up.
-    let centres = (rows.end - rows.start).saturating_mul(cols.end - cols.start);
-    if centres <= 4 && !covers_a_centre(&t, s, rows, cols) {
+    // A triangle that surely covers no pixel skips the set-up of its planes.
+    if misses_every_centre(&t, s, &clip) {
         return Ok(());
     }
     let sign = t.cross.signum();

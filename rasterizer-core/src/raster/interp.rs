@@ -9,7 +9,7 @@
 use crate::geom::{PixelRect, SubPoint};
 use crate::numerics::{Numerics, SpanStart, Standard};
 use crate::raster::edge::row_at_or_below;
-use crate::raster::triangle::setup::{covers_a_centre, walk_spans, Sorted, SpanSink};
+use crate::raster::triangle::setup::{misses_every_centre, walk_spans, Sorted, SpanSink};
 use crate::shade::{Varyings, MAX_VARYINGS};
 use crate::target::Surface;
 use embedded_graphics_core::primitives::Rectangle;
@@ -604,19 +604,9 @@ where
     let [v0, v1, v2] = t.v;
     let s = 1i64 << BITS;
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    // A triangle between two rows or two columns of pixel centres (most triangles of a dense mesh
-    // far away), or outside the clip area, covers no pixel: skip the set-up. Conservative: the
-    // span walk still decides coverage exactly.
-    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
-    let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
-    let cols = row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
-    if rows.is_empty() || cols.is_empty() {
-        return Ok(());
-    }
-    // With at most four pixel centres in reach (most triangles of a dense mesh seen from afar),
-    // the centres are tested first, before the planes are set up.
-    let centres = (rows.end - rows.start).saturating_mul(cols.end - cols.start);
-    if centres <= 4 && !covers_a_centre(&t, s, rows.clone(), cols) {
+    // A triangle that surely covers no pixel (most triangles of a dense mesh far away) skips
+    // the set-up of its planes.
+    if misses_every_centre(&t, s, &clip) {
         return Ok(());
     }
     let [o0, o1, o2] = t.order;
@@ -683,7 +673,8 @@ where
         }
     }
     // A triangle on one row of pixel centres has one span: it never moves down a row.
-    let one_row = rows.end - rows.start == 1;
+    let one_row =
+        row_at_or_below(v2.1, s).min(clip.y1) - row_at_or_below(v0.1, s).max(clip.y0) == 1;
     let mut setup = |i: usize| {
         let p = planes[i];
         let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << N::FRAC, den2);

@@ -50,6 +50,17 @@ pub(crate) trait SpanSink {
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), Self::Error>;
 }
 
+/// The pixel rows a triangle's spans run over inside `clip`: `top..bottom`, the lower half from
+/// `mid` (v1's row, kept within them); `None` when there is none.
+#[inline(always)]
+fn rows_in_clip(t: &Sorted, s: i64, clip: &PixelRect) -> Option<(i64, i64, i64)> {
+    let [v0, v1, v2] = t.v;
+    let top = row_at_or_below(v0.1, s).max(clip.y0);
+    let mid = row_at_or_below(v1.1, s).clamp(top, clip.y1.max(top));
+    let bottom = row_at_or_below(v2.1, s).min(clip.y1);
+    (top < bottom).then_some((top, mid, bottom))
+}
+
 /// Hands `sink` every non-empty span of the triangle inside `clip`, top to bottom.
 ///
 /// Rows run over `y0 <= yc < y2`; in each, columns run from the left edge's column (inclusive: a centre
@@ -62,12 +73,9 @@ pub(crate) fn walk_spans<K: SpanSink>(
     sink: &mut K,
 ) -> Result<(), K::Error> {
     let [v0, v1, v2] = t.v;
-    let top = row_at_or_below(v0.1, s).max(clip.y0);
-    let mid = row_at_or_below(v1.1, s).clamp(top, clip.y1.max(top));
-    let bottom = row_at_or_below(v2.1, s).min(clip.y1);
-    if top >= bottom {
+    let Some((top, mid, bottom)) = rows_in_clip(t, s, clip) else {
         return Ok(());
-    }
+    };
     // Columns need clamping only when the triangle's x extent leaves the clip area: a non-empty
     // span's ends lie between the leftmost and rightmost vertex.
     let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
@@ -106,12 +114,9 @@ pub(crate) fn walk_spans_once<K: SpanSink>(
     sink: &mut K,
 ) -> Result<(), K::Error> {
     let [v0, v1, v2] = t.v;
-    let top = row_at_or_below(v0.1, s).max(clip.y0);
-    let mid = row_at_or_below(v1.1, s).clamp(top, clip.y1.max(top));
-    let bottom = row_at_or_below(v2.1, s).min(clip.y1);
-    if top >= bottom {
+    let Some((top, mid, bottom)) = rows_in_clip(t, s, clip) else {
         return Ok(());
-    }
+    };
     let mut long = EdgeWalk::new(v0, v2, s, top);
     // The upper short edge when the triangle has rows above v1, else the lower one.
     let mut short = if top < mid {
@@ -169,6 +174,23 @@ fn rows_of<K: SpanSink>(
         }
     }
     Ok(())
+}
+
+/// Whether the triangle surely covers no pixel centre inside `clip`, found without setting up
+/// the edge walks: no row or no column of centres lies in its reach (it lies between two rows or
+/// columns of centres, or outside `clip`), or at most four centres do and [`covers_a_centre`]
+/// finds none. `false` decides nothing: the span walk decides coverage exactly.
+#[inline(always)]
+pub(crate) fn misses_every_centre(t: &Sorted, s: i64, clip: &PixelRect) -> bool {
+    let [v0, v1, v2] = t.v;
+    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+    let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
+    let cols = row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
+    if rows.is_empty() || cols.is_empty() {
+        return true;
+    }
+    let centres = (rows.end - rows.start).saturating_mul(cols.end - cols.start);
+    centres <= 4 && !covers_a_centre(t, s, rows, cols)
 }
 
 /// Whether the triangle covers one of the pixel centres of `rows` x `cols` (pixel ranges inside
