@@ -150,9 +150,19 @@ pub fn lighting() -> Lighting<Fx16, 1> {
 
 /// The model, view and projection matrices of every scene, in 16.16.
 pub fn transforms() -> Transforms<Fx16> {
+    camera(
+        Mat4::rotation_y(Angle::from_degrees(ROTATION_Y_DEGREES)),
+        WIDTH,
+        HEIGHT,
+    )
+}
+
+/// The scenes' camera (eye, field of view, near and far planes) for a `width` x `height` frame,
+/// with `model` as the model matrix.
+pub fn camera(model: Mat4<Fx16>, width: u32, height: u32) -> Transforms<Fx16> {
     let [ex, ey, ez] = EYE;
     Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(ROTATION_Y_DEGREES)),
+        model,
         view: Mat4::look_at(
             Vec3::from_ints(ex, ey, ez),
             Vec3::from_ints(0, 0, 0),
@@ -161,7 +171,7 @@ pub fn transforms() -> Transforms<Fx16> {
         .expect("camera basis"),
         projection: Mat4::perspective(
             Angle::from_degrees(FOV_Y_DEGREES),
-            Fx16::from_ratio(WIDTH.into(), HEIGHT.into()),
+            Fx16::from_ratio(width.into(), height.into()),
             Fx16::from_ratio(NEAR.0, NEAR.1),
             Fx16::from_int(FAR),
         )

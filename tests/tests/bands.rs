@@ -28,23 +28,9 @@ fn suzanne() -> host_tools::obj::LoadedMesh {
     host_tools::obj::LoadedMesh::load(&path).unwrap()
 }
 
+/// The M1 camera with the model turned `yaw` degrees about y.
 fn transforms(w: u32, h: u32, yaw: i32) -> Transforms<Fx16> {
-    Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(yaw)),
-        view: Mat4::look_at(
-            Vec3::from_ints(0, 0, 3),
-            Vec3::default(),
-            Vec3::from_ints(0, 1, 0),
-        )
-        .unwrap(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(i64::from(w), i64::from(h)),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap(),
-    }
+    host_tools::scenes3d::camera(Mat4::rotation_y(Angle::from_degrees(yaw)), w, h)
 }
 
 // The M1 lighting, shared with the benchmarks.
