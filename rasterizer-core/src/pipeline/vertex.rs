@@ -1,8 +1,8 @@
 //! The vertex scratch: each mesh vertex transformed, projected and shaded at most once a frame.
 //!
-//! A draw call takes a slice of [`VertexSlot`]s from the caller, one per mesh vertex. The first
-//! triangle that uses a vertex fills its slot with the projected screen position (26.6 by
-//! default) and depth; the first visible triangle that uses it adds the shader's values, packed
+//! A draw call takes a slice of [`VertexSlot`]s from the caller, one per mesh vertex. When the
+//! draw begins, every slot gets its vertex's projected screen position (26.6 by default) and
+//! depth; the first visible triangle that uses a vertex adds the shader's values, packed
 //! ([`Packed`]: three `u16` channels for the colour shaders, so a Gouraud slot is 16 bytes).
 //! Vertices beyond the slice's length are processed again by every triangle that uses them: a
 //! short scratch is slower, never wrong.
