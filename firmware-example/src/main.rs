@@ -13,14 +13,17 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
+use rasterizer_core::cull::CullClockwise;
+use rasterizer_core::depth::{Compare, DepthBuffer};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::pipeline::cull::CullClockwise;
-use rasterizer_core::pipeline::shading::GouraudLit;
-use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, Transforms, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer};
+use rasterizer_core::shade::GouraudLit;
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::VertexSlot,
+    transform::Transforms, transform::Viewport,
+};
 
 /// The converted mesh, in flash.
 static SUZANNE: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");

@@ -3,8 +3,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use rasterizer_core::math::{Fx16, Vec3};
+use rasterizer_core::mesh::MeshSource;
 use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::pipeline::MeshSource;
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(m) = PackedMesh::parse(data) {

@@ -6,14 +6,15 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use libfuzzer_sys::fuzz_target;
+use rasterizer_core::cull::NoCull;
+use rasterizer_core::depth::{Compare, DepthBuffer};
 use rasterizer_core::math::{Fx16, Mat4, Vec3};
-use rasterizer_core::pipeline::cull::NoCull;
-use rasterizer_core::pipeline::shading::VertexColors;
-use rasterizer_core::pipeline::{
-    Banding, BinEntry, Mesh, Pipeline, Transforms, VertexSlot, Viewport,
+use rasterizer_core::shade::VertexColors;
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    mesh::Mesh, pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::VertexSlot,
+    transform::Transforms, transform::Viewport,
 };
-use rasterizer_core::raster::interp::{Compare, DepthBuffer};
-use rasterizer_core::target::Framebuffer;
 
 const W: u32 = 32;
 const H: u32 = 24;

@@ -12,7 +12,7 @@ use rasterizer_core::geom::SubPoint;
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::target::{AnyTarget, ClipTo, Framebuffer, Surface};
+use rasterizer_core::surface::{AnyTarget, ClipTo, Framebuffer, Surface};
 
 const W: u32 = 40;
 const H: u32 = 30;

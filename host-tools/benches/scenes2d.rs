@@ -11,7 +11,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use host_tools::scenes::{self, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::surface::Framebuffer;
 use std::hint::black_box;
 
 fn lines(c: &mut Criterion, fb: &mut Framebuffer<Rgb565>, l1: &[LineSeg]) {

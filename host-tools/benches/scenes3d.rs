@@ -27,12 +27,12 @@ use embedded_graphics::prelude::*;
 use euc3d::EucScene;
 use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
 use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
+use rasterizer_core::cull::CullClockwise;
+use rasterizer_core::depth::{Compare, DepthBuffer};
 use rasterizer_core::math::Fx16;
-use rasterizer_core::pipeline::cull::CullClockwise;
-use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
-use rasterizer_core::pipeline::{Mesh, Pipeline, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer};
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Viewport};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 

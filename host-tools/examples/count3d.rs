@@ -62,14 +62,15 @@ use euc3d::{EucColor, EucDepth, EucScene};
 use host_tools::obj::LoadedMesh;
 use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
 use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
+use rasterizer_core::cull::{Cull, CullClockwise, NoCull};
+use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::math::Fx16;
-use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
-use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
-use rasterizer_core::pipeline::{
-    Banding, BinEntry, Mesh, Pipeline, RenderStats, VertexSlot, Viewport,
+use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    mesh::Mesh, pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::RenderStats,
+    pipeline::VertexSlot, transform::Viewport,
 };
-use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::target::Framebuffer;
 use std::hint::black_box;
 use std::path::Path;
 use std::process::ExitCode;

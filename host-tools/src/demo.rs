@@ -20,7 +20,7 @@ use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::target::{AnyTarget, ClipTo};
+use rasterizer_core::surface::{AnyTarget, ClipTo};
 use std::f64::consts::TAU;
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -20,15 +20,16 @@ use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::Pixel;
 use host_tools::obj::LoadedMesh;
+use rasterizer_core::cull::{CullClockwise, CullCounterClockwise};
+use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::pipeline::cull::{CullClockwise, CullCounterClockwise};
-use rasterizer_core::pipeline::shading::{
-    FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
-};
-use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
+use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-use rasterizer_core::target::{AnyTarget, Framebuffer};
+use rasterizer_core::surface::{AnyTarget, Framebuffer};
+use rasterizer_core::{
+    mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
+    transform::Viewport,
+};
 use std::path::Path;
 
 /// Width of every 3D picture, in display pixels.

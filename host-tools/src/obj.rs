@@ -5,7 +5,7 @@
 //! host's quick path; the compact embedded format comes with the converter.
 
 use rasterizer_core::math::{Fx16, Vec3};
-use rasterizer_core::pipeline::Mesh;
+use rasterizer_core::mesh::Mesh;
 use std::path::Path;
 
 /// A mesh in memory.

@@ -12,8 +12,8 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use rasterizer_core::math::{Fx16, Scalar, Vec3};
-use rasterizer_core::pipeline::shading::{Shading, VertexIn};
 use rasterizer_core::shade::{Material, Specular};
+use rasterizer_core::shade::{Shading, VertexIn};
 
 /// A 4x4 matrix, `m[row][column]`, column vectors (`p' = M p`).
 pub type M4 = [[f64; 4]; 4];
@@ -641,8 +641,8 @@ impl FaceMesh {
     }
 
     /// As a pipeline mesh.
-    pub fn mesh(&self) -> rasterizer_core::pipeline::Mesh<'_, Fx16, u32> {
-        rasterizer_core::pipeline::Mesh {
+    pub fn mesh(&self) -> rasterizer_core::mesh::Mesh<'_, Fx16, u32> {
+        rasterizer_core::mesh::Mesh {
             positions: &self.positions,
             normals: None,
             colors: Some(&self.colors),

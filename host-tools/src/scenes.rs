@@ -14,7 +14,7 @@ use embedded_graphics_core::Pixel;
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::raster::line::draw_line;
 use rasterizer_core::raster::triangle::{fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::target::Surface;
+use rasterizer_core::surface::Surface;
 
 /// Width of the benchmark framebuffer, in pixels.
 pub const WIDTH: u32 = 320;

@@ -23,8 +23,8 @@ use crate::obj::{LoadError, LoadedMesh};
 use crate::scenes::{HEIGHT, WIDTH};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::pipeline::Transforms;
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+use rasterizer_core::transform::Transforms;
 use std::path::PathBuf;
 
 /// The model's rotation about Y, in degrees.

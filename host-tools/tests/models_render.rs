@@ -4,14 +4,17 @@
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics_core::prelude::*;
 use host_tools::convert::{convert_obj, Options};
+use rasterizer_core::cull::NoCull;
+use rasterizer_core::depth::{Compare, DepthBuffer};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::pipeline::cull::NoCull;
-use rasterizer_core::pipeline::shading::GouraudLit;
-use rasterizer_core::pipeline::{MeshSource, Pipeline, Transforms, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer};
+use rasterizer_core::shade::GouraudLit;
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    mesh::MeshSource, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
+    transform::Viewport,
+};
 use std::path::{Path, PathBuf};
 
 const W: u32 = 160;

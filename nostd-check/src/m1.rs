@@ -2,7 +2,7 @@
 
 use core::hint::black_box;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::pipeline::Transforms;
+use rasterizer_core::transform::Transforms;
 
 /// The mesh, converted on the host.
 pub static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");

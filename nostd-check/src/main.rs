@@ -36,7 +36,7 @@ use rasterizer_core::raster::polygon::{FillRule, Polygon};
 #[cfg(feature = "all")]
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
 #[cfg(feature = "all")]
-use rasterizer_core::target::{AnyTarget, Framebuffer, Surface};
+use rasterizer_core::surface::{AnyTarget, Framebuffer, Surface};
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
@@ -86,13 +86,16 @@ where
 /// vertex scratch and with none) with the float-free default stages.
 #[cfg(feature = "all")]
 fn draw_3d(buf: &mut [u16]) -> u32 {
+    use rasterizer_core::cull::{CullClockwise, NoCull};
+    use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
     use rasterizer_core::math::{Fx16, Vec3};
     use rasterizer_core::mesh::PackedMesh;
-    use rasterizer_core::pipeline::cull::{CullClockwise, NoCull};
-    use rasterizer_core::pipeline::shading::{FlatLit, PhongLit, Unlit};
-    use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, VertexSlot, Viewport};
-    use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
+    use rasterizer_core::shade::{FlatLit, PhongLit, Unlit};
     use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+    use rasterizer_core::{
+        pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::VertexSlot,
+        transform::Viewport,
+    };
 
     let Ok(mesh) = PackedMesh::parse(black_box(m1::MESH)) else {
         return 0;

@@ -68,15 +68,15 @@ compile_error!(
         not(feature = "banded")
     )
 ))]
-fn frame(
-) -> Option<rasterizer_core::target::Framebuffer<'static, embedded_graphics_core::pixelcolor::Rgb565>>
-{
+fn frame() -> Option<
+    rasterizer_core::surface::Framebuffer<'static, embedded_graphics_core::pixelcolor::Rgb565>,
+> {
     static mut FRAME: [u16; (W * H) as usize] = [0; (W * H) as usize];
     // SAFETY: `main` calls this once per use and drops the framebuffer before the next call; nothing
     // else refers to FRAME.
     #[allow(static_mut_refs)]
     let buf = unsafe { &mut FRAME };
-    rasterizer_core::target::Framebuffer::new(buf, W, H).ok()
+    rasterizer_core::surface::Framebuffer::new(buf, W, H).ok()
 }
 
 /// The 2D calls of the chosen features.
@@ -147,7 +147,7 @@ mod three_d {
     use embedded_graphics_core::pixelcolor::Rgb565;
     use rasterizer_core::math::Fx16;
     use rasterizer_core::mesh::PackedMesh;
-    use rasterizer_core::pipeline::{Pipeline, Viewport};
+    use rasterizer_core::{pipeline::Pipeline, transform::Viewport};
 
     /// Suzanne's vertices: the length of the vertex scratch.
     #[cfg(not(feature = "noscratch"))]
@@ -165,17 +165,17 @@ mod three_d {
     const DEPTH_ROWS: u32 = H;
 
     #[cfg(feature = "unlit")]
-    type Sh = rasterizer_core::pipeline::shading::Unlit<Rgb565>;
+    type Sh = rasterizer_core::shade::Unlit<Rgb565>;
     #[cfg(feature = "flat")]
-    type Sh = rasterizer_core::pipeline::shading::FlatLit<Fx16, Rgb565, 1>;
+    type Sh = rasterizer_core::shade::FlatLit<Fx16, Rgb565, 1>;
     #[cfg(feature = "gouraud")]
-    type Sh = rasterizer_core::pipeline::shading::GouraudLit<Fx16, Rgb565, 1>;
+    type Sh = rasterizer_core::shade::GouraudLit<Fx16, Rgb565, 1>;
     #[cfg(feature = "phong")]
-    type Sh = rasterizer_core::pipeline::shading::PhongLit<Fx16, Rgb565, 1>;
+    type Sh = rasterizer_core::shade::PhongLit<Fx16, Rgb565, 1>;
 
     /// A vertex scratch slot of the chosen shading.
     type Slot = rasterizer_core::pipeline::VertexSlot<
-        <Sh as rasterizer_core::pipeline::shading::Shading<Fx16>>::Stored,
+        <Sh as rasterizer_core::shade::Shading<Fx16>>::Stored,
     >;
 
     #[cfg(feature = "depth")]
@@ -193,7 +193,7 @@ mod three_d {
 
     #[cfg(feature = "unlit")]
     fn shading() -> Sh {
-        rasterizer_core::pipeline::shading::Unlit {
+        rasterizer_core::shade::Unlit {
             color: black_box(Rgb565::new(27, 35, 10)),
         }
     }
@@ -228,12 +228,12 @@ mod three_d {
         };
         let xf = crate::m1::transforms();
         #[cfg(feature = "cull")]
-        let cull = rasterizer_core::pipeline::cull::CullClockwise;
+        let cull = rasterizer_core::cull::CullClockwise;
         #[cfg(not(feature = "cull"))]
-        let cull = rasterizer_core::pipeline::cull::NoCull;
+        let cull = rasterizer_core::cull::NoCull;
         #[cfg(feature = "depth")]
         let depth = {
-            use rasterizer_core::raster::interp::{Compare, DepthBuffer};
+            use rasterizer_core::depth::{Compare, DepthBuffer};
             // SAFETY: the only reference to DEPTH, made once.
             #[allow(static_mut_refs)]
             let z = unsafe { &mut DEPTH };
@@ -244,7 +244,7 @@ mod three_d {
             depth
         };
         #[cfg(not(feature = "depth"))]
-        let depth = rasterizer_core::raster::interp::NoDepth;
+        let depth = rasterizer_core::depth::NoDepth;
         #[cfg(not(feature = "noscratch"))]
         let scratch: &mut [Slot] = {
             // SAFETY: the only reference to SCRATCH, made once; every slot is written before the

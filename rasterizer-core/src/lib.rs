@@ -7,7 +7,7 @@
 //! use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*};
 //! use rasterizer_core::geom::SubPoint;
 //! use rasterizer_core::raster::{line::draw_line, triangle::fill_triangle_gouraud};
-//! use rasterizer_core::target::Framebuffer;
+//! use rasterizer_core::surface::Framebuffer;
 //!
 //! let mut buf = [0u16; 320 * 240];
 //! let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 320, 240).unwrap();
@@ -40,16 +40,22 @@
 #![deny(missing_docs)]
 #![deny(clippy::float_arithmetic, clippy::disallowed_types)]
 
-pub mod clip;
+// Foundations.
 pub mod color;
 pub mod geom;
 pub mod math;
-pub mod mesh;
 pub mod numerics;
+// Where pixels go.
+pub mod surface;
+// The stages, in the order data flows through them.
+pub mod clip;
+pub mod cull;
+pub mod depth;
+pub mod mesh;
 pub mod pipeline;
 pub mod raster;
 pub mod shade;
-pub mod target;
+pub mod transform;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

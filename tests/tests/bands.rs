@@ -8,19 +8,20 @@ use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
 use proptest::prelude::*;
+use rasterizer_core::cull::{CullClockwise, NoCull};
+use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::numerics::{
     Custom, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics, ReciprocalDivide,
     Standard,
 };
-use rasterizer_core::pipeline::cull::{CullClockwise, NoCull};
-use rasterizer_core::pipeline::shading::{GouraudLit, Shading, VertexColors};
-use rasterizer_core::pipeline::{
-    BandError, Banding, BinEntry, Mesh, MeshSource, Pipeline, RenderStats, Transforms, VertexSlot,
-    Viewport, DEFAULT_BITS,
+use rasterizer_core::shade::{GouraudLit, Shading, VertexColors};
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    mesh::Mesh, mesh::MeshSource, pipeline::BandError, pipeline::Banding, pipeline::BinEntry,
+    pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot, pipeline::DEFAULT_BITS,
+    transform::Transforms, transform::Viewport,
 };
-use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::target::Framebuffer;
 
 fn suzanne() -> host_tools::obj::LoadedMesh {
     let path =
@@ -51,7 +52,7 @@ impl Scratch {
     const ALL: [Scratch; 3] = [Scratch::Full, Scratch::Half, Scratch::Empty];
 
     /// A scratch of this size for `mesh`.
-    fn slots<St: rasterizer_core::pipeline::Packed>(
+    fn slots<St: rasterizer_core::shade::Packed>(
         self,
         mesh: &impl MeshSource<Fx16>,
     ) -> Vec<VertexSlot<St>> {
@@ -73,7 +74,7 @@ fn whole_frame<M, C, D, Sh, N>(
 ) -> (Vec<u16>, RenderStats)
 where
     M: MeshSource<Fx16>,
-    C: rasterizer_core::pipeline::cull::Cull,
+    C: rasterizer_core::cull::Cull,
     D: DepthTest,
     Sh: Shading<Fx16, Color = Rgb565>,
     N: Numerics,
@@ -97,7 +98,7 @@ fn banded<M, C, D, Sh, N>(
 ) -> (Vec<u16>, RenderStats)
 where
     M: MeshSource<Fx16>,
-    C: rasterizer_core::pipeline::cull::Cull,
+    C: rasterizer_core::cull::Cull,
     D: DepthTest,
     Sh: Shading<Fx16, Color = Rgb565>,
     N: Numerics,
@@ -145,7 +146,7 @@ fn compare_bands<M, C, Sh>(
     scratch: &dyn Fn(u32) -> Vec<Scratch>,
 ) where
     M: MeshSource<Fx16>,
-    C: rasterizer_core::pipeline::cull::Cull,
+    C: rasterizer_core::cull::Cull,
     Sh: Shading<Fx16, Color = Rgb565>,
 {
     let xf = transforms(w, h, 23);

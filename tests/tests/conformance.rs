@@ -5,7 +5,7 @@ use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics_core::prelude::*;
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::raster::triangle::fill_triangle;
-use rasterizer_core::target::{AnyTarget, Framebuffer};
+use rasterizer_core::surface::{AnyTarget, Framebuffer};
 use serde_json::Value;
 use std::path::PathBuf;
 use tests::StrictMock;

@@ -4,11 +4,14 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
+use rasterizer_core::cull::CullClockwise;
+use rasterizer_core::depth::NoDepth;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Scalar, Vec3};
-use rasterizer_core::pipeline::cull::CullClockwise;
-use rasterizer_core::pipeline::shading::Unlit;
-use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::NoDepth;
+use rasterizer_core::shade::Unlit;
+use rasterizer_core::{
+    mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
+    transform::Viewport,
+};
 
 fn transforms<S: Scalar>(yaw: u16, dist: i32, fov: i32) -> Transforms<S> {
     Transforms {
@@ -99,9 +102,10 @@ fn f32_pipeline_renders_the_same_cube_as_fixed_point() {
         .map(|p| Vec3::new(f64_of(p.x) as f32, f64_of(p.y) as f32, f64_of(p.z) as f32))
         .collect();
     let vp = Viewport::new(64, 48);
-    let render = |f: &mut dyn FnMut(&mut rasterizer_core::target::Framebuffer<Rgb888>)| {
+    let render = |f: &mut dyn FnMut(&mut rasterizer_core::surface::Framebuffer<Rgb888>)| {
         let mut buf = vec![0u8; 64 * 48 * 3];
-        let mut fb = rasterizer_core::target::Framebuffer::<Rgb888>::new(&mut buf, 64, 48).unwrap();
+        let mut fb =
+            rasterizer_core::surface::Framebuffer::<Rgb888>::new(&mut buf, 64, 48).unwrap();
         f(&mut fb);
         buf
     };

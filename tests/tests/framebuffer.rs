@@ -5,7 +5,7 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, 
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
 use proptest::prelude::*;
-use rasterizer_core::target::{Framebuffer, FramebufferError, Surface, MAX_DIMENSION};
+use rasterizer_core::surface::{Framebuffer, FramebufferError, Surface, MAX_DIMENSION};
 
 #[test]
 fn wrong_length_is_a_typed_error() {
@@ -132,7 +132,7 @@ fn clear_and_out_of_bounds_are_dropped() {
 
 /// Runs the same drawing on two framebuffers of format `C`: one through the fast span methods and
 /// one pixel by pixel through `draw_iter`, and compares every pixel.
-fn spans_match_pixels<C: rasterizer_core::target::Storage + PartialEq + core::fmt::Debug>(
+fn spans_match_pixels<C: rasterizer_core::surface::Storage + PartialEq + core::fmt::Debug>(
     words: usize,
     w: u32,
     h: u32,
@@ -197,7 +197,7 @@ fn pixel_read_back() {
 
 #[test]
 fn surface_methods_called_directly_clip_instead_of_panicking() {
-    use rasterizer_core::raster::line::Line;
+    use rasterizer_core::geom::line::Line;
     let mut buf = [0u16; 8 * 4];
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 8, 4).unwrap();
     // An unclipped line walk from far outside (drawn first: the spans below go over it).

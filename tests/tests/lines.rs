@@ -5,9 +5,11 @@ use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888, Rgb
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
 use proptest::prelude::*;
-use rasterizer_core::raster::line::{draw_line, draw_line_gradient, Line};
 use rasterizer_core::raster::point::draw_point;
-use rasterizer_core::target::{AnyTarget, Framebuffer};
+use rasterizer_core::surface::{AnyTarget, Framebuffer};
+use rasterizer_core::{
+    geom::line::Line, raster::line::draw_line, raster::line::draw_line_gradient,
+};
 use tests::{reference_line, StrictMock};
 
 fn line_mock(w: u32, h: u32, a: (i32, i32), b: (i32, i32)) -> StrictMock<BinaryColor> {

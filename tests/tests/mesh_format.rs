@@ -8,8 +8,8 @@
 use embedded_graphics_core::pixelcolor::RgbColor;
 use proptest::prelude::*;
 use rasterizer_core::math::{Fx16, Vec3};
+use rasterizer_core::mesh::MeshSource;
 use rasterizer_core::mesh::{MeshError, PackedMesh};
-use rasterizer_core::pipeline::MeshSource;
 use tests::packed::{encode, Vert};
 
 fn cases(default: u32) -> u32 {

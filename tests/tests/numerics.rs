@@ -6,19 +6,22 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
+use rasterizer_core::cull::CullClockwise;
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::math::{Fx, Fx16, Mat4, Vec4};
 use rasterizer_core::numerics::{
     Custom, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics, ReciprocalDivide,
     Standard,
 };
-use rasterizer_core::pipeline::cull::CullClockwise;
-use rasterizer_core::pipeline::shading::{Shading, Unlit};
-use rasterizer_core::pipeline::{Pipeline, Transforms, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{
-    fill_triangle_interp_with, Compare, DepthBuffer, ScreenVertex,
+use rasterizer_core::shade::{Shading, Unlit};
+use rasterizer_core::surface::{AnyTarget, Framebuffer};
+use rasterizer_core::{
+    depth::Compare, depth::DepthBuffer, raster::interp::fill_triangle_interp_with,
+    raster::interp::ScreenVertex,
 };
-use rasterizer_core::target::{AnyTarget, Framebuffer};
+use rasterizer_core::{
+    pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms, transform::Viewport,
+};
 
 /// Exact division and exact span starts: what the other knobs are measured against. (`Standard`
 /// starts spans with the pipeline's wrapping planes; `fill_triangle_interp_with` treats that as
@@ -32,15 +35,7 @@ type Gradient = Custom<ExactDivide, 16, GradientSpans>;
 fn projector<const F: u32, N: Numerics>(
     w: u32,
     h: u32,
-) -> Pipeline<
-    Fx<F>,
-    CullClockwise,
-    rasterizer_core::raster::interp::NoDepth,
-    Unlit<Rgb565>,
-    4,
-    false,
-    N,
-> {
+) -> Pipeline<Fx<F>, CullClockwise, rasterizer_core::depth::NoDepth, Unlit<Rgb565>, 4, false, N> {
     let t = Transforms {
         model: Mat4::identity(),
         view: Mat4::identity(),
@@ -50,7 +45,7 @@ fn projector<const F: u32, N: Numerics>(
         &t,
         Viewport::new(w, h),
         CullClockwise,
-        rasterizer_core::raster::interp::NoDepth,
+        rasterizer_core::depth::NoDepth,
         Unlit {
             color: Rgb565::WHITE,
         },
@@ -378,7 +373,7 @@ where
 #[test]
 fn wrapping_spans_match_exact_spans_for_every_shading_model() {
     use host_tools::scenes3d::lighting;
-    use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, VertexColors};
+    use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, VertexColors};
     let one = [1; 3];
     wrapping_against_exact::<Rgb565, _>(
         "unlit 565",

@@ -4,8 +4,10 @@
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::*;
 use rasterizer_core::geom::SubPoint;
-use rasterizer_core::raster::interp::{fill_triangle_interp, NoDepth, ScreenVertex};
-use rasterizer_core::target::AnyTarget;
+use rasterizer_core::surface::AnyTarget;
+use rasterizer_core::{
+    depth::NoDepth, raster::interp::fill_triangle_interp, raster::interp::ScreenVertex,
+};
 use std::cell::RefCell;
 use tests::StrictMock;
 

@@ -9,14 +9,15 @@ use host_tools::reference3d::{
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
+use rasterizer_core::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
+use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::pipeline::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
-use rasterizer_core::pipeline::shading::Unlit;
-use rasterizer_core::pipeline::{
-    MeshSource, Pipeline, RenderStats, Transforms, VertexSlot, Viewport,
+use rasterizer_core::shade::Unlit;
+use rasterizer_core::surface::AnyTarget;
+use rasterizer_core::{
+    mesh::MeshSource, pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot,
+    transform::Transforms, transform::Viewport,
 };
-use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::target::AnyTarget;
 use tests::StrictMock;
 
 const W: u32 = 320;
@@ -889,8 +890,8 @@ fn mesh_scaled_by_1e3() {
 
 #[test]
 fn zero_length_normals() {
-    use rasterizer_core::pipeline::shading::{GouraudLit, PhongLit};
-    use rasterizer_core::pipeline::Mesh;
+    use rasterizer_core::mesh::Mesh;
+    use rasterizer_core::shade::{GouraudLit, PhongLit};
     use rasterizer_core::shade::{Light, Lighting, Material, Specular};
     // The icosphere with every normal zero: Gouraud and Phong light nothing but the ambient term.
     // A convex mesh with back faces culled and no depth buffer: the strict target also checks that
@@ -964,8 +965,8 @@ fn zero_length_normals() {
 fn depth_buffer_too_small_is_an_error_and_draws_nothing() {
     use embedded_graphics_core::geometry::{Point, Size};
     use embedded_graphics_core::primitives::Rectangle;
-    use rasterizer_core::pipeline::shading::Unlit;
     use rasterizer_core::pipeline::DrawError;
+    use rasterizer_core::shade::Unlit;
     let cube = model("unit_cube.obj");
     let scene = Scene::camera([1.5, 1.2, 2.0], [0.0; 3], 60, 0.1, 100.0);
     let t = scene.transforms();
@@ -1056,7 +1057,7 @@ fn depth_buffer_too_small_is_an_error_and_draws_nothing() {
 
 #[test]
 fn invalid_indices_are_skipped_and_counted() {
-    use rasterizer_core::pipeline::Mesh;
+    use rasterizer_core::mesh::Mesh;
     let scene = origin_camera(60, 0.5, 50.0);
     let t = scene.transforms();
     let positions = [
@@ -1084,7 +1085,7 @@ fn invalid_indices_are_skipped_and_counted() {
             Viewport::new(W, H),
             NoCull,
             NoDepth,
-            rasterizer_core::pipeline::shading::VertexColors::<Rgb888>::new(),
+            rasterizer_core::shade::VertexColors::<Rgb888>::new(),
         );
         let mesh = Mesh {
             positions: &positions,
@@ -1136,9 +1137,9 @@ fn extreme_bits() -> impl Strategy<Value = i32> {
 /// one target, and returns its pixels and the three draws' statistics. `scratch` slots are given
 /// to each draw (fewer than the mesh's vertices is allowed).
 fn draw_extreme_once<C: Cull + Copy, D1: DepthTest, D2: DepthTest>(
-    p1: &mut Pipeline<Fx16, C, D1, rasterizer_core::pipeline::shading::VertexColors<Rgb888>>,
-    p2: &mut Pipeline<Fx16, C, D2, rasterizer_core::pipeline::shading::PhongLit<Fx16, Rgb888, 1>>,
-    mesh: &rasterizer_core::pipeline::Mesh<'_, Fx16, u8>,
+    p1: &mut Pipeline<Fx16, C, D1, rasterizer_core::shade::VertexColors<Rgb888>>,
+    p2: &mut Pipeline<Fx16, C, D2, rasterizer_core::shade::PhongLit<Fx16, Rgb888, 1>>,
+    mesh: &rasterizer_core::mesh::Mesh<'_, Fx16, u8>,
     scratch: usize,
 ) -> (Vec<Option<Rgb888>>, [RenderStats; 3]) {
     // Overdraw is allowed (several overlapping triangles); the target still panics on any write
@@ -1177,9 +1178,9 @@ fn draw_extreme<C: Cull + Copy, D: DepthTest>(
     depth: [D; 2],
 ) {
     let [d1, d2] = depth;
-    use rasterizer_core::pipeline::shading::{PhongLit, VertexColors};
-    use rasterizer_core::pipeline::Mesh;
+    use rasterizer_core::mesh::Mesh;
     use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+    use rasterizer_core::shade::{PhongLit, VertexColors};
     let size = Viewport::new(64, 48);
     let mesh = Mesh {
         positions,

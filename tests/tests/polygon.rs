@@ -12,7 +12,7 @@ use rasterizer_core::raster::polygon::{
     fill_polygon, FillRule, Polygon, PolygonError, PolygonFillError,
 };
 use rasterizer_core::raster::triangle::fill_triangle;
-use rasterizer_core::target::{AnyTarget, Framebuffer, Surface};
+use rasterizer_core::surface::{AnyTarget, Framebuffer, Surface};
 use std::collections::BTreeSet;
 
 const RULES: [FillRule; 2] = [FillRule::EvenOdd, FillRule::NonZero];

@@ -17,15 +17,16 @@
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tools::obj::LoadedMesh;
+use rasterizer_core::cull::CullClockwise;
+use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::pipeline::cull::CullClockwise;
-use rasterizer_core::pipeline::shading::{
-    FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
-};
-use rasterizer_core::pipeline::{Mesh, Pipeline, Transforms, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
+use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
+    transform::Viewport,
+};
 use std::fs::File;
 use std::io::{BufReader, BufWriter};
 use std::path::{Path, PathBuf};

@@ -8,11 +8,14 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tools::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
+use rasterizer_core::cull::NoCull;
+use rasterizer_core::depth::{Compare, DepthBuffer};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::pipeline::cull::NoCull;
-use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, Transforms, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer};
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::VertexSlot,
+    transform::Transforms, transform::Viewport,
+};
 
 /// Depths this close (in 1/65,535 of the depth range) are a tie: random soups have triangles that
 /// cut through each other, and along those lines the nearer one is decided by the vertex depths'
@@ -198,8 +201,8 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
 #[test]
 fn clipped_polygon_near_i32_limits_has_an_exact_area() {
     use embedded_graphics_core::pixelcolor::Rgb565;
-    use rasterizer_core::pipeline::shading::VertexColors;
-    use rasterizer_core::pipeline::Mesh;
+    use rasterizer_core::mesh::Mesh;
+    use rasterizer_core::shade::VertexColors;
     // The fuzzer's input, byte for byte.
     let data: [u8; 115] = [
         0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b, 0x7b,

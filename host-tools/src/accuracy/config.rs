@@ -11,16 +11,19 @@ use crate::reference3d::{color_id, id_color, FaceIds};
 use crate::scenefile::F64;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::prelude::DrawTarget;
+use rasterizer_core::cull::{Cull, CullClockwise};
+use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::math::{Fx16, Fx24, Fx8, Scalar, Vec3};
 use rasterizer_core::numerics::{
     Custom, Divide, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics,
     ReciprocalDivide, SpanStart, Standard,
 };
-use rasterizer_core::pipeline::cull::{Cull, CullClockwise};
-use rasterizer_core::pipeline::shading::{GouraudLit, Unlit};
-use rasterizer_core::pipeline::{Mesh, Pipeline, RenderStats, VertexSlot, Viewport};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer, NoDepth};
-use rasterizer_core::target::Framebuffer;
+use rasterizer_core::shade::{GouraudLit, Unlit};
+use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::{
+    mesh::Mesh, pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot,
+    transform::Viewport,
+};
 use std::hint::black_box;
 
 /// A geometry format with its name in the report.

@@ -7,8 +7,8 @@ use crate::reference3d::{self as r, RefCull, RefLight, RefRender, M4, V3};
 use crate::scenes::XorShift32;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Scalar, Vec3};
-use rasterizer_core::pipeline::Transforms;
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+use rasterizer_core::transform::Transforms;
 use std::path::{Path, PathBuf};
 
 /// The camera and model placement of a scene, every angle in the pipeline's angle unit so that

@@ -11,23 +11,22 @@ use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 use embedded_graphics_simulator::{OutputImage, OutputSettingsBuilder, SimulatorDisplay};
 use rasterizer_core::color::Channels;
+use rasterizer_core::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
+use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::pipeline::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
-use rasterizer_core::pipeline::shading::{
-    FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
-};
-use rasterizer_core::pipeline::{
-    Mesh, MeshSource, Pipeline, RenderStats, Transforms, VertexSlot, Viewport,
-};
-use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
 use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
+use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
 use rasterizer_core::shade::{Light, Lighting};
-use rasterizer_core::target::{AnyTarget, ClipTo, Framebuffer, Surface};
+use rasterizer_core::surface::{AnyTarget, ClipTo, Framebuffer, Surface};
+use rasterizer_core::{
+    mesh::Mesh, mesh::MeshSource, pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot,
+    transform::Transforms, transform::Viewport,
+};
 use std::convert::Infallible;
 
 /// Renders the whole scene (meshes in 16.16, then shapes) in its pixel format and returns the

@@ -434,7 +434,7 @@ trait MeshSourceExt {
 
 impl MeshSourceExt for PackedMesh<'_> {
     fn has_normals(&self) -> bool {
-        rasterizer_core::pipeline::MeshSource::<rasterizer_core::math::Fx16>::has_normals(self)
+        rasterizer_core::mesh::MeshSource::<rasterizer_core::math::Fx16>::has_normals(self)
     }
 }
 

@@ -7,9 +7,8 @@
 //! axis by solving `floor((2kB + A - t) / 2A) = q` for `k` exactly in `i128`. The clipped walk then
 //! lights exactly the unclipped line's pixels that lie inside the rectangle, for any `i32` endpoints.
 
+use crate::geom::line::{Line, LinePoints};
 use crate::geom::PixelRect;
-use crate::raster::ceil_div_i128;
-use crate::raster::line::Line;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::primitives::Rectangle;
 
@@ -108,4 +107,29 @@ fn last_step_within(line: &Line, q: i64) -> Option<i64> {
     );
     let k = ceil_div_i128(2 * a * i128::from(q) + a + t, 2 * b) - 1;
     (k < a).then_some(k as i64)
+}
+
+impl Line {
+    /// The pixels of the line that lie inside `area`, in walk order, found by Cohen-Sutherland
+    /// clipping ([`crate::clip::line`]); `None` when no pixel is inside.
+    pub fn clipped(&self, area: &Rectangle) -> Option<LinePoints> {
+        let (k0, k1) = clip_steps(self, area)?;
+        Some(self.walk_from(k0, k1))
+    }
+
+    /// The step range of the clipped walk: the first and last step inside `area`.
+    pub(crate) fn clipped_steps(&self, area: &Rectangle) -> Option<(i64, i64)> {
+        clip_steps(self, area)
+    }
+}
+
+/// `ceil(n / d)` for `d > 0`.
+#[inline]
+fn ceil_div_i128(n: i128, d: i128) -> i128 {
+    let q = n.div_euclid(d);
+    if q * d == n {
+        q
+    } else {
+        q + 1
+    }
 }

@@ -6,8 +6,8 @@
 //! rasterizer's exact 2D clipping. Each crossing point is computed from the inside vertex towards the
 //! outside one, so two triangles sharing an edge get bit-identical new vertices and stay watertight.
 
+use crate::geom::Varyings;
 use crate::math::{Scalar, Vec4};
-use crate::shade::Varyings;
 use heapless::Vec;
 
 /// The most vertices a clipped triangle can have: three plus one per plane.

@@ -2,7 +2,10 @@
 //!
 //! Pixel (x, y) covers `[x, x + 1) x [y, y + 1)` with y pointing down; it is sampled at its centre
 //! `(x + 0.5, y + 0.5)`. Filled primitives take vertices in sub-pixel fixed point so that meshes stay
-//! watertight after projection; lines and points take whole pixels.
+//! watertight after projection; lines and points take whole pixels ([`line`] defines which).
+//! [`Varyings`] are the values a vertex carries to be interpolated across a primitive.
+
+pub mod line;
 
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
@@ -132,5 +135,35 @@ impl PixelRect {
             Point::new(clamp(self.x0) as i32, clamp(self.y0) as i32),
             Size::new(len(self.x0, self.x1), len(self.y0, self.y1)),
         )
+    }
+}
+
+/// Values a shader interpolates across a triangle: `[i32; N]` for `N` values, at most
+/// [`MAX_VARYINGS`]. Their meaning and fixed-point scale are the shader's own.
+pub trait Varyings: Copy + Default + core::fmt::Debug {
+    /// How many values there are.
+    const LEN: usize;
+    /// The values.
+    fn as_slice(&self) -> &[i32];
+    /// The values, mutably.
+    fn as_mut_slice(&mut self) -> &mut [i32];
+}
+
+/// The most values a triangle interpolates; a longer [`Varyings`] has only its first
+/// `MAX_VARYINGS` values interpolated (the rest keep the first vertex's values).
+pub const MAX_VARYINGS: usize = 8;
+
+impl<const N: usize> Varyings for [i32; N]
+where
+    [i32; N]: Default,
+{
+    const LEN: usize = N;
+    #[inline]
+    fn as_slice(&self) -> &[i32] {
+        self
+    }
+    #[inline]
+    fn as_mut_slice(&mut self) -> &mut [i32] {
+        self
     }
 }

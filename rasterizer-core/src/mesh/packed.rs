@@ -28,8 +28,8 @@
 //! gives a mesh or a [`MeshError`], and the accessors afterwards need no checks that can fail. The
 //! reader decodes with `from_le_bytes`, so the blob itself needs no alignment.
 
+use super::MeshSource;
 use crate::math::{Scalar, Vec3};
-use crate::pipeline::MeshSource;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 

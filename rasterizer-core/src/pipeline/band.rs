@@ -4,13 +4,13 @@
 use super::{Front, MeshSource, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::clip_triangle;
 use crate::clip::polygon::ClipVertex;
+use crate::cull::Cull;
+use crate::depth::DepthTest;
 use crate::math::Scalar;
 use crate::numerics::Numerics;
-use crate::pipeline::cull::Cull;
-use crate::pipeline::shading::Shading;
 use crate::raster::edge::row_at_or_below;
-use crate::raster::interp::DepthTest;
-use crate::target::{Band, ClipTo, Framebuffer, Storage};
+use crate::shade::Shading;
+use crate::surface::{Band, ClipTo, Framebuffer, Storage};
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
@@ -63,7 +63,7 @@ pub struct Banding<C> {
     pub background: C,
     /// The depth each band's depth buffer starts from (65535 for [`Compare::Less`]).
     ///
-    /// [`Compare::Less`]: crate::raster::interp::Compare::Less
+    /// [`Compare::Less`]: crate::depth::Compare::Less
     pub clear_depth: u16,
 }
 
@@ -164,7 +164,7 @@ where
                 for v in &poly {
                     let _ = ps.push(self.project(&v.pos).0);
                 }
-                let area = super::polygon_area(ps.iter().copied());
+                let area = super::front::polygon_area(ps.iter().copied());
                 if area == 0 || !self.cull.keep(area) {
                     stats.culled += 1;
                     return None;
@@ -194,7 +194,7 @@ where
     /// are exactly those of a whole-frame [`Pipeline::draw`] of the same scene, for any band
     /// height.
     ///
-    /// [`DepthBuffer`]: crate::raster::interp::DepthBuffer
+    /// [`DepthBuffer`]: crate::depth::DepthBuffer
     ///
     /// # Errors
     /// [`BandError`] for a band buffer or depth stage too small for a band, zero rows, or too

@@ -18,11 +18,11 @@
 //! leaves `0 .. 2^32` for values and depths the vertices hold in `0 ..= 2^(32 - FRAC) - 1`, so the
 //! wrapping arithmetic needs no clamp per pixel.
 
+use crate::depth::{Compare, DepthTest};
 use crate::geom::{PixelRect, SubPoint};
-use crate::raster::interp::{Compare, DepthTest};
+use crate::geom::{Varyings, MAX_VARYINGS};
 use crate::raster::triangle::setup::{misses_every_centre, walk_spans_once, Sorted, SpanSink};
-use crate::shade::{Varyings, MAX_VARYINGS};
-use crate::target::{DepthSpan, Surface};
+use crate::surface::{DepthSpan, Surface};
 
 /// One plane: the value at pixel `(px, py)` is `k + gx px + gy py`, wrapping.
 #[derive(Debug, Clone, Copy, Default)]

@@ -1,7 +1,7 @@
 //! Single pixels.
 
 use crate::geom::PixelRect;
-use crate::target::Surface;
+use crate::surface::Surface;
 use embedded_graphics_core::geometry::Point;
 
 /// Draws one pixel; a point outside the surface's clip area is dropped.

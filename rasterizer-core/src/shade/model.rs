@@ -5,12 +5,73 @@
 //! triangle; [`GouraudLit`] once per vertex and interpolates the colour; [`PhongLit`] interpolates the
 //! normal and the position and lights every pixel.
 
-use super::vertex::Stored;
+use super::Lighting;
 use crate::color::ShadeColor;
+use crate::geom::{Varyings, MAX_VARYINGS};
 use crate::math::{Mat4, Scalar, Vec3};
-use crate::shade::{Lighting, Varyings, MAX_VARYINGS};
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::{PixelColor, RgbColor};
+
+/// What a vertex slot ([`crate::pipeline::VertexSlot`]) keeps of a vertex's shader values, with a value meaning "not shaded
+/// yet".
+pub trait Packed: Copy + core::fmt::Debug {
+    /// Not shaded yet.
+    const EMPTY: Self;
+    /// All bits zero: what a `static` scratch starts as (in `.bss`, costing no flash).
+    const ZERO: Self;
+    /// True for [`Packed::EMPTY`] (a value a shader may also produce is only recomputed).
+    fn is_empty(&self) -> bool;
+}
+
+/// A packed form of the shader values `V`.
+pub trait Stored<V>: Packed {
+    /// Packs values.
+    fn pack(v: &V) -> Self;
+    /// The values back.
+    fn unpack(&self) -> V;
+}
+
+impl<const N: usize> Packed for [i32; N] {
+    const EMPTY: Self = [i32::MIN; N];
+    const ZERO: Self = [0; N];
+    #[inline(always)]
+    fn is_empty(&self) -> bool {
+        self.first() == Some(&i32::MIN)
+    }
+}
+
+/// Any values, kept as they are.
+impl<const N: usize> Stored<[i32; N]> for [i32; N] {
+    #[inline(always)]
+    fn pack(v: &[i32; N]) -> Self {
+        *v
+    }
+    #[inline(always)]
+    fn unpack(&self) -> [i32; N] {
+        *self
+    }
+}
+
+impl Packed for [u16; 3] {
+    const EMPTY: Self = [u16::MAX; 3];
+    const ZERO: Self = [0; 3];
+    #[inline(always)]
+    fn is_empty(&self) -> bool {
+        self[0] == u16::MAX
+    }
+}
+
+/// Three values in `0 ..= 65534` (the colour shaders' channels), in six bytes.
+impl Stored<[i32; 3]> for [u16; 3] {
+    #[inline(always)]
+    fn pack(v: &[i32; 3]) -> Self {
+        v.map(|c| c.clamp(0, 65534) as u16)
+    }
+    #[inline(always)]
+    fn unpack(&self) -> [i32; 3] {
+        self.map(i32::from)
+    }
+}
 
 /// What the pipeline knows about a vertex when the shader sees it.
 #[derive(Debug, Clone, Copy, PartialEq)]

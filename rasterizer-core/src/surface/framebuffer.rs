@@ -5,7 +5,7 @@
 //! instead of recomputing `y * width + x` per pixel.
 
 use super::{DepthSpan, Surface};
-use crate::raster::line::LinePoints;
+use crate::geom::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
@@ -329,7 +329,7 @@ impl Storage for BinaryColor {
 /// A framebuffer over a caller-provided slice: no allocation, rows top to bottom.
 ///
 /// ```
-/// use rasterizer_core::target::Framebuffer;
+/// use rasterizer_core::surface::Framebuffer;
 /// use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*};
 ///
 /// let mut buf = [0u16; 320 * 240];

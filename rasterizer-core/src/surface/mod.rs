@@ -10,8 +10,8 @@ mod framebuffer;
 
 pub use framebuffer::{Band, Framebuffer, FramebufferError, Storage, MAX_DIMENSION};
 
+use crate::geom::line::LinePoints;
 use crate::geom::PixelRect;
-use crate::raster::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
@@ -146,7 +146,7 @@ pub trait DepthSpan<C> {
 /// used as a [`Surface`]: spans become `fill_solid` and `fill_contiguous` calls.
 ///
 /// ```
-/// # use rasterizer_core::target::{AnyTarget, Framebuffer};
+/// # use rasterizer_core::surface::{AnyTarget, Framebuffer};
 /// # use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*};
 /// # let mut buf = [0u16; 8 * 8];
 /// # let mut display = Framebuffer::<Rgb565>::new(&mut buf, 8, 8).unwrap();
@@ -212,7 +212,7 @@ impl<T: DrawTarget> Surface for AnyTarget<'_, T> {}
 /// paths are kept.
 ///
 /// ```
-/// # use rasterizer_core::target::{ClipTo, Framebuffer, Surface};
+/// # use rasterizer_core::surface::{ClipTo, Framebuffer, Surface};
 /// # use embedded_graphics_core::{pixelcolor::Gray8, prelude::*, primitives::Rectangle};
 /// use rasterizer_core::raster::line::draw_line;
 /// let mut buf = [0u8; 8 * 8];

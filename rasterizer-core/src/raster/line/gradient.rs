@@ -6,7 +6,7 @@
 
 use super::Line;
 use crate::color::Channels;
-use crate::target::Surface;
+use crate::surface::Surface;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
 

@@ -4,7 +4,7 @@
 
 use crate::geom::{PixelRect, SubPoint, DEFAULT_SUBPIXEL_BITS};
 use crate::raster::edge::{row_at_or_below, EdgeWalk};
-use crate::target::Surface;
+use crate::surface::Surface;
 use core::cmp::Ordering;
 use core::fmt;
 use heapless::Vec;
@@ -135,7 +135,7 @@ struct Active {
 /// ```
 /// use rasterizer_core::geom::SubPoint;
 /// use rasterizer_core::raster::polygon::{FillRule, Polygon};
-/// use rasterizer_core::target::Framebuffer;
+/// use rasterizer_core::surface::Framebuffer;
 /// use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*};
 ///
 /// let mut buf = [0u16; 16 * 16];

@@ -14,8 +14,8 @@ pub(crate) mod setup;
 
 use crate::color::Channels;
 use crate::geom::{PixelRect, SubPoint};
-use crate::raster::line::{draw_line, Line};
-use crate::target::Surface;
+use crate::surface::Surface;
+use crate::{geom::line::Line, raster::line::draw_line};
 use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
@@ -24,7 +24,7 @@ use setup::{walk_spans, Sorted, SpanSink};
 /// Fills a triangle in one colour.
 ///
 /// ```
-/// use rasterizer_core::{geom::SubPoint, raster::triangle::fill_triangle, target::Framebuffer};
+/// use rasterizer_core::{geom::SubPoint, raster::triangle::fill_triangle, surface::Framebuffer};
 /// use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*};
 ///
 /// let mut buf = [0u16; 16 * 16];

@@ -1,0 +1,271 @@
+//! The depth stage: a [`DepthTest`] decides which pixels of a span may be drawn. [`DepthBuffer`]
+//! keeps a 16-bit depth per pixel in a slice the caller owns (0 nearest, 65535 farthest);
+//! [`NoDepth`] compiles the test, its buffer and the depth interpolation away.
+
+use crate::geom::PixelRect;
+use embedded_graphics_core::primitives::Rectangle;
+
+/// How a depth buffer compares a new depth with the stored one; 0 is nearest, 65535 farthest.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Compare {
+    /// Draw when nearer (the usual test; clear the buffer to 65535).
+    #[default]
+    Less,
+    /// Draw when nearer or equal.
+    LessEqual,
+    /// Draw when farther.
+    Greater,
+    /// Draw when farther or equal.
+    GreaterEqual,
+    /// Draw when equal.
+    Equal,
+    /// Draw when different.
+    NotEqual,
+    /// Always draw (and store the depth).
+    Always,
+    /// Never draw.
+    Never,
+}
+
+impl Compare {
+    /// Whether a new depth passes against the stored one.
+    #[inline(always)]
+    pub fn pass(self, new: u16, old: u16) -> bool {
+        match self {
+            Compare::Less => new < old,
+            Compare::LessEqual => new <= old,
+            Compare::Greater => new > old,
+            Compare::GreaterEqual => new >= old,
+            Compare::Equal => new == old,
+            Compare::NotEqual => new != old,
+            Compare::Always => true,
+            Compare::Never => false,
+        }
+    }
+}
+
+/// A depth test: which pixels of a span may be drawn.
+pub trait DepthTest {
+    /// The test reads depths: when false the rasterizer computes none.
+    const ENABLED: bool = true;
+    /// Band rendering: the buffer now holds the rows from `y0` on; every entry is reset to
+    /// `clear`. Does nothing for a test without a buffer.
+    fn start_band(&mut self, _y0: i32, _clear: u16) {}
+    /// Calls `run(offset, len)` for each run of pixels of row `y`, columns `x .. x + len`, that
+    /// passes, storing their depths first. The depth of pixel `i` is `(z + i dz) >> 16`, clamped
+    /// to `0 ..= 65535`.
+    fn test_span<E, F>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i64,
+        dz: i64,
+        run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>;
+    /// The stored depths of row `y`, columns `x ..`: at most `len` of them, fewer (or none)
+    /// where the buffer ends. The fused span loop of the 3D pipeline tests and stores through it.
+    fn depth_row(&mut self, _y: i32, _x: i32, _len: u32) -> &mut [u16] {
+        &mut []
+    }
+    /// The comparison a new depth must pass against the stored one.
+    fn comparison(&self) -> Compare {
+        Compare::Always
+    }
+    /// Whether the test holds a depth for every pixel of `area` (one without a buffer does).
+    fn covers(&self, _area: &Rectangle) -> bool {
+        true
+    }
+}
+
+/// No depth test: every pixel passes and no depth is computed.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoDepth;
+
+impl DepthTest for NoDepth {
+    const ENABLED: bool = false;
+    #[inline(always)]
+    fn test_span<E, F>(
+        &mut self,
+        _: i32,
+        _: i32,
+        len: u32,
+        _: i64,
+        _: i64,
+        mut run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        run(0, len)
+    }
+}
+
+/// Why a [`DepthBuffer`] could not be made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DepthBufferError {
+    /// Entries the size needs.
+    pub expected: usize,
+    /// Entries the slice has.
+    pub actual: usize,
+}
+
+/// A depth buffer over a caller-provided `&mut [u16]`, one entry per pixel, rows top to bottom.
+#[derive(Debug)]
+pub struct DepthBuffer<'a> {
+    buf: &'a mut [u16],
+    width: u32,
+    height: u32,
+    /// The screen row the buffer's first row stands for (band rendering).
+    origin_y: i32,
+    compare: Compare,
+}
+
+impl<'a> DepthBuffer<'a> {
+    /// A depth buffer of `width` x `height` over `buf` (exactly `width * height` entries).
+    ///
+    /// # Errors
+    /// [`DepthBufferError`] when the slice has another length.
+    pub fn new(
+        buf: &'a mut [u16],
+        width: u32,
+        height: u32,
+        compare: Compare,
+    ) -> Result<Self, DepthBufferError> {
+        let expected = width as usize * height as usize;
+        if buf.len() != expected {
+            return Err(DepthBufferError {
+                expected,
+                actual: buf.len(),
+            });
+        }
+        Ok(Self {
+            buf,
+            width,
+            height,
+            origin_y: 0,
+            compare,
+        })
+    }
+
+    /// Sets every entry to `depth` (65535 before a frame with [`Compare::Less`]).
+    pub fn clear(&mut self, depth: u16) {
+        self.buf.fill(depth);
+    }
+
+    /// The stored depths.
+    pub fn as_slice(&self) -> &[u16] {
+        self.buf
+    }
+
+    /// The comparison in use.
+    pub fn compare(&self) -> Compare {
+        self.compare
+    }
+}
+
+impl DepthTest for DepthBuffer<'_> {
+    fn start_band(&mut self, y0: i32, clear: u16) {
+        self.origin_y = y0;
+        self.buf.fill(clear);
+    }
+
+    #[inline(always)]
+    fn depth_row(&mut self, y: i32, x: i32, len: u32) -> &mut [u16] {
+        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips); a
+        // negative row or column wraps to a large one.
+        let (row, col) = (y.wrapping_sub(self.origin_y) as u32, x as u32);
+        if row >= self.height || col >= self.width {
+            return &mut [];
+        }
+        let len = len.min(self.width - col) as usize;
+        let start = row as usize * self.width as usize + col as usize;
+        self.buf.get_mut(start..start + len).unwrap_or_default()
+    }
+
+    #[inline(always)]
+    fn comparison(&self) -> Compare {
+        self.compare
+    }
+
+    fn covers(&self, area: &Rectangle) -> bool {
+        let r = PixelRect::from_rectangle(area);
+        let y0 = i64::from(self.origin_y);
+        r.x0 >= 0
+            && r.x1 <= i64::from(self.width)
+            && r.y0 >= y0
+            && r.y1 <= y0 + i64::from(self.height)
+    }
+
+    #[inline(always)]
+    fn test_span<E, F>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i64,
+        dz: i64,
+        run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips).
+        let y = y.wrapping_sub(self.origin_y);
+        if y < 0 || y as u32 >= self.height || x < 0 {
+            return Ok(());
+        }
+        let len = len.min(self.width.saturating_sub(x as u32));
+        let start = y as usize * self.width as usize + x as usize;
+        let Some(row) = self.buf.get_mut(start..start + len as usize) else {
+            return Ok(());
+        };
+        // The usual test gets its own loop, with the comparison known at compile time; the others
+        // share one (a copy per comparison would multiply the shading code inlined into each).
+        if self.compare == Compare::Less {
+            passing_runs(row, z, dz, |new, old| new < old, run)
+        } else {
+            let compare = self.compare;
+            passing_runs(row, z, dz, |new, old| compare.pass(new, old), run)
+        }
+    }
+}
+
+/// Calls `run(offset, len)` for each run of pixels of `row` whose depth `(z + i dz) >> 16`
+/// (clamped to `0 ..= 65535`) passes `pass(new, stored)`, storing those depths first.
+#[inline(always)]
+fn passing_runs<E, P, F>(row: &mut [u16], z: i64, dz: i64, pass: P, mut run: F) -> Result<(), E>
+where
+    P: Fn(u16, u16) -> bool,
+    F: FnMut(u32, u32) -> Result<(), E>,
+{
+    let mut z = z;
+    let mut i = 0usize;
+    while i < row.len() {
+        let begin = i;
+        while i < row.len() {
+            let d = (z >> 16).clamp(0, 65535) as u16;
+            if !pass(d, row[i]) {
+                break;
+            }
+            row[i] = d;
+            i += 1;
+            z += dz;
+        }
+        if i > begin {
+            run(begin as u32, (i - begin) as u32)?;
+        }
+        // Skip the failing pixel(s).
+        while i < row.len() {
+            let d = (z >> 16).clamp(0, 65535) as u16;
+            if pass(d, row[i]) {
+                break;
+            }
+            i += 1;
+            z += dz;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,116 @@
+//! Meshes as the pipeline reads them: plain slices ([`Mesh`]) or the packed format firmware embeds
+//! ([`PackedMesh`], read in place), both behind [`MeshSource`].
+
+mod packed;
+
+pub use packed::*;
+
+use crate::math::{Scalar, Vec3};
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+/// An index into a mesh's vertex arrays.
+pub trait VertexIndex: Copy {
+    /// As `usize`.
+    fn index(self) -> usize;
+}
+
+impl VertexIndex for u8 {
+    #[inline(always)]
+    fn index(self) -> usize {
+        usize::from(self)
+    }
+}
+
+impl VertexIndex for u16 {
+    #[inline(always)]
+    fn index(self) -> usize {
+        usize::from(self)
+    }
+}
+
+impl VertexIndex for u32 {
+    #[inline(always)]
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// A triangle mesh as plain slices: nothing is copied.
+#[derive(Debug, Clone, Copy)]
+pub struct Mesh<'a, S, I = u16> {
+    /// Vertex positions in model space.
+    pub positions: &'a [Vec3<S>],
+    /// Vertex normals in model space, one per position; lit shaders use the face normal when
+    /// absent.
+    pub normals: Option<&'a [Vec3<S>]>,
+    /// Vertex colours, one per position; white when absent.
+    pub colors: Option<&'a [Rgb888]>,
+    /// Triangles as three vertex indices. A triangle with an index out of range is skipped and
+    /// counted in [`crate::pipeline::RenderStats::invalid`].
+    pub triangles: &'a [[I; 3]],
+}
+
+impl<'a, S, I> Mesh<'a, S, I> {
+    /// A mesh of positions and triangles only.
+    pub fn new(positions: &'a [Vec3<S>], triangles: &'a [[I; 3]]) -> Self {
+        Self {
+            positions,
+            normals: None,
+            colors: None,
+            triangles,
+        }
+    }
+}
+
+/// Where a pipeline reads a mesh from: plain slices ([`Mesh`]) or the packed format read straight
+/// from flash ([`PackedMesh`]).
+pub trait MeshSource<S> {
+    /// Number of vertices.
+    fn vertex_count(&self) -> usize;
+    /// Number of triangles.
+    fn triangle_count(&self) -> usize;
+    /// Triangle `t`'s vertex indices (`t < triangle_count()`); an index may be out of range, and
+    /// the pipeline then skips the triangle.
+    fn triangle(&self, t: usize) -> [usize; 3];
+    /// Vertex `i`'s position (`i < vertex_count()`).
+    fn position(&self, i: usize) -> Vec3<S>;
+    /// True when the mesh has normals.
+    fn has_normals(&self) -> bool;
+    /// Vertex `i`'s normal, if the mesh has normals.
+    fn normal(&self, i: usize) -> Option<Vec3<S>>;
+    /// Vertex `i`'s colour, if the mesh has colours.
+    fn color(&self, i: usize) -> Option<Rgb888>;
+}
+
+impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
+    #[inline(always)]
+    fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+    #[inline(always)]
+    fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+    #[inline(always)]
+    fn triangle(&self, t: usize) -> [usize; 3] {
+        self.triangles
+            .get(t)
+            .map_or([usize::MAX; 3], |tri| tri.map(VertexIndex::index))
+    }
+    #[inline(always)]
+    fn position(&self, i: usize) -> Vec3<S> {
+        self.positions.get(i).copied().unwrap_or_default()
+    }
+    #[inline(always)]
+    fn has_normals(&self) -> bool {
+        self.normals.is_some()
+    }
+    #[inline(always)]
+    fn normal(&self, i: usize) -> Option<Vec3<S>> {
+        self.normals.and_then(|n| n.get(i).copied())
+    }
+    #[inline(always)]
+    fn color(&self, i: usize) -> Option<Rgb888> {
+        self.colors.and_then(|c| c.get(i).copied())
+    }
+}

@@ -1,0 +1,337 @@
+//! The front end every draw call shares: fetch a triangle, read its vertices' slots, reject it
+//! when it faces away or lies outside the view, clip what crosses the guard band, and hand what is
+//! left to the rasterizer.
+
+use super::vertex::OUTSIDE;
+use super::{Pipeline, RenderStats, VertexSlot};
+use crate::clip::polygon::{clip_triangle, outcode, trivially_outside, ClipVertex, Outcode};
+use crate::cull::Cull;
+use crate::depth::DepthTest;
+use crate::geom::{SubPoint, MAX_VARYINGS};
+use crate::math::{Scalar, Vec4};
+use crate::mesh::MeshSource;
+use crate::numerics::{Numerics, SpanStart};
+use crate::raster::fused::{fill_fused, FusedColor, FusedVertex, Precision};
+use crate::raster::interp::{fill_triangle_interp_with, ScreenVertex};
+use crate::shade::Shading;
+use crate::surface::Surface;
+
+/// What the front end made of a triangle.
+pub(super) enum Front<S, const BITS: u32> {
+    /// Nothing to draw (already counted).
+    Skip,
+    /// Every vertex inside the clip volume's guard band: projected, facing the right way.
+    Inside {
+        idx: [usize; 3],
+        v: [(SubPoint<BITS>, u16); 3],
+    },
+    /// Needs clipping in homogeneous space.
+    Clip {
+        idx: [usize; 3],
+        clip: [Vec4<S>; 3],
+        codes: [Outcode; 3],
+    },
+}
+
+/// A shader as the fused span loop's colour source.
+struct ShaderColor<'a, S, Sh>(&'a Sh, core::marker::PhantomData<S>);
+
+impl<S: Scalar, Sh: Shading<S>> FusedColor<Sh::Color> for ShaderColor<'_, S, Sh> {
+    #[inline(always)]
+    fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
+        self.0.pixel_fused(acc)
+    }
+}
+
+/// The signed doubled area of a convex polygon of screen points, saturated to `i64` (its sign
+/// and whether it is zero are exact).
+pub(super) fn polygon_area<const BITS: u32>(
+    points: impl Iterator<Item = SubPoint<BITS>> + Clone,
+) -> i64 {
+    let mut it = points.clone();
+    let Some(a) = it.next() else { return 0 };
+    // Projected points may lie anywhere in i32 (the projection clamps there): differences need 33
+    // bits and their products 66, so the sum is taken in i128.
+    let mut area = 0i128;
+    let mut prev: Option<SubPoint<BITS>> = None;
+    let d = |p: i32, q: i32| i128::from(p) - i128::from(q);
+    for c in it {
+        if let Some(b) = prev {
+            area += d(b.x, a.x) * d(c.y, a.y) - d(c.x, a.x) * d(b.y, a.y);
+        }
+        prev = Some(c);
+    }
+    area.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+}
+
+impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool, N>
+    Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, N>
+where
+    S: Scalar,
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<S>,
+    N: Numerics,
+{
+    /// The front end shared by every draw call: fetches triangle `t`, reads its vertices (each
+    /// transformed once a frame, through the scratch), rejects it when it faces away or lies
+    /// outside the view, counting why in `stats`. A triangle of zero area on screen is culled, unless
+    /// `keep_flat` (the wireframe draws it as a line).
+    #[inline(always)]
+    pub(super) fn front<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        t: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+        keep_flat: bool,
+    ) -> Front<S, BITS> {
+        let idx = mesh.triangle(t);
+        let n = mesh.vertex_count();
+        if idx[0] >= n || idx[1] >= n || idx[2] >= n {
+            stats.invalid += 1;
+            return Front::Skip;
+        }
+        let a = self.slot_geometry(mesh, idx[0], scratch);
+        let b = self.slot_geometry(mesh, idx[1], scratch);
+        let c = self.slot_geometry(mesh, idx[2], scratch);
+        if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
+            return self.front_clip(mesh, idx, stats);
+        }
+        let xs = [a.0, b.0, c.0].map(i64::from);
+        let ys = [a.1, b.1, c.1].map(i64::from);
+        let area = (xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0]);
+        let keep = if area == 0 {
+            keep_flat
+        } else {
+            self.cull.keep(area)
+        };
+        if !keep {
+            stats.culled += 1;
+            return Front::Skip;
+        }
+        // Off the viewport on one side (the screen planes are stricter than the guard band).
+        let [l, top, r, bottom] = self.edges;
+        let (x_lo, x_hi) = (xs[0].min(xs[1]).min(xs[2]), xs[0].max(xs[1]).max(xs[2]));
+        let (y_lo, y_hi) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
+        if x_hi < l || x_lo > r || y_hi < top || y_lo > bottom {
+            stats.outside += 1;
+            return Front::Skip;
+        }
+        Front::Inside {
+            idx,
+            v: [
+                (SubPoint::new(a.0, a.1), a.2),
+                (SubPoint::new(b.0, b.1), b.2),
+                (SubPoint::new(c.0, c.1), c.2),
+            ],
+        }
+    }
+
+    /// The front end's rare path, a triangle with a vertex outside the guard band: its
+    /// clip-space vertices for the clipper, or nothing when it lies wholly outside one plane.
+    #[inline(never)]
+    pub(super) fn front_clip<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        idx: [usize; 3],
+        stats: &mut RenderStats,
+    ) -> Front<S, BITS> {
+        let mut clip = [Vec4::default(); 3];
+        let mut codes = [0; 3];
+        for k in 0..3 {
+            clip[k] = self.mvp.transform_point(mesh.position(idx[k]));
+            codes[k] = outcode(&clip[k]);
+        }
+        if trivially_outside(&clip, codes) {
+            stats.outside += 1;
+            return Front::Skip;
+        }
+        Front::Clip { idx, clip, codes }
+    }
+
+    /// The front end for a triangle that has passed it once this frame (a band's binned
+    /// triangle): its vertices' slots, without the tests.
+    #[inline(always)]
+    pub(super) fn front_again<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        t: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> Front<S, BITS> {
+        let idx = mesh.triangle(t);
+        let a = self.slot_geometry(mesh, idx[0], scratch);
+        let b = self.slot_geometry(mesh, idx[1], scratch);
+        let c = self.slot_geometry(mesh, idx[2], scratch);
+        if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
+            let mut ignored = RenderStats::default();
+            return self.front_clip(mesh, idx, &mut ignored);
+        }
+        Front::Inside {
+            idx,
+            v: [
+                (SubPoint::new(a.0, a.1), a.2),
+                (SubPoint::new(b.0, b.1), b.2),
+                (SubPoint::new(c.0, c.1), c.2),
+            ],
+        }
+    }
+
+    /// Draws a triangle the front end let through, counting it as drawn.
+    #[inline(always)]
+    pub(super) fn draw_front<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        front: Front<S, BITS>,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        match front {
+            Front::Skip => Ok(()),
+            Front::Inside { idx, v } => {
+                if Sh::NEEDS_FACE {
+                    let vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
+                    self.shading.face(&vin);
+                }
+                let var = self.face_values(mesh, idx, scratch);
+                stats.drawn += 1;
+                if Self::FUSED {
+                    let fv = [
+                        (v[0].0, v[0].1, var[0]),
+                        (v[1].0, v[1].1, var[1]),
+                        (v[2].0, v[2].1, var[2]),
+                    ];
+                    return self.raster_fused(target, &fv);
+                }
+                let sv = [0, 1, 2].map(|k| ScreenVertex {
+                    p: v[k].0,
+                    z: v[k].1,
+                    var: var[k],
+                    q: Self::q(&self.mvp.transform_point(mesh.position(idx[k]))),
+                });
+                self.raster(target, &sv)
+            }
+            Front::Clip { idx, clip, codes } => {
+                self.draw_clipped(target, mesh, idx, clip, codes, scratch, stats)
+            }
+        }
+    }
+
+    /// Clips a triangle in homogeneous space and draws what is left, as a fan.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    pub(super) fn draw_clipped<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        idx: [usize; 3],
+        clip: [Vec4<S>; 3],
+        codes: [Outcode; 3],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        stats.clipped += 1;
+        let var = self.face_values(mesh, idx, scratch);
+        let tri = [0, 1, 2].map(|k| ClipVertex {
+            pos: clip[k],
+            var: var[k],
+        });
+        let poly = clip_triangle(&tri, codes);
+        if poly.len() < 3 {
+            stats.outside += 1;
+            return Ok(());
+        }
+        let mut screen: heapless::Vec<
+            ScreenVertex<Sh::Varyings, BITS>,
+            { crate::clip::polygon::MAX_CLIPPED },
+        > = heapless::Vec::new();
+        for v in &poly {
+            let (p, z) = self.project(&v.pos);
+            let _ = screen.push(ScreenVertex {
+                p,
+                z,
+                var: v.var,
+                q: Self::q(&v.pos),
+            });
+        }
+        // The clipped polygon is convex: its total signed area decides its facing.
+        let area = polygon_area(screen.iter().map(|v| v.p));
+        if area == 0 || !self.cull.keep(area) {
+            stats.culled += 1;
+            return Ok(());
+        }
+        if Sh::NEEDS_FACE {
+            let vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
+            self.shading.face(&vin);
+        }
+        for k in 1..screen.len() - 1 {
+            self.raster(target, &[screen[0], screen[k], screen[k + 1]])?;
+        }
+        stats.drawn += 1;
+        Ok(())
+    }
+
+    /// Rasterizes one screen triangle through the fused span loop.
+    #[inline(always)]
+    pub(super) fn raster_fused<T>(
+        &mut self,
+        target: &mut T,
+        fv: &[FusedVertex<Sh::Varyings, BITS>; 3],
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+    {
+        if self.area.is_empty() {
+            return Ok(());
+        }
+        fill_fused::<_, _, _, _, BITS>(
+            target,
+            &mut self.depth,
+            fv,
+            &self.area,
+            Precision {
+                frac: Sh::FUSED_FRAC,
+                offset: Sh::FUSED_OFFSET,
+            },
+            ShaderColor::<S, Sh>(&self.shading, core::marker::PhantomData),
+        )
+    }
+
+    /// Rasterizes one screen triangle with the pipeline's depth test and shading: through the
+    /// fused span loop, or the exact interpolator ([`SpanStart::Exact`], [`SpanStart::Gradient`]
+    /// or perspective-correct).
+    #[inline(always)]
+    pub(super) fn raster<T>(
+        &mut self,
+        target: &mut T,
+        sv: &[ScreenVertex<Sh::Varyings, BITS>; 3],
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+    {
+        let shading = &self.shading;
+        if Self::FUSED {
+            let fv = sv.map(|v| (v.p, v.z, v.var));
+            self.raster_fused(target, &fv)
+        } else {
+            fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
+                target,
+                &mut self.depth,
+                *sv,
+                |v| shading.pixel(v),
+            )
+        }
+    }
+
+    /// Whether visible triangles take the fused span loop ([`SpanStart::Wrapping`], affine).
+    const FUSED: bool = matches!(N::SPANS, SpanStart::Wrapping) && !PERSPECTIVE;
+}
