@@ -109,7 +109,7 @@ pub extern "C" fn main() -> i32 {
     let Ok(depth_buffer) = DepthBuffer::new(depth, W, H, Compare::Less) else {
         return 2;
     };
-    let mut pipeline = Pipeline::<_, _, _, _>::new(
+    let mut pipeline = Pipeline::new(
         &transforms,
         viewport,
         CullClockwise,
@@ -131,7 +131,7 @@ pub extern "C" fn main() -> i32 {
     let Ok(band_depth_buffer) = DepthBuffer::new(band_depth, W, BAND_ROWS, Compare::Less) else {
         return 5;
     };
-    let mut banded = Pipeline::<_, _, _, _>::new(
+    let mut banded = Pipeline::new(
         &transforms,
         viewport,
         CullClockwise,

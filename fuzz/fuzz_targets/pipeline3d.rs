@@ -72,8 +72,7 @@ fuzz_target!(|data: &[u8]| {
     {
         let mut z = vec![u16::MAX; (W * H) as usize];
         let depth = DepthBuffer::new(&mut z, W, H, Compare::LessEqual).unwrap();
-        let mut p =
-            Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
+        let mut p = Pipeline::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
         let mut fb = Framebuffer::<Rgb565>::new(&mut whole, W, H).unwrap();
         let mut scratch = vec![VertexSlot::EMPTY; n];
         let _ = p.draw(&mut fb, &mesh, &mut scratch);
@@ -86,8 +85,7 @@ fuzz_target!(|data: &[u8]| {
         let mut fill = vec![0u16; (W * H) as usize];
         let mut z = vec![u16::MAX; (W * H) as usize];
         let depth = DepthBuffer::new(&mut z, W, H, Compare::LessEqual).unwrap();
-        let mut p =
-            Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
+        let mut p = Pipeline::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
         let mut fb = Framebuffer::<Rgb565>::new(&mut fill, W, H).unwrap();
         let stats = p.draw(&mut fb, &mesh, &mut vec![VertexSlot::EMPTY; slots]);
         (fill, stats)
@@ -101,8 +99,7 @@ fuzz_target!(|data: &[u8]| {
     {
         let mut z = vec![u16::MAX; (W * rows) as usize];
         let depth = DepthBuffer::new(&mut z, W, rows, Compare::LessEqual).unwrap();
-        let mut p =
-            Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
+        let mut p = Pipeline::new(&xf, vp, NoCull, depth, VertexColors::<Rgb565>::new());
         let mut band = vec![0u16; (W * rows) as usize];
         let mut bins = vec![BinEntry::default(); tris.len()];
         let banding = Banding {

@@ -57,7 +57,7 @@ fn draw_all<S: Surface<Color = Rgb565>>(s: &mut S, v: &[i32]) {
 
 fn draw_bits<S: Surface<Color = Rgb565>, const B: u32>(s: &mut S, v: &[i32]) {
     let p = |i: usize| Point::new(v[i], v[i + 1]);
-    let sp = |i: usize| SubPoint::<B>::new(v[i], v[i + 1]);
+    let sp = |i: usize| SubPoint::<B>::raw(v[i], v[i + 1]);
     let c = |i: usize| {
         Rgb565::new(
             v[i] as u8 & 31,

@@ -200,7 +200,7 @@ fn check_drawn(what: &str, drawn: u32) -> SceneResult {
 fn suzanne_wireframe(models: &Models, display: &mut Display) -> SceneResult {
     via_framebuffer(display, |fb, _depth| {
         let viewport = Viewport::new(WIDTH, HEIGHT);
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &m1_transforms(),
             viewport,
             CullClockwise,
@@ -224,8 +224,7 @@ where
 {
     via_framebuffer(display, |fb, depth| {
         let viewport = Viewport::new(WIDTH, HEIGHT);
-        let mut p =
-            Pipeline::<_, _, _, _>::new(&m1_transforms(), viewport, CullClockwise, depth, shading);
+        let mut p = Pipeline::new(&m1_transforms(), viewport, CullClockwise, depth, shading);
         let mesh = models.suzanne.mesh();
         let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
         let stats = p.draw(fb, &mesh, &mut scratch).map_err(|e| e.to_string())?;
@@ -392,7 +391,7 @@ pub fn draw_room_frame(
         .map_err(|e| format!("depth buffer: {e:?}"))?;
     // Seen from inside, the outward-facing walls appear clockwise: cull the other way round.
     let frame = room_frame(k);
-    let mut p = Pipeline::<_, _, _, _>::new(
+    let mut p = Pipeline::new(
         &xf,
         frame,
         CullCounterClockwise,
@@ -481,7 +480,7 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
         };
         let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less)
             .map_err(|e| format!("depth buffer: {e:?}"))?;
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &xf,
             viewport,
             CullClockwise,
@@ -518,7 +517,7 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
         let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less)
             .map_err(|e| format!("depth buffer: {e:?}"))?;
         if lit {
-            let mut p = Pipeline::<_, _, _, _>::new(
+            let mut p = Pipeline::new(
                 &xf,
                 viewport,
                 CullClockwise,
@@ -536,7 +535,7 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
             continue;
         }
         // Outside: Gouraud-lit front faces.
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &xf,
             viewport,
             CullClockwise,
@@ -557,7 +556,7 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
         // Inside: the back faces, flat dark red, visible only where the near plane cut her open.
         let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less)
             .map_err(|e| format!("depth buffer: {e:?}"))?;
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &xf,
             viewport,
             CullCounterClockwise,

@@ -95,7 +95,7 @@ pub struct LineSeg {
 pub struct Tri {
     /// Vertices in whole pixels (embedded-graphics input).
     pub px: [Point; 3],
-    /// The same vertices as `SubPoint::<4>::new(x * 16, y * 16)` (our input).
+    /// The same vertices as `SubPoint::new(x * 16, y * 16)` (our input).
     pub sub: [SubPoint<4>; 3],
     /// Colour.
     pub color: Rgb565,
@@ -104,7 +104,7 @@ pub struct Tri {
 /// One triangle of G1: a colour per vertex.
 #[derive(Debug, Clone, Copy)]
 pub struct GouraudTri {
-    /// Vertices as `SubPoint::<4>::new(x * 16, y * 16)`.
+    /// Vertices as `SubPoint::new(x * 16, y * 16)`.
     pub sub: [SubPoint<4>; 3],
     /// Colour of each vertex.
     pub colors: [Rgb565; 3],

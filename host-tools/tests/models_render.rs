@@ -85,7 +85,7 @@ fn render(path: &Path) -> (Vec<u8>, usize) {
         .unwrap();
     let mut z = vec![u16::MAX; (W * H) as usize];
     let depth = DepthBuffer::new(&mut z, W, H, Compare::Less).unwrap();
-    let mut p = Pipeline::<_, _, _, _>::new(
+    let mut p = Pipeline::new(
         &xf,
         Viewport::new(W, H),
         NoCull,

@@ -61,7 +61,7 @@ where
     S::Color: rasterizer_core::color::Channels,
 {
     let p = |x: i32, y: i32| black_box(Point::new(x, y));
-    let sp = |x: i32, y: i32| black_box(SubPoint::<4>::new(x, y));
+    let sp = |x: i32, y: i32| black_box(SubPoint::new(x, y));
     draw_point(s, p(3, 4), a)?;
     draw_line(s, p(-5, 2), p(70, 40), a)?;
     draw_line_gradient(s, p(0, 47), p(63, 0), a, b)?;
@@ -124,7 +124,7 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
     };
     let mut z = [u16::MAX; 64 * 48];
     if let Ok(depth) = DepthBuffer::new(&mut z, 64, 48, Compare::Less) {
-        let mut pl = Pipeline::<_, _, _, _>::new(
+        let mut pl = Pipeline::new(
             &xf,
             vp,
             CullClockwise,
@@ -135,8 +135,7 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
         let mut scratch = [VertexSlot::EMPTY; 16];
         drawn += pl.draw(&mut fb, &mesh, &mut scratch).map_or(0, |s| s.drawn);
     }
-    let mut pl =
-        Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, NoDepth, Unlit { color: Rgb565::RED });
+    let mut pl = Pipeline::new(&xf, vp, NoCull, NoDepth, Unlit { color: Rgb565::RED });
     drawn += pl.draw(&mut fb, &mesh, &mut []).map_or(0, |s| s.drawn);
     drawn += pl
         .draw_wireframe(&mut fb, &mesh, &mut [], Rgb565::WHITE)
@@ -144,7 +143,7 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
     // Bands of 8 rows.
     let mut band_z = [u16::MAX; 64 * 8];
     if let Ok(depth) = DepthBuffer::new(&mut band_z, 64, 8, Compare::Less) {
-        let mut pl = Pipeline::<_, _, _, _>::new(
+        let mut pl = Pipeline::new(
             &xf,
             vp,
             CullClockwise,

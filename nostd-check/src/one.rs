@@ -95,7 +95,7 @@ fn draw_2d() {
         return;
     };
     #[allow(unused_variables)]
-    let sp = |x: i32, y: i32| black_box(SubPoint::<4>::new(x * 16 + 5, y * 16 + 11));
+    let sp = |x: i32, y: i32| black_box(SubPoint::new(x * 16 + 5, y * 16 + 11));
     #[cfg(feature = "line2d")]
     {
         let p = |x: i32, y: i32| black_box(Point::new(x, y));
@@ -261,8 +261,7 @@ mod three_d {
         };
         #[cfg(feature = "noscratch")]
         let scratch: &mut [Slot] = &mut [];
-        let mut pl =
-            Pipeline::<Fx16, _, _, Sh>::new(&xf, Viewport::new(W, H), cull, depth, shading());
+        let mut pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading());
 
         #[cfg(not(feature = "banded"))]
         {

@@ -13,18 +13,10 @@ pub enum Compare {
     Less,
     /// Draw when nearer or equal.
     LessEqual,
-    /// Draw when farther.
-    Greater,
-    /// Draw when farther or equal.
-    GreaterEqual,
-    /// Draw when equal.
+    /// Draw when equal (a second pass over the same geometry, e.g. a decal).
     Equal,
-    /// Draw when different.
-    NotEqual,
     /// Always draw (and store the depth).
     Always,
-    /// Never draw.
-    Never,
 }
 
 impl Compare {
@@ -34,12 +26,8 @@ impl Compare {
         match self {
             Compare::Less => new < old,
             Compare::LessEqual => new <= old,
-            Compare::Greater => new > old,
-            Compare::GreaterEqual => new >= old,
             Compare::Equal => new == old,
-            Compare::NotEqual => new != old,
             Compare::Always => true,
-            Compare::Never => false,
         }
     }
 }
@@ -111,6 +99,18 @@ pub struct DepthBufferError {
     /// Entries the slice has.
     pub actual: usize,
 }
+
+impl core::fmt::Display for DepthBufferError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "depth buffer slice has {} entries, the size needs {}",
+            self.actual, self.expected
+        )
+    }
+}
+
+impl core::error::Error for DepthBufferError {}
 
 /// A depth buffer over a caller-provided `&mut [u16]`, one entry per pixel, rows top to bottom.
 #[derive(Debug)]

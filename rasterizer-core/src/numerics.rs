@@ -4,10 +4,8 @@
 //!
 //! They are compile-time choices, carried by a type implementing [`Numerics`] (the last generic
 //! parameter of [`crate::pipeline::Pipeline`]), so a pipeline compiles only the method it uses.
-//! [`Standard`] is the default; [`Custom`] picks each knob. `docs/ACCURACY.md` measures what each
+//! [`Standard`] is the default; any type implementing [`Numerics`] picks other knobs. `docs/ACCURACY.md` measures what each
 //! choice costs and what it changes.
-
-use core::marker::PhantomData;
 
 /// How the perspective divide turns clip coordinates into screen coordinates and depth.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,97 +47,59 @@ pub enum SpanStart {
     Wrapping,
 }
 
-/// A set of numeric knobs: the last generic parameter of [`crate::pipeline::Pipeline`].
+/// The numeric knobs of a pipeline, as associated constants: the last generic parameter of
+/// [`crate::pipeline::Pipeline`]. Every constant has the library's default, so a type sets only
+/// what it changes:
+///
+/// ```
+/// use rasterizer_core::numerics::{Divide, Numerics};
+/// /// For a core without a divide instruction.
+/// struct NoDivider;
+/// impl Numerics for NoDivider {
+///     const DIVIDE: Divide = Divide::Newton;
+/// }
+/// ```
 pub trait Numerics {
     /// The divide method of the perspective divide.
-    const DIVIDE: Divide;
+    const DIVIDE: Divide = Divide::Exact;
     /// Fractional bits of interpolated values and depth as they step across a triangle
-    /// (4 to 16) with [`SpanStart::Exact`] and [`SpanStart::Gradient`]. Depth is a 16-bit integer
-    /// and Gouraud colours carry 8 fractional bits, so fewer bits show as steps only across long
-    /// spans. [`SpanStart::Wrapping`] ignores it: its 32-bit planes always step the shader's
-    /// values and depth with 16 fractional bits, which costs nothing more.
-    const FRAC: u32;
+    /// (4 to 16; a value outside is clamped into it) with [`SpanStart::Exact`] and
+    /// [`SpanStart::Gradient`]. Depth is a 16-bit integer and Gouraud colours carry 8 fractional
+    /// bits, so fewer bits show as steps only across long spans. [`SpanStart::Wrapping`] ignores
+    /// it: its 32-bit planes always step the shader's values and depth with 16 fractional bits,
+    /// which costs nothing more.
+    const FRAC: u32 = 16;
     /// How spans start.
-    const SPANS: SpanStart;
+    const SPANS: SpanStart = SpanStart::Wrapping;
+    /// Whether the shader's values are interpolated perspective-correctly (two divisions per
+    /// pixel, through [`SpanStart::Exact`]); otherwise they are affine in screen space. Depth is
+    /// affine in screen space either way, and exact.
+    const PERSPECTIVE: bool = false;
 }
 
-/// The library's default: exact division, 16 fractional bits, wrapping span starts.
+/// The library's default: exact division, wrapping span starts, affine values.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Standard;
 
-impl Numerics for Standard {
-    const DIVIDE: Divide = Divide::Exact;
-    const FRAC: u32 = 16;
-    const SPANS: SpanStart = SpanStart::Wrapping;
-}
+impl Numerics for Standard {}
 
-/// A divide method as a type, for [`Custom`].
-pub trait DivideMethod {
-    /// The method.
-    const METHOD: Divide;
-}
-
-/// [`Divide::Exact`].
+/// [`Standard`] with perspective-correct values.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct ExactDivide;
-/// [`Divide::Reciprocal`].
-#[derive(Debug, Clone, Copy, Default)]
-pub struct ReciprocalDivide;
-/// [`Divide::Newton`].
-#[derive(Debug, Clone, Copy, Default)]
-pub struct NewtonDivide;
+pub struct Perspective;
 
-impl DivideMethod for ExactDivide {
-    const METHOD: Divide = Divide::Exact;
-}
-impl DivideMethod for ReciprocalDivide {
-    const METHOD: Divide = Divide::Reciprocal;
-}
-impl DivideMethod for NewtonDivide {
-    const METHOD: Divide = Divide::Newton;
+impl Numerics for Perspective {
+    const PERSPECTIVE: bool = true;
 }
 
-/// A span-start method as a type, for [`Custom`].
-pub trait SpanMethod {
-    /// The method.
-    const METHOD: SpanStart;
-}
-
-/// [`SpanStart::Exact`].
-#[derive(Debug, Clone, Copy, Default)]
-pub struct ExactSpans;
-/// [`SpanStart::Gradient`].
-#[derive(Debug, Clone, Copy, Default)]
-pub struct GradientSpans;
-/// [`SpanStart::Wrapping`].
-#[derive(Debug, Clone, Copy, Default)]
-pub struct WrappingSpans;
-
-impl SpanMethod for ExactSpans {
-    const METHOD: SpanStart = SpanStart::Exact;
-}
-impl SpanMethod for GradientSpans {
-    const METHOD: SpanStart = SpanStart::Gradient;
-}
-impl SpanMethod for WrappingSpans {
-    const METHOD: SpanStart = SpanStart::Wrapping;
-}
-
-/// Each knob chosen: `Custom<ReciprocalDivide, 12, GradientSpans>`. `FRAC` outside `4..=16` is
-/// clamped into it. The defaults are [`Standard`]'s.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Custom<D = ExactDivide, const FRAC: u32 = 16, P = WrappingSpans>(PhantomData<(D, P)>);
-
-impl<D: DivideMethod, const FRAC: u32, P: SpanMethod> Numerics for Custom<D, FRAC, P> {
-    const DIVIDE: Divide = D::METHOD;
-    const FRAC: u32 = if FRAC < 4 {
+/// `N::FRAC` clamped into `4..=16`.
+pub(crate) const fn frac<N: Numerics>() -> u32 {
+    if N::FRAC < 4 {
         4
-    } else if FRAC > 16 {
+    } else if N::FRAC > 16 {
         16
     } else {
-        FRAC
-    };
-    const SPANS: SpanStart = P::METHOD;
+        N::FRAC
+    }
 }
 
 /// The reciprocal `r` and shift `k >= 31` with `r ≈ 2^k / d` for `d > 0`, `r` in `[2^30, 2^31]`, by

@@ -1,7 +1,7 @@
 //! The vertex transform's inputs: the model, view and projection matrices ([`Transforms`]) and where
 //! normalised device coordinates land on the target ([`Viewport`]).
 
-use crate::math::Mat4;
+use crate::math::{Angle, Mat4, Scalar, Vec3};
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
@@ -14,6 +14,36 @@ pub struct Transforms<S> {
     pub view: Mat4<S>,
     /// View to clip space (e.g. [`Mat4::perspective`]).
     pub projection: Mat4<S>,
+}
+
+impl<S: Scalar> Transforms<S> {
+    /// A camera at `eye` looking at `target` (y up), with a vertical field of view `fov_y` and the
+    /// aspect ratio of `viewport`, seeing from 1/8 to 256 units away; the model matrix is the
+    /// identity ([`Transforms::with_model`] sets it).
+    ///
+    /// `None` when the camera looks straight up or down, `eye` equals `target`, or the projection
+    /// is not representable in `S`.
+    pub fn look_at(
+        eye: Vec3<S>,
+        target: Vec3<S>,
+        fov_y: Angle,
+        viewport: Viewport,
+    ) -> Option<Self> {
+        let up = Vec3::new(S::ZERO, S::ONE, S::ZERO);
+        let side = |v: u32| S::from_int(v.clamp(1, crate::surface::MAX_DIMENSION) as i32);
+        let aspect = side(viewport.width) / side(viewport.height);
+        let near = S::ONE / S::from_int(8);
+        Some(Self {
+            model: Mat4::identity(),
+            view: Mat4::look_at(eye, target, up)?,
+            projection: Mat4::perspective(fov_y, aspect, near, S::from_int(256))?,
+        })
+    }
+
+    /// The same transforms with another model matrix.
+    pub fn with_model(self, model: Mat4<S>) -> Self {
+        Self { model, ..self }
+    }
 }
 
 /// Where normalised device coordinates land on the target: `x = -1` at the left edge of the

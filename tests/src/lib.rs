@@ -247,7 +247,7 @@ pub fn reference_triangle(
 
 /// A sub-pixel point from raw coordinates.
 pub fn sp<const B: u32>(x: i32, y: i32) -> SubPoint<B> {
-    SubPoint::new(x, y)
+    SubPoint::raw(x, y)
 }
 
 /// The reference line's pixels inside `[0, w) x [0, h)`, for any `i32` endpoints: evaluated only at

@@ -11,10 +11,7 @@ use proptest::prelude::*;
 use rasterizer_core::cull::{CullClockwise, NoCull};
 use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::numerics::{
-    Custom, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics, ReciprocalDivide,
-    Standard,
-};
+use rasterizer_core::numerics::{Divide, Numerics, SpanStart, Standard};
 use rasterizer_core::shade::{GouraudLit, Shading, VertexColors};
 use rasterizer_core::surface::Framebuffer;
 use rasterizer_core::{
@@ -70,7 +67,7 @@ fn whole_frame<M, C, D, Sh, N>(
     mesh: &M,
     w: u32,
     h: u32,
-    mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, false, N>,
+    mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, N>,
 ) -> (Vec<u16>, RenderStats)
 where
     M: MeshSource<Fx16>,
@@ -94,7 +91,7 @@ fn banded<M, C, D, Sh, N>(
     h: u32,
     rows: u32,
     scratch: Scratch,
-    mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, false, N>,
+    mut p: Pipeline<Fx16, C, D, Sh, DEFAULT_BITS, N>,
 ) -> (Vec<u16>, RenderStats)
 where
     M: MeshSource<Fx16>,
@@ -202,7 +199,7 @@ fn suzanne_bands_for_every_numerics() {
     fn pipeline<N: Numerics>(
         depth: &mut [u16],
         rows: u32,
-    ) -> Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Gouraud, DEFAULT_BITS, false, N> {
+    ) -> Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Gouraud, DEFAULT_BITS, N> {
         Pipeline::new(
             &transforms(160, 120, 30),
             Viewport::new(160, 120),
@@ -230,9 +227,25 @@ fn suzanne_bands_for_every_numerics() {
     let m = suzanne();
     let mesh = m.mesh();
     check::<Standard>(&mesh);
-    check::<Custom<ExactDivide, 16, GradientSpans>>(&mesh);
-    check::<Custom<NewtonDivide, 8, GradientSpans>>(&mesh);
-    check::<Custom<ReciprocalDivide, 12, ExactSpans>>(&mesh);
+    struct Gradient16;
+    impl Numerics for Gradient16 {
+        const SPANS: SpanStart = SpanStart::Gradient;
+    }
+    struct NewtonGradient8;
+    impl Numerics for NewtonGradient8 {
+        const DIVIDE: Divide = Divide::Newton;
+        const FRAC: u32 = 8;
+        const SPANS: SpanStart = SpanStart::Gradient;
+    }
+    struct ReciprocalExact12;
+    impl Numerics for ReciprocalExact12 {
+        const DIVIDE: Divide = Divide::Reciprocal;
+        const FRAC: u32 = 12;
+        const SPANS: SpanStart = SpanStart::Exact;
+    }
+    check::<Gradient16>(&mesh);
+    check::<NewtonGradient8>(&mesh);
+    check::<ReciprocalExact12>(&mesh);
 }
 
 #[test]
@@ -268,7 +281,7 @@ fn suzanne_m1_size_common_band_heights_with_and_without_scratch() {
     {
         let mut fb = Framebuffer::<Rgb565>::new(&mut whole, w, h).unwrap();
         let depth = DepthBuffer::new(&mut z, w, h, Compare::Less).unwrap();
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &transforms(w, h, 30),
             Viewport::new(w, h),
             CullClockwise,
@@ -291,7 +304,7 @@ fn suzanne_m1_size_common_band_heights_with_and_without_scratch() {
         let mut bins = vec![BinEntry::default(); 1000];
         let mut slots = scratch.slots(&mesh);
         let depth = DepthBuffer::new(&mut zb, w, rows, Compare::Less).unwrap();
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &transforms(w, h, 30),
             Viewport::new(w, h),
             CullClockwise,
@@ -323,7 +336,7 @@ fn band_errors_are_typed() {
     let m = suzanne();
     let mesh = m.mesh();
     let (w, h) = (64u32, 48u32);
-    let mut p = Pipeline::<_, _, _, _>::new(
+    let mut p = Pipeline::new(
         &transforms(w, h, 0),
         Viewport::new(w, h),
         CullClockwise,
@@ -406,7 +419,7 @@ fn band_depth_buffer_too_small_is_an_error() {
     let draw = |viewport: Viewport, zw: u32, zh: u32| {
         let mut z = vec![u16::MAX; (zw * zh) as usize];
         let depth = DepthBuffer::new(&mut z, zw, zh, Compare::Less).unwrap();
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &transforms(w, h, 0),
             viewport,
             CullClockwise,
@@ -539,7 +552,7 @@ fn bins_span_gaps_beyond_255_triangles() {
             triangles: &tris,
         };
         let make = || {
-            Pipeline::<_, _, _, _>::new(
+            Pipeline::new(
                 &transforms(w, h, 0),
                 Viewport::new(w, h),
                 NoCull,

@@ -60,8 +60,8 @@ proptest! {
         x in -1.0f64..1.0, y in -1.0f64..1.0, z in -1.0f64..1.0,
     ) {
         let vp = Viewport::new(320, 240);
-        let fx = Pipeline::<Fx16, _, _, _, 4>::new(&transforms(yaw, dist, fov), vp, CullClockwise, NoDepth, Unlit { color: Rgb888::WHITE });
-        let fl = Pipeline::<f32, _, _, _, 4>::new(&transforms(yaw, dist, fov), vp, CullClockwise, NoDepth, Unlit { color: Rgb888::WHITE });
+        let fx = Pipeline::new(&transforms(yaw, dist, fov), vp, CullClockwise, NoDepth, Unlit { color: Rgb888::WHITE }).with_bits::<4>();
+        let fl = Pipeline::new(&transforms(yaw, dist, fov), vp, CullClockwise, NoDepth, Unlit { color: Rgb888::WHITE }).with_bits::<4>();
         let p = Vec3::new(Fx16::from_bits((x * 65536.0) as i32), Fx16::from_bits((y * 65536.0) as i32), Fx16::from_bits((z * 65536.0) as i32));
         let pf = Vec3::new(f64_of(p.x) as f32, f64_of(p.y) as f32, f64_of(p.z) as f32);
         let (a, _) = fx.project(&fx.mvp().transform_point(p));
@@ -110,7 +110,7 @@ fn f32_pipeline_renders_the_same_cube_as_fixed_point() {
         buf
     };
     let a = render(&mut |fb| {
-        let mut p = Pipeline::<Fx16, _, _, _, 4>::new(
+        let mut p = Pipeline::new(
             &transforms(5000, 5, 60),
             vp,
             CullClockwise,
@@ -118,7 +118,8 @@ fn f32_pipeline_renders_the_same_cube_as_fixed_point() {
             Unlit {
                 color: Rgb888::WHITE,
             },
-        );
+        )
+        .with_bits::<4>();
         p.draw(
             fb,
             &Mesh::new(&corners, &faces),
@@ -127,7 +128,7 @@ fn f32_pipeline_renders_the_same_cube_as_fixed_point() {
         .unwrap();
     });
     let b = render(&mut |fb| {
-        let mut p = Pipeline::<f32, _, _, _, 4>::new(
+        let mut p = Pipeline::new(
             &transforms(5000, 5, 60),
             vp,
             CullClockwise,
@@ -135,7 +136,8 @@ fn f32_pipeline_renders_the_same_cube_as_fixed_point() {
             Unlit {
                 color: Rgb888::WHITE,
             },
-        );
+        )
+        .with_bits::<4>();
         p.draw(
             fb,
             &Mesh::new(&corners_f, &faces),

@@ -9,10 +9,7 @@ use proptest::prelude::*;
 use rasterizer_core::cull::CullClockwise;
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::math::{Fx, Fx16, Mat4, Vec4};
-use rasterizer_core::numerics::{
-    Custom, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics, ReciprocalDivide,
-    Standard,
-};
+use rasterizer_core::numerics::{Divide, Numerics, SpanStart, Standard};
 use rasterizer_core::shade::{Shading, Unlit};
 use rasterizer_core::surface::{AnyTarget, Framebuffer};
 use rasterizer_core::{
@@ -26,16 +23,32 @@ use rasterizer_core::{
 /// Exact division and exact span starts: what the other knobs are measured against. (`Standard`
 /// starts spans with the pipeline's wrapping planes; `fill_triangle_interp_with` treats that as
 /// exact, the pipeline as its fused span loop.)
-type Exact = Custom<ExactDivide, 16, ExactSpans>;
-type Recip = Custom<ReciprocalDivide, 16, ExactSpans>;
-type Newton = Custom<NewtonDivide, 16, ExactSpans>;
-type Gradient = Custom<ExactDivide, 16, GradientSpans>;
+/// Numerics with the given divide method, fractional bits and span starts.
+macro_rules! knobs {
+    ($($name:ident: $divide:ident, $frac:literal, $spans:ident;)*) => {$(
+        struct $name;
+        impl Numerics for $name {
+            const DIVIDE: Divide = Divide::$divide;
+            const FRAC: u32 = $frac;
+            const SPANS: SpanStart = SpanStart::$spans;
+        }
+    )*};
+}
+knobs! {
+    Exact: Exact, 16, Exact;
+    Recip: Reciprocal, 16, Exact;
+    Newton: Newton, 16, Exact;
+    Gradient: Exact, 16, Gradient;
+    Frac12: Exact, 12, Exact;
+    Frac8Gradient: Exact, 8, Gradient;
+    Newton4Gradient: Newton, 4, Gradient;
+}
 
 /// A pipeline of format `Fx<F>` with numerics `N`, only for its `project`.
 fn projector<const F: u32, N: Numerics>(
     w: u32,
     h: u32,
-) -> Pipeline<Fx<F>, CullClockwise, rasterizer_core::depth::NoDepth, Unlit<Rgb565>, 4, false, N> {
+) -> Pipeline<Fx<F>, CullClockwise, rasterizer_core::depth::NoDepth, Unlit<Rgb565>, 4, N> {
     let t = Transforms {
         model: Mat4::identity(),
         view: Mat4::identity(),
@@ -50,6 +63,7 @@ fn projector<const F: u32, N: Numerics>(
             color: Rgb565::WHITE,
         },
     )
+    .with_bits::<4>()
     .with_numerics::<N>()
 }
 
@@ -131,8 +145,7 @@ fn draw_one<N: Numerics>(v: [ScreenVertex<[i32; 3], 4>; 3]) -> (Vec<Rgb888>, Vec
             let ch = |x: i32| ((x + 128) >> 8).clamp(0, 255) as u8;
             Rgb888::new(ch(c[0]), ch(c[1]), ch(c[2]))
         };
-        let Ok(()) =
-            fill_triangle_interp_with::<_, _, _, _, N, 4, false>(&mut fb, &mut db, v, shade);
+        let Ok(()) = fill_triangle_interp_with::<_, _, _, _, N, 4>(&mut fb, &mut db, v, shade);
     }
     let pixels = color
         .chunks(3)
@@ -189,8 +202,8 @@ proptest! {
     #[test]
     fn fewer_fraction_bits_within_their_bound(v in prop::array::uniform3(vertex())) {
         let exact = draw_one::<Exact>(v);
-        let f12 = draw_one::<Custom<ExactDivide, 12, ExactSpans>>(v);
-        let f8 = draw_one::<Custom<ExactDivide, 8, GradientSpans>>(v);
+        let f12 = draw_one::<Frac12>(v);
+        let f8 = draw_one::<Frac8Gradient>(v);
         // Depth is in whole units: 96 / 2^13 < 1, 96 / 2^9 < 1.
         let (c12, d12) = compare(&exact, &f12);
         prop_assert!(c12 <= 1 && d12 <= 2, "12 bits: colour {} depth {}", c12, d12);
@@ -223,7 +236,7 @@ fn coverage_is_independent_of_numerics() {
         // Depth 65535 may be a real depth: compare only where the exact draw has another value.
         for other in [
             covered(&draw_one::<Gradient>(v)),
-            covered(&draw_one::<Custom<NewtonDivide, 4, GradientSpans>>(v)),
+            covered(&draw_one::<Newton4Gradient>(v)),
         ] {
             for (i, (&a, &b)) in base.iter().zip(&other).enumerate() {
                 if a {
@@ -298,7 +311,7 @@ where
     let mut pixels = vec![C::default(); (w * h) as usize];
     let mut depth = vec![u16::MAX; (w * h) as usize];
     let db = DepthBuffer::new(&mut depth, w, h, Compare::Less).unwrap();
-    let mut p = Pipeline::<_, _, _, _>::new(
+    let mut p = Pipeline::new(
         &host_tools::scenes3d::transforms(),
         Viewport::new(w, h),
         CullClockwise,

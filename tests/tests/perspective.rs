@@ -17,7 +17,7 @@ fn setup() -> ([ScreenVertex<[i32; 1]>; 3], [f64; 3], [f64; 3]) {
     let w = [1.0, 4.0, 16.0];
     let val = [0.0, 40000.0, 80000.0];
     let v = [0, 1, 2].map(|k| ScreenVertex {
-        p: SubPoint::<4>::new((pts[k].0 * 16.0) as i32, (pts[k].1 * 16.0) as i32),
+        p: SubPoint::new((pts[k].0 * 16.0) as i32, (pts[k].1 * 16.0) as i32),
         z: 0,
         var: [val[k] as i32],
         q: ((1u64 << 20) as f64 / w[k]).round() as i64,

@@ -179,6 +179,7 @@ fn proj_pipeline(t: &Transforms<Fx16>) -> ProjPipeline {
             color: Rgb888::WHITE,
         },
     )
+    .with_bits::<4>()
 }
 
 /// The worst errors of one scene's vertices.

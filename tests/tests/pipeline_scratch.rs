@@ -10,6 +10,7 @@ use proptest::prelude::*;
 use rasterizer_core::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::numerics::{Numerics, Perspective, Standard};
 use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
 use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::surface::Framebuffer;
@@ -163,8 +164,8 @@ fn colors_of(pos: &[Vec3<Fx16>]) -> Vec<Rgb888> {
 
 /// Draws the sphere (with its normals or without) with `shading`, a depth buffer and back faces
 /// culled, into a 96 x 72 frame, with a scratch of `slots` slots; 4 sub-pixel bits, affine, or
-/// perspective-correct with `PERSPECTIVE`.
-fn render<Sh: Shading<Fx16, Color = Rgb565>, const PERSPECTIVE: bool>(
+/// perspective-correct with `N` = `Perspective`.
+fn render<Sh: Shading<Fx16, Color = Rgb565>, N: Numerics>(
     shading: Sh,
     place: Placement,
     normals: bool,
@@ -181,13 +182,15 @@ fn render<Sh: Shading<Fx16, Color = Rgb565>, const PERSPECTIVE: bool>(
     };
     let mut z = vec![u16::MAX; (w * h) as usize];
     let depth = DepthBuffer::new(&mut z, w, h, Compare::Less).unwrap();
-    let mut p = Pipeline::<_, _, _, _, 4, PERSPECTIVE>::new(
+    let mut p = Pipeline::new(
         &transforms(place.model(), w, h),
         Viewport::new(w, h),
         CullClockwise,
         depth,
         shading,
-    );
+    )
+    .with_bits::<4>()
+    .with_numerics::<N>();
     if let Some(m) = place.normal_matrix() {
         p.set_normal_matrix(m);
     }
@@ -205,20 +208,20 @@ fn same_with_any_scratch<Sh: Shading<Fx16, Color = Rgb565> + Clone>(name: &str, 
     let n = sphere().0.len();
     for place in [Placement::Turned, Placement::Stretched] {
         for normals in [true, false] {
-            let full = render::<_, false>(shading.clone(), place, normals, n);
+            let full = render::<_, Standard>(shading.clone(), place, normals, n);
             assert!(
                 full.0.iter().filter(|&&c| c != 0).count() > 1000,
                 "{name}: the sphere covers a good part of the frame"
             );
             for slots in [0, 1, n / 3, n / 2, n - 1, n + 7] {
-                let other = render::<_, false>(shading.clone(), place, normals, slots);
+                let other = render::<_, Standard>(shading.clone(), place, normals, slots);
                 assert!(
                     other == full,
                     "{name}, {place:?}, normals {normals}: {slots} of {n} slots differ"
                 );
             }
-            let full = render::<_, true>(shading.clone(), place, normals, n);
-            let none = render::<_, true>(shading.clone(), place, normals, 0);
+            let full = render::<_, Perspective>(shading.clone(), place, normals, n);
+            let none = render::<_, Perspective>(shading.clone(), place, normals, 0);
             assert!(
                 none == full,
                 "{name}, {place:?}, normals {normals}, perspective: no scratch differs"
@@ -266,7 +269,7 @@ fn scratch_left_from_another_frame_does_not_matter() {
         };
         let mut z = vec![u16::MAX; (w * h) as usize];
         let depth = DepthBuffer::new(&mut z, w, h, Compare::Less).unwrap();
-        let mut p = Pipeline::<_, _, _, _>::new(
+        let mut p = Pipeline::new(
             &transforms(Mat4::rotation_y(Angle::from_degrees(yaw)), w, h),
             Viewport::new(w, h),
             CullClockwise,
@@ -341,12 +344,12 @@ fn lit_shading_without_normals_uses_face_normals() {
         let n = pos.len();
         if gouraud {
             let shading = GouraudLit::<_, Rgb565, 1>::new(plain.clone());
-            let mut p = Pipeline::<_, _, _, _, 4>::new(&xf, vp, CullClockwise, depth, shading);
+            let mut p = Pipeline::new(&xf, vp, CullClockwise, depth, shading).with_bits::<4>();
             p.draw(&mut fb, &mesh, &mut vec![VertexSlot::EMPTY; n])
                 .unwrap();
         } else {
             let shading = FlatLit::<_, Rgb565, 1>::new(plain.clone());
-            let mut p = Pipeline::<_, _, _, _, 4>::new(&xf, vp, CullClockwise, depth, shading);
+            let mut p = Pipeline::new(&xf, vp, CullClockwise, depth, shading).with_bits::<4>();
             p.draw(&mut fb, &mesh, &mut vec![VertexSlot::EMPTY; n])
                 .unwrap();
         }

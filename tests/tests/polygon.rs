@@ -150,7 +150,7 @@ impl Surface for Strict {
 
 /// Raw sub-pixel vertices.
 fn raw<const B: u32>(v: &[(i32, i32)]) -> Vec<SubPoint<B>> {
-    v.iter().map(|&(x, y)| SubPoint::new(x, y)).collect()
+    v.iter().map(|&(x, y)| SubPoint::raw(x, y)).collect()
 }
 
 /// Whole-pixel vertices in 28.4.
@@ -314,7 +314,7 @@ fn convex_hull(points: &[(i64, i64)]) -> Vec<(i64, i64)> {
 
 fn to_sub<const B: u32>(v: &[(i64, i64)]) -> Vec<SubPoint<B>> {
     v.iter()
-        .map(|&(x, y)| SubPoint::new(x as i32, y as i32))
+        .map(|&(x, y)| SubPoint::raw(x as i32, y as i32))
         .collect()
 }
 
@@ -322,7 +322,7 @@ fn to_sub<const B: u32>(v: &[(i64, i64)]) -> Vec<SubPoint<B>> {
 fn fill_triangles(area: Rectangle, triangles: &[[(i64, i64); 3]]) -> BTreeSet<(i32, i32)> {
     let mut mock = Strict::with_area(area);
     for t in triangles {
-        let v = t.map(|(x, y)| SubPoint::<4>::new(x as i32, y as i32));
+        let v = t.map(|(x, y)| SubPoint::new(x as i32, y as i32));
         fill_triangle(&mut AnyTarget::new(&mut mock), v, Rgb565::WHITE).unwrap();
     }
     mock.pixels()

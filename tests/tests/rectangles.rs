@@ -90,7 +90,7 @@ where
     let white = Rgb565::WHITE;
     let far = 1 << 20;
     let big = [
-        SubPoint::<4>::new(-far * 16, -far * 16),
+        SubPoint::new(-far * 16, -far * 16),
         SubPoint::new(far * 16, -far * 16),
         SubPoint::new(0, far * 16),
     ];
@@ -99,7 +99,7 @@ where
         1 => fill_triangle_gouraud(s, big, [white; 3]).unwrap(),
         2 => {
             let quad = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
-                .map(|(x, y)| SubPoint::<4>::new(x * far * 16, y * far * 16));
+                .map(|(x, y)| SubPoint::new(x * far * 16, y * far * 16));
             Polygon::<4>::new(&quad)
                 .unwrap()
                 .fill(s, FillRule::NonZero, white)

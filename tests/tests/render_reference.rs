@@ -165,7 +165,7 @@ fn fill<Sh: Shading<Fx16, Color = Rgb888>>(
 ) {
     let mut zbuf = vec![u16::MAX; PIXELS];
     let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less).unwrap();
-    let mut p = Pipeline::<_, _, _, _>::new(
+    let mut p = Pipeline::new(
         xf,
         Viewport::new(WIDTH, HEIGHT),
         CullClockwise,
@@ -207,7 +207,7 @@ fn render(model: Model, style: Style) -> Vec<u8> {
     let Ok(()) = fb.clear(BACKGROUND);
     match style {
         Style::Wireframe => {
-            let mut p = Pipeline::<_, _, _, _>::new(
+            let mut p = Pipeline::new(
                 &xf,
                 Viewport::new(WIDTH, HEIGHT),
                 CullClockwise,

@@ -100,7 +100,7 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
         {
             let mut z = vec![u16::MAX; (W * H) as usize];
             let depth = DepthBuffer::new(&mut z, W, H, Compare::Less).unwrap();
-            let mut p = Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, FaceIds);
+            let mut p = Pipeline::new(&xf, vp, NoCull, depth, FaceIds);
             let mut fb = Framebuffer::<Rgb888>::new(&mut whole, W, H).unwrap();
             let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
             p.draw(&mut fb, &mesh.mesh(), &mut scratch).unwrap();
@@ -111,7 +111,7 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
         {
             let mut z = vec![u16::MAX; (W * rows) as usize];
             let depth = DepthBuffer::new(&mut z, W, rows, Compare::Less).unwrap();
-            let mut p = Pipeline::<_, _, _, _>::new(&xf, vp, NoCull, depth, FaceIds);
+            let mut p = Pipeline::new(&xf, vp, NoCull, depth, FaceIds);
             let mut band = vec![0u8; (W * rows * 3) as usize];
             let mut bins = vec![BinEntry::default(); n];
             let banding = Banding {
@@ -254,7 +254,7 @@ fn clipped_polygon_near_i32_limits_has_an_exact_area() {
     let mut buf = vec![0u16; (w * h) as usize];
     let mut z = vec![u16::MAX; (w * h) as usize];
     let depth = DepthBuffer::new(&mut z, w, h, Compare::LessEqual).unwrap();
-    let mut p = Pipeline::<_, _, _, _>::new(
+    let mut p = Pipeline::new(
         &xf,
         Viewport::new(w, h),
         NoCull,

@@ -67,7 +67,7 @@ fn fill_all_orientations_match_reference() {
                 _ => (y, -x),
             };
             let x = if k >= 4 { -x } else { x };
-            SubPoint::<4>::new((x + 8) * 16 + 5, (y + 8) * 16 + 3)
+            SubPoint::new((x + 8) * 16 + 5, (y + 8) * 16 + 3)
         });
         assert_eq!(
             fill_mock(16, 16, v).written(),
@@ -81,7 +81,7 @@ fn fill_all_orientations_match_reference() {
 fn horizontal_and_vertical_edges_exactly_on_pixel_centres() {
     // Edges at x = 1.5 and y = 1.5 (pixel centres): left/top edges keep their centres, the right and
     // bottom ones (x = 4.5, y = 3.5) do not.
-    let c = |x: i32, y: i32| SubPoint::<4>::new(x * 16 + 8, y * 16 + 8);
+    let c = |x: i32, y: i32| SubPoint::new(x * 16 + 8, y * 16 + 8);
     let mut mock = StrictMock::<BinaryColor>::new(6, 5);
     let mut t = AnyTarget::new(&mut mock);
     fill_triangle(&mut t, [c(1, 1), c(4, 1), c(4, 3)], BinaryColor::On).unwrap();
@@ -120,10 +120,10 @@ fn collinear_and_repeated_vertices_draw_nothing() {
 fn sliver_one_subpixel_wide_no_gap_no_overdraw() {
     // Two triangles forming a quad of one sub-pixel height along a long diagonal, plus a sliver one
     // sub-pixel wide: covered pixels equal the reference and the shared edge draws nothing twice.
-    let a = SubPoint::<4>::new(0, 8 * 16);
-    let b = SubPoint::<4>::new(40 * 16, 20 * 16 + 1);
-    let c = SubPoint::<4>::new(40 * 16, 20 * 16);
-    let d = SubPoint::<4>::new(0, 8 * 16 + 1);
+    let a = SubPoint::new(0, 8 * 16);
+    let b = SubPoint::new(40 * 16, 20 * 16 + 1);
+    let c = SubPoint::new(40 * 16, 20 * 16);
+    let d = SubPoint::new(0, 8 * 16 + 1);
     let mut mock = StrictMock::<BinaryColor>::new(40, 30);
     let mut t = AnyTarget::new(&mut mock);
     fill_triangle(&mut t, [a, b, c], BinaryColor::On).unwrap();
@@ -136,7 +136,7 @@ fn sliver_one_subpixel_wide_no_gap_no_overdraw() {
 #[test]
 fn sliver_triangle_no_gap() {
     // A fan of slivers around a centre must still tile its hull without gaps or overdraw.
-    let centre = SubPoint::<4>::new(20 * 16 + 3, 15 * 16 + 7);
+    let centre = SubPoint::new(20 * 16 + 3, 15 * 16 + 7);
     let ring: Vec<SubPoint<4>> = (0..=64)
         .map(|i| {
             let (x, y) = match i / 16 {
@@ -164,7 +164,7 @@ fn sliver_triangle_no_gap() {
 #[test]
 fn triangle_far_larger_than_screen() {
     let v = [
-        SubPoint::<4>::new(-1_000_000 * 16, -1_000_000 * 16),
+        SubPoint::new(-1_000_000 * 16, -1_000_000 * 16),
         SubPoint::new(1_500_000 * 16, -3),
         SubPoint::new(-7, 1_800_000 * 16),
     ];
@@ -176,13 +176,13 @@ fn triangle_far_larger_than_screen() {
 fn triangle_outside_guard_band_draws_nothing() {
     let far = (GUARD_BAND_PIXELS + 1) * 16;
     let v = [
-        SubPoint::<4>::new(-far, -far),
+        SubPoint::new(-far, -far),
         SubPoint::new(far, 0),
         SubPoint::new(0, far),
     ];
     assert!(fill_mock(8, 8, v).written().is_empty());
     let v = [
-        SubPoint::<4>::new(i32::MIN, i32::MIN),
+        SubPoint::new(i32::MIN, i32::MIN),
         SubPoint::new(i32::MAX, 0),
         SubPoint::new(0, i32::MAX),
     ];
@@ -193,16 +193,16 @@ fn triangle_outside_guard_band_draws_nothing() {
 fn triangle_at_guard_band_edge_matches_reference() {
     let g = GUARD_BAND_PIXELS * 16;
     let v = [
-        SubPoint::<4>::new(-g, -g),
+        SubPoint::new(-g, -g),
         SubPoint::new(g, -g + 5),
         SubPoint::new(3, g),
     ];
     assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16));
     let g8 = GUARD_BAND_PIXELS << 8;
     let v = [
-        SubPoint::<8>::new(-g8, 17),
-        SubPoint::new(g8, -g8),
-        SubPoint::new(g8, g8),
+        SubPoint::<8>::raw(-g8, 17),
+        SubPoint::raw(g8, -g8),
+        SubPoint::raw(g8, g8),
     ];
     assert_eq!(fill_mock(16, 16, v).written(), reference_set(v, 16, 16));
 }
@@ -210,15 +210,15 @@ fn triangle_at_guard_band_edge_matches_reference() {
 #[test]
 fn subpixel_bits_zero_and_eight() {
     let v0 = [
-        SubPoint::<0>::new(0, 0),
-        SubPoint::new(9, 2),
-        SubPoint::new(3, 8),
+        SubPoint::<0>::raw(0, 0),
+        SubPoint::raw(9, 2),
+        SubPoint::raw(3, 8),
     ];
     assert_eq!(fill_mock(10, 10, v0).written(), reference_set(v0, 10, 10));
     let v8 = [
-        SubPoint::<8>::new(37, 300),
-        SubPoint::new(2000, 1000),
-        SubPoint::new(900, 2400),
+        SubPoint::<8>::raw(37, 300),
+        SubPoint::raw(2000, 1000),
+        SubPoint::raw(900, 2400),
     ];
     assert_eq!(fill_mock(10, 10, v8).written(), reference_set(v8, 10, 10));
 }
@@ -265,7 +265,7 @@ fn outline_clipped_far_outside() {
 #[test]
 fn gouraud_vertex_pixels_get_vertex_colours() {
     // Vertices on pixel centres: the pixels there that are covered get exactly the vertex colour.
-    let c = |x: i32, y: i32| SubPoint::<4>::new(x * 16 + 8, y * 16 + 8);
+    let c = |x: i32, y: i32| SubPoint::new(x * 16 + 8, y * 16 + 8);
     let v = [c(1, 1), c(30, 4), c(6, 20)];
     let colors = [
         Rgb888::new(255, 0, 0),
@@ -300,7 +300,7 @@ fn gouraud_vertex_pixels_get_vertex_colours() {
 #[test]
 fn gouraud_same_pixels_as_flat_and_within_half_step_of_exact() {
     let v = [
-        SubPoint::<4>::new(13, 21),
+        SubPoint::new(13, 21),
         SubPoint::new(600, 90),
         SubPoint::new(170, 470),
     ];
@@ -336,7 +336,7 @@ fn gouraud_same_pixels_as_flat_and_within_half_step_of_exact() {
 #[test]
 fn gouraud_sliver_with_huge_gradient_stays_in_range() {
     let v = [
-        SubPoint::<4>::new(0, 0),
+        SubPoint::new(0, 0),
         SubPoint::new(40 * 16, 30 * 16),
         SubPoint::new(40 * 16 + 1, 30 * 16),
     ];
@@ -358,7 +358,7 @@ fn gouraud_sliver_with_huge_gradient_stays_in_range() {
 #[test]
 fn framebuffer_and_any_target_agree_on_gouraud() {
     let v = [
-        SubPoint::<4>::new(-100, 40),
+        SubPoint::new(-100, 40),
         SubPoint::new(700, 100),
         SubPoint::new(300, 600),
     ];
@@ -399,15 +399,15 @@ proptest! {
 
     #[test]
     fn coverage_equals_reference(x0 in coord(), y0 in coord(), x1 in coord(), y1 in coord(), x2 in coord(), y2 in coord()) {
-        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let v = [SubPoint::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
         prop_assert_eq!(fill_mock(48, 40, v).written(), reference_set(v, 48, 40));
     }
 
     #[test]
     fn coverage_equals_reference_other_bits(x0 in 0i32..2000, y0 in 0i32..2000, x1 in 0i32..2000, y1 in 0i32..2000, x2 in 0i32..2000, y2 in 0i32..2000) {
-        let v6 = [SubPoint::<6>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let v6 = [SubPoint::<6>::raw(x0, y0), SubPoint::raw(x1, y1), SubPoint::raw(x2, y2)];
         prop_assert_eq!(fill_mock(32, 32, v6).written(), reference_set(v6, 32, 32));
-        let v2 = [SubPoint::<2>::new(x0 / 16, y0 / 16), SubPoint::new(x1 / 16, y1 / 16), SubPoint::new(x2 / 16, y2 / 16)];
+        let v2 = [SubPoint::<2>::raw(x0 / 16, y0 / 16), SubPoint::raw(x1 / 16, y1 / 16), SubPoint::raw(x2 / 16, y2 / 16)];
         prop_assert_eq!(fill_mock(32, 32, v2).written(), reference_set(v2, 32, 32));
     }
 
@@ -484,18 +484,18 @@ proptest! {
 
     #[test]
     fn whole_pixel_translation_translates_pixels(x0 in coord(), y0 in coord(), x1 in coord(), y1 in coord(), x2 in coord(), y2 in coord(), tx in -20i32..20, ty in -20i32..20) {
-        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
-        let moved = v.map(|p| SubPoint::<4>::new(p.x + tx * 16, p.y + ty * 16));
+        let v = [SubPoint::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let moved = v.map(|p| SubPoint::new(p.x + tx * 16, p.y + ty * 16));
         // Large target so nothing is clipped away in either.
-        let a: BTreeSet<_> = fill_mock(160, 150, v.map(|p| SubPoint::<4>::new(p.x + 40 * 16, p.y + 40 * 16))).written();
-        let b: BTreeSet<_> = fill_mock(160, 150, moved.map(|p| SubPoint::<4>::new(p.x + 40 * 16, p.y + 40 * 16))).written();
+        let a: BTreeSet<_> = fill_mock(160, 150, v.map(|p| SubPoint::new(p.x + 40 * 16, p.y + 40 * 16))).written();
+        let b: BTreeSet<_> = fill_mock(160, 150, moved.map(|p| SubPoint::new(p.x + 40 * 16, p.y + 40 * 16))).written();
         let shifted: BTreeSet<_> = a.iter().map(|&(x, y)| (x + tx, y + ty)).collect();
         prop_assert_eq!(shifted, b);
     }
 
     #[test]
     fn any_i32_input_never_panics_or_writes_out_of_bounds(x0 in any_sub(), y0 in any_sub(), x1 in any_sub(), y1 in any_sub(), x2 in any_sub(), y2 in any_sub()) {
-        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let v = [SubPoint::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
         let colors = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
         let mut mock = StrictMock::<Rgb565>::new(20, 16);
         fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
@@ -544,13 +544,13 @@ proptest! {
 
     #[test]
     fn interp_coverage_of_tiny_triangles_equals_reference(x0 in tiny(), y0 in tiny(), x1 in tiny(), y1 in tiny(), x2 in tiny(), y2 in tiny()) {
-        let v = [SubPoint::<6>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let v = [SubPoint::<6>::raw(x0, y0), SubPoint::raw(x1, y1), SubPoint::raw(x2, y2)];
         prop_assert_eq!(interp_mock(32, 32, v).written(), reference_set(v, 32, 32));
     }
 
     #[test]
     fn interp_coverage_equals_reference(x0 in coord(), y0 in coord(), x1 in coord(), y1 in coord(), x2 in coord(), y2 in coord()) {
-        let v = [SubPoint::<4>::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
+        let v = [SubPoint::new(x0, y0), SubPoint::new(x1, y1), SubPoint::new(x2, y2)];
         prop_assert_eq!(interp_mock(48, 40, v).written(), reference_set(v, 48, 40));
     }
 }
@@ -638,7 +638,7 @@ fn check_fills<const B: u32>(
     places: [(Place, Place); 3],
     colors: [Rgb888; 3],
 ) -> Result<(), TestCaseError> {
-    let v = places.map(|(x, y)| SubPoint::<B>::new(x.raw(B), y.raw(B)));
+    let v = places.map(|(x, y)| SubPoint::<B>::raw(x.raw(B), y.raw(B)));
     let want = if v.iter().all(|p| p.in_guard_band()) {
         reference_set(v, GB_W as i32, GB_H as i32)
     } else {
@@ -698,9 +698,9 @@ fn gouraud_at_guard_band_limits_keeps_base_colour() {
     // panicked, release lost the red channel.
     let m = (1 << 29) - 1;
     let v = [
-        SubPoint::<8>::new(-m, -m),
-        SubPoint::new(m, -m),
-        SubPoint::new(0, m),
+        SubPoint::<8>::raw(-m, -m),
+        SubPoint::raw(m, -m),
+        SubPoint::raw(0, m),
     ];
     let colors = [
         Rgb565::new(8, 16, 16),

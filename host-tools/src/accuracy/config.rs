@@ -14,10 +14,7 @@ use embedded_graphics_core::prelude::DrawTarget;
 use rasterizer_core::cull::{Cull, CullClockwise};
 use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::math::{Fx16, Fx24, Fx8, Scalar, Vec3};
-use rasterizer_core::numerics::{
-    Custom, Divide, ExactDivide, ExactSpans, GradientSpans, NewtonDivide, Numerics,
-    ReciprocalDivide, SpanStart, Standard,
-};
+use rasterizer_core::numerics::{Divide, Numerics, SpanStart};
 use rasterizer_core::shade::{GouraudLit, Unlit};
 use rasterizer_core::surface::Framebuffer;
 use rasterizer_core::{
@@ -109,17 +106,18 @@ pub struct Config {
 }
 
 /// One registry entry: label, the knob it varies, format, sub-pixel bits, perspective, table size
-/// and (optionally; `Standard` otherwise) the numerics type.
+/// and (optionally; the library's defaults otherwise) the divide method, fractional bits and span
+/// starts of [`Knobbed`].
 macro_rules! entry {
     ($label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal) => {
-        entry!(@ $label, $varies, $s, $bits, $persp, $table, Standard, false)
+        entry!(@ $label, $varies, $s, $bits, $persp, $table, Knobbed<0, 16, 2, $persp>, false)
     };
     ($label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal,
-        $num:ty) => {
-        entry!(@ $label, $varies, $s, $bits, $persp, $table, $num, false)
+        $div:literal, $frac:literal, $spans:literal) => {
+        entry!(@ $label, $varies, $s, $bits, $persp, $table, Knobbed<$div, $frac, $spans, $persp>, false)
     };
     (control $label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal) => {
-        entry!(@ $label, $varies, $s, $bits, $persp, $table, Standard, true)
+        entry!(@ $label, $varies, $s, $bits, $persp, $table, Knobbed<0, 16, 2, $persp>, true)
     };
     (@ $label:literal, $varies:literal, $s:ty, $bits:literal, $persp:literal, $table:literal,
         $num:ty, $control:literal) => {
@@ -136,16 +134,34 @@ macro_rules! entry {
                 spans: <$num as Numerics>::SPANS,
             },
             control: $control,
-            measure: measure::<$s, $bits, $persp, $table, $num>,
-            count: count::<$s, $bits, $persp, $table, $num>,
+            measure: measure::<$s, $bits, $table, $num>,
+            count: count::<$s, $bits, $table, $num>,
         }
     };
 }
 
-/// Exact division, `F` fractional bits, exact span starts.
-type Frac<const F: u32> = Custom<ExactDivide, F, ExactSpans>;
-/// Everything cheapest: no division, 4 fractional bits, gradient span starts.
-type Cheapest = Custom<NewtonDivide, 4, GradientSpans>;
+/// A configuration's numeric knobs: the divide method (0 exact, 1 reciprocal, 2 Newton), the
+/// fractional bits, the span starts (0 exact, 1 gradient, 2 wrapping) and perspective correction.
+pub struct Knobbed<const DIV: u8, const FRAC: u32, const SPANS: u8, const P: bool>;
+
+impl<const DIV: u8, const FRAC: u32, const SPANS: u8, const P: bool> Numerics
+    for Knobbed<DIV, FRAC, SPANS, P>
+{
+    const DIVIDE: Divide = [Divide::Exact, Divide::Reciprocal, Divide::Newton][DIV as usize];
+    const FRAC: u32 = FRAC;
+    const SPANS: SpanStart =
+        [SpanStart::Exact, SpanStart::Gradient, SpanStart::Wrapping][SPANS as usize];
+    const PERSPECTIVE: bool = P;
+}
+
+/// `N` with affine values.
+struct Affine<N>(core::marker::PhantomData<N>);
+
+impl<N: Numerics> Numerics for Affine<N> {
+    const DIVIDE: Divide = N::DIVIDE;
+    const FRAC: u32 = N::FRAC;
+    const SPANS: SpanStart = N::SPANS;
+}
 
 /// The label of the library's default configuration.
 pub const DEFAULT: &str = "default";
@@ -167,24 +183,8 @@ pub fn registry() -> Vec<Config> {
         entry!("table64", "trig table", Fx16, 6, false, 64),
         entry!("table1024", "trig table", Fx16, 6, false, 1024),
         entry!("perspective", "perspective", Fx16, 6, true, 256),
-        entry!(
-            "reciprocal",
-            "divide",
-            Fx16,
-            6,
-            false,
-            256,
-            Custom<ReciprocalDivide>
-        ),
-        entry!(
-            "newton",
-            "divide",
-            Fx16,
-            6,
-            false,
-            256,
-            Custom<NewtonDivide>
-        ),
+        entry!("reciprocal", "divide", Fx16, 6, false, 256, 1, 16, 2),
+        entry!("newton", "divide", Fx16, 6, false, 256, 2, 16, 2),
         entry!(
             "frac12",
             "interpolation bits",
@@ -192,14 +192,16 @@ pub fn registry() -> Vec<Config> {
             6,
             false,
             256,
-            Frac<12>
+            0,
+            12,
+            0
         ),
-        entry!("frac8", "interpolation bits", Fx16, 6, false, 256, Frac<8>),
-        entry!("frac4", "interpolation bits", Fx16, 6, false, 256, Frac<4>),
-        entry!("gradient", "span starts", Fx16, 6, false, 256, Custom<ExactDivide, 16, GradientSpans>),
-        entry!("exact-spans", "span starts", Fx16, 6, false, 256, Custom<ExactDivide, 16, ExactSpans>),
-        entry!("cheap", "combination", Fx16, 0, false, 16, Cheapest),
-        entry!("cheap-24.8", "combination", Fx8, 0, false, 16, Cheapest),
+        entry!("frac8", "interpolation bits", Fx16, 6, false, 256, 0, 8, 0),
+        entry!("frac4", "interpolation bits", Fx16, 6, false, 256, 0, 4, 0),
+        entry!("gradient", "span starts", Fx16, 6, false, 256, 0, 16, 1),
+        entry!("exact-spans", "span starts", Fx16, 6, false, 256, 0, 16, 0),
+        entry!("cheap", "combination", Fx16, 0, false, 16, 2, 4, 1),
+        entry!("cheap-24.8", "combination", Fx8, 0, false, 16, 2, 4, 1),
         entry!("fine", "combination", Fx16, 8, true, 1024),
         entry!("fine-8.24", "combination", Fx24, 8, true, 1024),
         entry!("f32-perspective", "combination", f32, 6, true, 256),
@@ -236,9 +238,7 @@ fn px(v: i32, bits: u32) -> f64 {
 /// "No triangle" in the id image: more triangles than any scene has.
 const NO_ID: u32 = 0xFF_FFFF;
 
-fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numerics>(
-    scene: &Prepared,
-) -> Measured {
+fn measure<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(scene: &Prepared) -> Measured {
     let def = &scene.def;
     let (w, h) = (def.width, def.height);
     let xf = transforms::<S, N>(&def.camera, w, h)
@@ -250,7 +250,7 @@ fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numeri
     let pixels = w as usize * h as usize;
 
     // Vertex positions: the configuration's own projection (no buffers needed).
-    let probe = Pipeline::<S, _, _, _, BITS, P>::new(
+    let probe = Pipeline::new(
         &xf,
         vp,
         cull,
@@ -259,6 +259,7 @@ fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numeri
             color: Rgb888::BLACK,
         },
     )
+    .with_bits::<BITS>()
     .with_numerics::<Nu>();
     let ours: Vec<[f64; 2]> = positions
         .iter()
@@ -281,13 +282,14 @@ fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numeri
     // Colours: Gouraud into Rgb888, the configuration exactly.
     let mut zbuf = vec![u16::MAX; pixels];
     let depth = DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
-    let mut p = Pipeline::<S, _, _, _, BITS, P>::new(
+    let mut p = Pipeline::new(
         &xf,
         vp,
         cull,
         depth,
         GouraudLit::<S, Rgb888, 1>::new(lighting::<S>(&def.camera)),
     )
+    .with_bits::<BITS>()
     .with_numerics::<Nu>();
     let mut rgb = vec![0u8; pixels * 3];
     {
@@ -326,8 +328,9 @@ fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numeri
         let mut zbuf = vec![u16::MAX; pixels];
         let depth =
             DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
-        let mut p = Pipeline::<S, _, _, _, BITS, false>::new(&xf, vp, cull, depth, FaceIds)
-            .with_numerics::<Nu>();
+        let mut p = Pipeline::new(&xf, vp, cull, depth, FaceIds)
+            .with_bits::<BITS>()
+            .with_numerics::<Affine<Nu>>();
         let mesh = Mesh {
             positions: &face_pos,
             normals: None,
@@ -353,8 +356,8 @@ fn measure<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numeri
 /// configuration has its own copy; `--toggle-collect='*counted_frame*'` matches all of them, and
 /// each counting process runs exactly one.
 #[inline(never)]
-pub fn counted_frame<S: Scalar, const BITS: u32, const P: bool, Nu: Numerics>(
-    p: &mut Pipeline<S, CullClockwise, DepthBuffer<'_>, GouraudLit<S, Rgb565, 1>, BITS, P, Nu>,
+pub fn counted_frame<S: Scalar, const BITS: u32, Nu: Numerics>(
+    p: &mut Pipeline<S, CullClockwise, DepthBuffer<'_>, GouraudLit<S, Rgb565, 1>, BITS, Nu>,
     fb: &mut Framebuffer<'_, Rgb565>,
     mesh: &Mesh<'_, S, u32>,
     scratch: &mut [VertexSlot],
@@ -362,7 +365,7 @@ pub fn counted_frame<S: Scalar, const BITS: u32, const P: bool, Nu: Numerics>(
     p.draw(fb, mesh, scratch).unwrap_or_default()
 }
 
-fn count<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numerics>(
+fn count<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(
     def: &SceneDef,
 ) -> Result<String, String> {
     let (w, h) = (def.width, def.height);
@@ -381,13 +384,14 @@ fn count<S: Format, const BITS: u32, const P: bool, const N: usize, Nu: Numerics
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, w, h).map_err(|e| format!("{e:?}"))?;
     let mut zbuf = vec![u16::MAX; pixels];
     let depth = DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
-    let mut p = Pipeline::<S, _, _, _, BITS, P>::new(
+    let mut p = Pipeline::new(
         &xf,
         Viewport::new(w, h),
         CullClockwise,
         depth,
         GouraudLit::<S, Rgb565, 1>::new(lighting::<S>(&def.camera)),
     )
+    .with_bits::<BITS>()
     .with_numerics::<Nu>();
     // The warm frame, then clear: neither is counted. The scratch is the caller's RAM.
     let mut scratch = vec![VertexSlot::EMPTY; positions.len()];

@@ -16,6 +16,7 @@ use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::geom::SubPoint;
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::mesh::PackedMesh;
+use rasterizer_core::numerics::{Numerics, Perspective, Standard};
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
@@ -304,7 +305,7 @@ fn by_depth<S: Real, M, C: Cull>(
 {
     if job.mesh.wireframe {
         let color = job.mesh.color;
-        let mut p = Pipeline::<S, C, NoDepth, Unlit<Rgb888>>::new(
+        let mut p = Pipeline::new(
             &job.transforms,
             job.viewport,
             cull,
@@ -397,14 +398,14 @@ where
     M: MeshSource<S>,
 {
     if job.mesh.perspective_correct {
-        draw_with::<S, M, C, D, Sh, true>(target, mesh, job, cull, depth, shading)
+        draw_with::<S, M, C, D, Sh, Perspective>(target, mesh, job, cull, depth, shading)
     } else {
-        draw_with::<S, M, C, D, Sh, false>(target, mesh, job, cull, depth, shading)
+        draw_with::<S, M, C, D, Sh, Standard>(target, mesh, job, cull, depth, shading)
     }
 }
 
 /// The draw call of one monomorphised pipeline.
-fn draw_with<S, M, C, D, Sh, const P: bool>(
+fn draw_with<S, M, C, D, Sh, N>(
     target: &mut Target<'_>,
     mesh: &M,
     job: &Job<'_, S>,
@@ -418,9 +419,11 @@ where
     C: Cull,
     D: DepthTest,
     Sh: Shading<S, Color = Rgb888>,
+    N: Numerics,
 {
-    let mut p =
-        Pipeline::<S, C, D, Sh, 4, P>::new(&job.transforms, job.viewport, cull, depth, shading);
+    let mut p = Pipeline::new(&job.transforms, job.viewport, cull, depth, shading)
+        .with_bits::<4>()
+        .with_numerics::<N>();
     if let Some(n) = job.normal_matrix {
         p.set_normal_matrix(n);
     }

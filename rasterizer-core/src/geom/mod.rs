@@ -2,7 +2,7 @@
 //!
 //! Pixel (x, y) covers `[x, x + 1) x [y, y + 1)` with y pointing down; it is sampled at its centre
 //! `(x + 0.5, y + 0.5)`. Filled primitives take vertices in sub-pixel fixed point so that meshes stay
-//! watertight after projection; lines and points take whole pixels ([`line`] defines which).
+//! watertight after projection; lines and points take whole pixels ([`mod@line`] defines which).
 //! [`Varyings`] are the values a vertex carries to be interpolated across a primitive.
 
 pub mod line;
@@ -51,8 +51,9 @@ impl<const BITS: u32> SubPoint<BITS> {
     /// Compile-time guard: more than [`MAX_SUBPIXEL_BITS`] would overflow the set-up arithmetic.
     pub(crate) const VALID: () = assert!(BITS <= MAX_SUBPIXEL_BITS, "at most 8 sub-pixel bits");
 
-    /// A point from raw sub-pixel values.
-    pub const fn new(x: i32, y: i32) -> Self {
+    /// A point from raw sub-pixel values: `x` stands for `x / 2^BITS` pixels, e.g.
+    /// `SubPoint::<6>::raw(64, 32)` is `(1, 0.5)`.
+    pub const fn raw(x: i32, y: i32) -> Self {
         Self { x, y }
     }
 
@@ -69,6 +70,14 @@ impl<const BITS: u32> SubPoint<BITS> {
         let limit = (GUARD_BAND_PIXELS as i64) << BITS;
         let (x, y) = (self.x as i64, self.y as i64);
         -limit <= x && x <= limit && -limit <= y && y <= limit
+    }
+}
+
+impl SubPoint {
+    /// A point at the default precision, 28.4, from raw values: 16 units to the pixel, so
+    /// `SubPoint::new(160 * 16, 8)` is `(160, 0.5)`. Other precisions: [`SubPoint::raw`].
+    pub const fn new(x: i32, y: i32) -> Self {
+        Self { x, y }
     }
 }
 

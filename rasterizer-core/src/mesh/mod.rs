@@ -52,12 +52,28 @@ pub struct Mesh<'a, S, I = u16> {
 
 impl<'a, S, I> Mesh<'a, S, I> {
     /// A mesh of positions and triangles only.
-    pub fn new(positions: &'a [Vec3<S>], triangles: &'a [[I; 3]]) -> Self {
+    pub const fn new(positions: &'a [Vec3<S>], triangles: &'a [[I; 3]]) -> Self {
         Self {
             positions,
             normals: None,
             colors: None,
             triangles,
+        }
+    }
+
+    /// The mesh with vertex normals, one per position.
+    pub const fn with_normals(self, normals: &'a [Vec3<S>]) -> Self {
+        Self {
+            normals: Some(normals),
+            ..self
+        }
+    }
+
+    /// The mesh with vertex colours, one per position.
+    pub const fn with_colors(self, colors: &'a [Rgb888]) -> Self {
+        Self {
+            colors: Some(colors),
+            ..self
         }
     }
 }

@@ -124,8 +124,9 @@ impl core::fmt::Display for BandError {
     }
 }
 
-impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool, N>
-    Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, N>
+impl core::error::Error for BandError {}
+
+impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
 where
     S: Scalar,
     C: Cull,

@@ -64,8 +64,7 @@ pub(super) fn polygon_area<const BITS: u32>(
     area.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
 }
 
-impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool, N>
-    Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, N>
+impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
 where
     S: Scalar,
     C: Cull,
@@ -121,9 +120,9 @@ where
         Front::Inside {
             idx,
             v: [
-                (SubPoint::new(a.0, a.1), a.2),
-                (SubPoint::new(b.0, b.1), b.2),
-                (SubPoint::new(c.0, c.1), c.2),
+                (SubPoint::raw(a.0, a.1), a.2),
+                (SubPoint::raw(b.0, b.1), b.2),
+                (SubPoint::raw(c.0, c.1), c.2),
             ],
         }
     }
@@ -170,9 +169,9 @@ where
         Front::Inside {
             idx,
             v: [
-                (SubPoint::new(a.0, a.1), a.2),
-                (SubPoint::new(b.0, b.1), b.2),
-                (SubPoint::new(c.0, c.1), c.2),
+                (SubPoint::raw(a.0, a.1), a.2),
+                (SubPoint::raw(b.0, b.1), b.2),
+                (SubPoint::raw(c.0, c.1), c.2),
             ],
         }
     }
@@ -323,15 +322,12 @@ where
             let fv = sv.map(|v| (v.p, v.z, v.var));
             self.raster_fused(target, &fv)
         } else {
-            fill_triangle_interp_with::<_, _, _, _, N, BITS, PERSPECTIVE>(
-                target,
-                &mut self.depth,
-                *sv,
-                |v| shading.pixel(v),
-            )
+            fill_triangle_interp_with::<_, _, _, _, N, BITS>(target, &mut self.depth, *sv, |v| {
+                shading.pixel(v)
+            })
         }
     }
 
     /// Whether visible triangles take the fused span loop ([`SpanStart::Wrapping`], affine).
-    const FUSED: bool = matches!(N::SPANS, SpanStart::Wrapping) && !PERSPECTIVE;
+    const FUSED: bool = matches!(N::SPANS, SpanStart::Wrapping) && !N::PERSPECTIVE;
 }

@@ -1,7 +1,7 @@
 //! The 3D pipeline: mesh -> vertex transform -> clip -> project -> cull -> raster -> shade -> target.
 //!
-//! [`Pipeline`] is generic over its stages: culling ([`cull`]), the depth test
-//! ([`crate::depth::DepthTest`]) and the shading model ([`shading`]). A stage that is off
+//! [`Pipeline`] is generic over its stages: culling ([`crate::cull`]), the depth test
+//! ([`crate::depth::DepthTest`]) and the shading model ([`crate::shade`]). A stage that is off
 //! is a zero-sized type whose methods are empty, so a frame without depth, culling or lighting
 //! compiles none of that code and keeps none of its state. Geometry runs in any
 //! [`crate::math::Scalar`] (16.16 by default); everything after the perspective divide is integer.
@@ -9,9 +9,11 @@
 //! Every draw call runs each triangle through one front end (fetch, transform once per vertex
 //! into the caller's [`VertexSlot`] scratch, trivial rejection, culling); the filled, banded and
 //! wireframe paths differ only in what they do with the triangles it lets through. With the
-//! default numerics a visible triangle is drawn by the fused span loop of
-//! [`crate::raster::interp`]'s sibling `fused` module: depth test, interpolation and colour in one
-//! loop per span.
+//! default numerics a visible triangle is drawn by the raster stage's fused span loop: depth test,
+//! interpolation and colour in one loop per span.
+//!
+//! Files: `front.rs` is the front end, `vertex.rs` the per-vertex work (transform, projection,
+//! shading into the scratch), `band.rs` band rendering.
 
 mod band;
 mod front;
@@ -21,17 +23,18 @@ pub use band::{BandError, Banding, BinEntry};
 pub use vertex::VertexSlot;
 
 use crate::clip::polygon::{clip_segment, clip_triangle, ClipVertex};
-use crate::cull::Cull;
-use crate::depth::DepthTest;
+use crate::cull::{Cull, CullClockwise};
+use crate::depth::{DepthBuffer, DepthTest};
 use crate::geom::{PixelRect, SubPoint};
-use crate::math::{Mat4, Scalar};
+use crate::math::{Fx16, Mat4, Scalar};
 use crate::mesh::MeshSource;
 use crate::numerics::{Numerics, Standard};
 use crate::raster::line::draw_line;
-use crate::shade::Shading;
+use crate::shade::{GouraudLit, Shading};
 use crate::surface::{ClipTo, Surface};
 use crate::transform::{Transforms, Viewport};
 use embedded_graphics_core::geometry::Point;
+use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::primitives::Rectangle;
 use front::{polygon_area, Front};
 use vertex::{viewport_edges, RawMvp};
@@ -39,6 +42,12 @@ use vertex::{viewport_edges, RawMvp};
 /// The sub-pixel bits of screen coordinates a [`Pipeline`] has unless told otherwise: 6, so
 /// 26.6 (`docs/ACCURACY.md` measures the choice).
 pub const DEFAULT_BITS: u32 = 6;
+
+/// The common lit pipeline, for where its type must be written (a struct field, a function's
+/// return type): 16.16 geometry, back faces culled (counter-clockwise meshes), a depth buffer, and
+/// Gouraud lighting with up to `LIGHTS` lights into `C` pixels.
+pub type GouraudPipeline<'d, C = Rgb565, const LIGHTS: usize = 1> =
+    Pipeline<Fx16, CullClockwise, DepthBuffer<'d>, GouraudLit<Fx16, C, LIGHTS>>;
 
 /// What happened to the triangles of one draw call.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -89,27 +98,21 @@ impl<E: core::fmt::Debug> core::fmt::Display for DrawError<E> {
     }
 }
 
+impl<E: core::fmt::Debug> core::error::Error for DrawError<E> {}
+
 /// A configured pipeline: transforms, viewport and the compile-time choice of stages.
 ///
-/// `BITS` is the number of sub-pixel bits of screen coordinates (6 by default: 26.6, where
-/// `docs/ACCURACY.md` finds M1's vertices within 0.011 px at no measurable cost over 4 bits' 0.043
-/// px; 0 to 8 allowed). With `PERSPECTIVE` the
-/// shader's values are interpolated perspective-correctly (two divisions per pixel); without, they
-/// are affine in screen space (depth is always exact, being affine in screen space anyway).
+/// `S` is the number format of the geometry ([`crate::math::Fx16`] for 16.16), `C` the culling
+/// stage ([`crate::cull`]), `D` the depth stage ([`crate::depth`]) and `Sh` the shading model
+/// ([`crate::shade`]); all four are inferred from [`Pipeline::new`]'s arguments.
 ///
-/// `N` holds the remaining accuracy knobs ([`crate::numerics`]): the divide method and the
-/// precision of interpolation. [`Pipeline::new`] makes a [`Standard`] pipeline;
-/// [`Pipeline::with_numerics`] changes them.
+/// `BITS` is the number of sub-pixel bits of screen coordinates (0 to 8; 6 by default, 26.6, which
+/// `docs/ACCURACY.md` measures against 4) and `N` the remaining accuracy knobs
+/// ([`crate::numerics`]: the divide method, the precision of interpolation, perspective-correct
+/// values). [`Pipeline::new`] makes a pipeline with the defaults; [`Pipeline::with_bits`] and
+/// [`Pipeline::with_numerics`] change them.
 #[derive(Debug, Clone)]
-pub struct Pipeline<
-    S,
-    C,
-    D,
-    Sh,
-    const BITS: u32 = DEFAULT_BITS,
-    const PERSPECTIVE: bool = false,
-    N = Standard,
-> {
+pub struct Pipeline<S, C, D, Sh, const BITS: u32 = DEFAULT_BITS, N = Standard> {
     mvp: Mat4<S>,
     /// The MVP's raw integers, for a fixed-point format whose entries are small enough to
     /// transform a vertex without checks ([`RawMvp`]).
@@ -131,7 +134,7 @@ pub struct Pipeline<
     _numerics: core::marker::PhantomData<N>,
 }
 
-impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool> Pipeline<S, C, D, Sh, BITS, PERSPECTIVE>
+impl<S, C, D, Sh> Pipeline<S, C, D, Sh>
 where
     S: Scalar,
     C: Cull,
@@ -141,6 +144,9 @@ where
     /// A pipeline. Normals are transformed by the model matrix's upper 3x3, which is right for
     /// rotations, reflections, translations and uniform scales; use [`Pipeline::set_normal_matrix`]
     /// with the inverse transpose for shear or non-uniform scale.
+    ///
+    /// The pipeline has the default sub-pixel bits ([`DEFAULT_BITS`]) and numeric knobs
+    /// ([`Standard`]); [`Pipeline::with_bits`] and [`Pipeline::with_numerics`] change them.
     pub fn new(
         transforms: &Transforms<S>,
         viewport: Viewport,
@@ -166,7 +172,7 @@ where
             normal_matrix: transforms.model,
             viewport,
             area: PixelRect::from_rectangle(&viewport.rectangle()),
-            edges: viewport_edges::<BITS>(&viewport),
+            edges: viewport_edges::<DEFAULT_BITS>(&viewport),
             model_space: false,
             cull,
             depth,
@@ -176,8 +182,7 @@ where
     }
 }
 
-impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool, N>
-    Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, N>
+impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
 where
     S: Scalar,
     C: Cull,
@@ -186,10 +191,20 @@ where
     N: Numerics,
 {
     /// The same pipeline with other numeric knobs ([`crate::numerics`]), e.g.
-    /// `Pipeline::new(..).with_numerics::<Custom<NewtonDivide, 16, GradientSpans>>()`.
+    /// `Pipeline::new(..).with_numerics::<Perspective>()`.
     ///
-    /// [`Custom<NewtonDivide, 16, GradientSpans>`]: crate::numerics::Custom
-    pub fn with_numerics<M: Numerics>(self) -> Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, M> {
+    /// [`Perspective`]: crate::numerics::Perspective
+    pub fn with_numerics<M: Numerics>(self) -> Pipeline<S, C, D, Sh, BITS, M> {
+        self.with::<BITS, M>()
+    }
+
+    /// The same pipeline with `B` sub-pixel bits of screen coordinates (0 to 8), e.g.
+    /// `Pipeline::new(..).with_bits::<4>()`.
+    pub fn with_bits<const B: u32>(self) -> Pipeline<S, C, D, Sh, B, N> {
+        self.with::<B, N>()
+    }
+
+    fn with<const B: u32, M: Numerics>(self) -> Pipeline<S, C, D, Sh, B, M> {
         Pipeline {
             mvp: self.mvp,
             raw: self.raw,
@@ -197,7 +212,7 @@ where
             normal_matrix: self.normal_matrix,
             viewport: self.viewport,
             area: self.area,
-            edges: self.edges,
+            edges: viewport_edges::<B>(&self.viewport),
             model_space: false,
             cull: self.cull,
             depth: self.depth,

@@ -57,8 +57,7 @@ impl<St: Packed> Default for VertexSlot<St> {
     }
 }
 
-impl<S, C, D, Sh, const BITS: u32, const PERSPECTIVE: bool, N>
-    Pipeline<S, C, D, Sh, BITS, PERSPECTIVE, N>
+impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
 where
     S: Scalar,
     C: Cull,
@@ -69,7 +68,7 @@ where
     /// `2^20 / w` for perspective-correct interpolation (not computed otherwise).
     #[inline(always)]
     pub(super) fn q(p: &Vec4<S>) -> i64 {
-        if PERSPECTIVE {
+        if N::PERSPECTIVE {
             S::scaled_ratio(S::ONE, p.w, 1 << 20, 1)
         } else {
             0
@@ -313,13 +312,13 @@ where
                 (ratio(nx, scale_x), ratio(ny, scale_y), ratio(nz, 65535))
             };
             let z = z.clamp(0, 65535) as u16;
-            return (SubPoint::new(clamp(sx + ox), clamp(sy + oy)), z);
+            return (SubPoint::raw(clamp(sx + ox), clamp(sy + oy)), z);
         }
         // x_s = (x/w + 1) W/2 in sub-pixels, y flipped, depth = (z/w + 1)/2 * 65535.
         let sx = S::scaled_ratio(p.x + p.w, p.w, scale_x, 2);
         let sy = S::scaled_ratio(p.w - p.y, p.w, scale_y, 2);
         let z = S::scaled_ratio(p.z + p.w, p.w, 65535, 2).clamp(0, 65535) as u16;
-        (SubPoint::new(clamp(sx + ox), clamp(sy + oy)), z)
+        (SubPoint::raw(clamp(sx + ox), clamp(sy + oy)), z)
     }
 }
 

@@ -3,20 +3,20 @@
 //! Coverage is exactly that of [`crate::raster::triangle::fill_triangle`] (the same span walk). Depth
 //! and every shader value are planes over the screen, evaluated exactly at the first pixel of each
 //! span and stepped across it in 16 fractional bits; the depth test splits a span into runs of
-//! passing pixels, and each run goes to the target as one `shade_span`. With [`NoDepth`] the test
+//! passing pixels, and each run goes to the target as one `shade_span`. With [`crate::depth::NoDepth`] the test
 //! and its buffer compile away.
 
 use crate::depth::DepthTest;
 use crate::geom::{PixelRect, SubPoint};
 use crate::geom::{Varyings, MAX_VARYINGS};
-use crate::numerics::{Numerics, SpanStart, Standard};
+use crate::numerics::{frac, Numerics, Perspective, SpanStart, Standard};
 use crate::raster::edge::row_at_or_below;
 use crate::raster::triangle::setup::{misses_every_centre, walk_spans, Sorted, SpanSink};
 use crate::surface::Surface;
 
 /// A vertex in screen space: sub-pixel position, depth and the shader's values.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ScreenVertex<V, const BITS: u32 = 4> {
+pub struct ScreenVertex<V, const BITS: u32> {
     /// Position.
     pub p: SubPoint<BITS>,
     /// Depth, 0 nearest.
@@ -66,7 +66,7 @@ struct Exact {
     r: i64,
 }
 
-struct Interp<'a, S: Surface, D, V, F, N, const P: bool> {
+struct Interp<'a, S: Surface, D, V, F, N> {
     surface: &'a mut S,
     depth: &'a mut D,
     shade: F,
@@ -99,14 +99,8 @@ struct Interp<'a, S: Surface, D, V, F, N, const P: bool> {
     _v: core::marker::PhantomData<(V, N)>,
 }
 
-impl<
-        S: Surface,
-        D: DepthTest,
-        V: Varyings,
-        F: FnMut(&V) -> S::Color,
-        N: Numerics,
-        const P: bool,
-    > Interp<'_, S, D, V, F, N, P>
+impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, N: Numerics>
+    Interp<'_, S, D, V, F, N>
 {
     /// The number of values `V` holds (at most [`MAX_VARYINGS`]): a constant once inlined, so the
     /// per-pixel loops unroll.
@@ -118,7 +112,7 @@ impl<
     /// The planes in use besides depth: the values, or `1/w` and two barycentrics.
     #[inline(always)]
     fn used() -> usize {
-        if P {
+        if N::PERSPECTIVE {
             3
         } else {
             Self::count()
@@ -167,7 +161,7 @@ impl<
     fn exact(&mut self, i: usize, dx2: i64, dy2: i64) {
         let p = self.planes[i];
         let f = i128::from(p.a) * i128::from(dx2) + i128::from(p.b) * i128::from(dy2);
-        let (q, r) = divmod((f << N::FRAC) + i128::from(self.den2 / 2), self.den2);
+        let (q, r) = divmod((f << frac::<N>()) + i128::from(self.den2 / 2), self.den2);
         self.at[i] = Exact { q, r };
     }
 
@@ -207,21 +201,15 @@ impl<
         }
     }
 
-    /// Plane `i`'s value at the current span start, with `N::FRAC` fractional bits.
+    /// Plane `i`'s value at the current span start, with `frac::<N>()` fractional bits.
     #[inline(always)]
     fn value(&self, i: usize) -> i64 {
-        (self.planes[i].v0 << N::FRAC).saturating_add(self.at[i].q)
+        (self.planes[i].v0 << frac::<N>()).saturating_add(self.at[i].q)
     }
 }
 
-impl<
-        S: Surface,
-        D: DepthTest,
-        V: Varyings,
-        F: FnMut(&V) -> S::Color,
-        N: Numerics,
-        const P: bool,
-    > SpanSink for Interp<'_, S, D, V, F, N, P>
+impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, N: Numerics> SpanSink
+    for Interp<'_, S, D, V, F, N>
 {
     type Error = S::Error;
 
@@ -230,11 +218,11 @@ impl<
         self.seek(row, x0);
         // The depth test takes 16 fractional bits.
         let z0 = if D::ENABLED {
-            self.value(Z) << (16 - N::FRAC)
+            self.value(Z) << (16 - frac::<N>())
         } else {
             0
         };
-        let dz = self.steps[Z] << (16 - N::FRAC);
+        let dz = self.steps[Z] << (16 - frac::<N>());
         let planes = Self::used();
         let mut start = [0i64; MAX_VARYINGS];
         for (i, s) in start.iter_mut().enumerate().take(planes) {
@@ -259,19 +247,19 @@ impl<
             }
             surface.shade_span_in_clip(x0 + offset as i32, row, len, || {
                 let mut v = V::default();
-                if P {
+                if N::PERSPECTIVE {
                     // The barycentrics divided by w, over 1/w: one division each per pixel.
                     let q = acc[0].max(1);
-                    let l1 = (acc[1].max(0) << N::FRAC) / q;
-                    let l2 = (acc[2].max(0) << N::FRAC) / q;
+                    let l1 = (acc[1].max(0) << frac::<N>()) / q;
+                    let l2 = (acc[2].max(0) << frac::<N>()) / q;
                     for (i, out) in v.as_mut_slice().iter_mut().enumerate().take(count) {
                         let mix = l1 * d1[i] + l2 * d2[i];
-                        *out = (base[i] + ((mix + (1 << (N::FRAC - 1))) >> N::FRAC)) as i32;
+                        *out = (base[i] + ((mix + (1 << (frac::<N>() - 1))) >> frac::<N>())) as i32;
                     }
                 } else {
                     for (out, a) in v.as_mut_slice().iter_mut().zip(&acc) {
                         // Rounded to the nearest unit of the value.
-                        *out = ((a + (1 << (N::FRAC - 1))) >> N::FRAC) as i32;
+                        *out = ((a + (1 << (frac::<N>() - 1))) >> frac::<N>()) as i32;
                     }
                 }
                 for i in 0..planes {
@@ -298,7 +286,7 @@ impl<
 /// each pixel divides them by `1/w` (two divisions per pixel). Without it they are affine in screen
 /// space, which is exact for depth and close for small triangles.
 ///
-/// This is [`fill_triangle_interp_with`] with the [`Standard`] numeric knobs.
+/// This is [`fill_triangle_interp_with`] with the [`Standard`] numeric knobs (or [`Perspective`]).
 pub fn fill_triangle_interp<S, D, V, F, const BITS: u32, const PERSPECTIVE: bool>(
     surface: &mut S,
     depth: &mut D,
@@ -311,16 +299,18 @@ where
     V: Varyings,
     F: FnMut(&V) -> S::Color,
 {
-    fill_triangle_interp_with::<S, D, V, F, Standard, BITS, PERSPECTIVE>(
-        surface, depth, vertices, shade,
-    )
+    if PERSPECTIVE {
+        fill_triangle_interp_with::<S, D, V, F, Perspective, BITS>(surface, depth, vertices, shade)
+    } else {
+        fill_triangle_interp_with::<S, D, V, F, Standard, BITS>(surface, depth, vertices, shade)
+    }
 }
 
 /// [`fill_triangle_interp`] with chosen numeric knobs `N` ([`crate::numerics`]): the fractional
-/// bits of the interpolation and the span-start method. With [`SpanStart::Gradient`] the pixels
+/// bits of the interpolation, the span-start method and perspective correction. With [`SpanStart::Gradient`] the pixels
 /// still depend only on their position (bands match the whole frame), but values may differ from
 /// the exactly rounded plane by the gradients' rounding times the distance from the first vertex.
-pub fn fill_triangle_interp_with<S, D, V, F, N, const BITS: u32, const PERSPECTIVE: bool>(
+pub fn fill_triangle_interp_with<S, D, V, F, N, const BITS: u32>(
     surface: &mut S,
     depth: &mut D,
     vertices: [ScreenVertex<V, BITS>; 3],
@@ -362,7 +352,7 @@ where
         [0i64; MAX_VARYINGS],
         [0i64; MAX_VARYINGS],
     );
-    let used = if PERSPECTIVE {
+    let used = if N::PERSPECTIVE {
         let q = [vertices[o0].q, vertices[o1].q, vertices[o2].q].map(|q| q.clamp(1, Q_MAX));
         planes[0] = plane(q[0], q[1], q[2]);
         planes[1] = plane(0, q[1], 0);
@@ -388,7 +378,7 @@ where
     let mut grad_row = [0i64; PLANES];
     // Gradient span starts when every plane's a 2s 2^F and b 2s 2^F fit i64 and the gradients stay
     // below 2^30 (then gx dx2 + gy dy2 < 2^62 for offsets within the guard band).
-    let limit = 1i64 << (61 - BITS - N::FRAC);
+    let limit = 1i64 << (61 - BITS - frac::<N>());
     let fits = |i: usize| planes[i].a.abs() < limit && planes[i].b.abs() < limit;
     let mut gradient =
         N::SPANS == SpanStart::Gradient && (0..used).all(fits) && (!D::ENABLED || fits(Z));
@@ -396,8 +386,8 @@ where
         let round = |n: i64| (n + den2 / 2).div_euclid(den2);
         let mut grad = |i: usize| {
             let p = planes[i];
-            steps[i] = round((p.a * 2 * s) << N::FRAC);
-            grad_row[i] = round((p.b * 2 * s) << N::FRAC);
+            steps[i] = round((p.a * 2 * s) << frac::<N>());
+            grad_row[i] = round((p.b * 2 * s) << frac::<N>());
             steps[i].abs() < 1 << 30 && grad_row[i].abs() < 1 << 30
         };
         for i in 0..used {
@@ -412,11 +402,11 @@ where
         row_at_or_below(v2.1, s).min(clip.y1) - row_at_or_below(v0.1, s).max(clip.y0) == 1;
     let mut setup = |i: usize| {
         let p = planes[i];
-        let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << N::FRAC, den2);
+        let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << frac::<N>(), den2);
         let (rq, rr) = if one_row {
             (0, 0)
         } else {
-            divmod((i128::from(p.b) * i128::from(2 * s)) << N::FRAC, den2)
+            divmod((i128::from(p.b) * i128::from(2 * s)) << frac::<N>(), den2)
         };
         // The per-pixel step is the column move rounded: round(a 2s 2^16 / den2).
         steps[i] = cq + i64::from(2 * cr >= den2);
@@ -434,7 +424,7 @@ where
             setup(Z);
         }
     }
-    let mut sink = Interp::<S, D, V, F, N, PERSPECTIVE> {
+    let mut sink = Interp::<S, D, V, F, N> {
         surface,
         depth,
         shade,

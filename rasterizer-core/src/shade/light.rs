@@ -102,6 +102,24 @@ pub enum Light<S> {
     },
 }
 
+impl<S> Light<S> {
+    /// A white directional light shining from `direction` (from the surface towards the light).
+    pub const fn directional(direction: Vec3<S>) -> Self {
+        Self::Directional {
+            direction,
+            color: Rgb888::new(255, 255, 255),
+        }
+    }
+
+    /// A white point light at `position`.
+    pub const fn point(position: Vec3<S>) -> Self {
+        Self::Point {
+            position,
+            color: Rgb888::new(255, 255, 255),
+        }
+    }
+}
+
 /// Surface material: the colour each term reflects, and the specular exponent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Material {
@@ -114,6 +132,19 @@ pub struct Material {
     /// Specular exponent: larger gives a smaller, sharper highlight; 0 gives a specular factor of 1
     /// wherever the light reaches the surface.
     pub shininess: u16,
+}
+
+impl Material {
+    /// A material of one colour: it reflects `color` of the ambient and diffuse light, with a
+    /// white highlight of exponent 16.
+    pub const fn new(color: Rgb888) -> Self {
+        Self {
+            ambient: color,
+            diffuse: color,
+            specular: Rgb888::new(255, 255, 255),
+            shininess: 16,
+        }
+    }
 }
 
 /// Which specular model [`Lighting`] uses.
@@ -193,6 +224,23 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         };
         out.prepare();
         out
+    }
+
+    /// The usual set-up in one call: the `N` lights given, a dim white ambient light (32 of 255
+    /// per channel) and Blinn-Phong highlights, seen from `eye`.
+    ///
+    /// # Errors
+    /// Returns the first directional light with a zero direction.
+    pub fn with_lights(
+        material: Material,
+        lights: [Light<S>; N],
+        eye: Vec3<S>,
+    ) -> Result<Self, Light<S>> {
+        let mut out = Self::new(material, Rgb888::new(32, 32, 32), Specular::BlinnPhong, eye);
+        for light in lights {
+            out.add_light(light)?;
+        }
+        Ok(out)
     }
 
     /// Recomputes the terms that do not depend on the point lit.

@@ -90,7 +90,7 @@ pub trait Shading<S: Scalar> {
     type Color: PixelColor;
     /// The values it interpolates across a triangle.
     type Varyings: Varyings;
-    /// What the vertex scratch keeps of them ([`super::VertexSlot`]).
+    /// What the vertex scratch keeps of them ([`crate::pipeline::VertexSlot`]).
     type Stored: Stored<Self::Varyings>;
     /// The shader reads world positions and normals (the pipeline skips them otherwise).
     const NEEDS_WORLD: bool;
@@ -98,7 +98,7 @@ pub trait Shading<S: Scalar> {
     /// the world data it needs otherwise).
     const NEEDS_FACE: bool = false;
     /// Called when a draw starts, with the model matrix when normals follow it (no
-    /// [`super::Pipeline::set_normal_matrix`]). A shader that can light in model space (with its
+    /// [`crate::pipeline::Pipeline::set_normal_matrix`]). A shader that can light in model space (with its
     /// lights and eye moved there once) returns true; the pipeline then hands it model-space
     /// positions and normals, saving their transforms per vertex. The default returns false:
     /// world space.
@@ -198,7 +198,7 @@ pub struct VertexColors<C> {
 
 impl<C> VertexColors<C> {
     /// The shader.
-    pub fn new() -> Self {
+    pub const fn new() -> Self {
         Self {
             _c: core::marker::PhantomData,
         }

@@ -57,6 +57,8 @@ impl core::fmt::Display for FramebufferError {
     }
 }
 
+impl core::error::Error for FramebufferError {}
+
 /// How a colour type is stored in a [`Framebuffer`].
 ///
 /// Implemented for [`Rgb565`] (one `u16` per pixel, the raw embedded-graphics value), [`Rgb888`]

@@ -141,7 +141,7 @@ struct Active {
 /// let mut buf = [0u16; 16 * 16];
 /// let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 16, 16).unwrap();
 /// // An L shape, in whole pixels converted to 28.4 fixed point.
-/// let px = |x: i32, y: i32| SubPoint::<4>::new(x * 16, y * 16);
+/// let px = |x: i32, y: i32| SubPoint::new(x * 16, y * 16);
 /// let outline = [px(2, 2), px(6, 2), px(6, 10), px(12, 10), px(12, 14), px(2, 14)];
 /// let shape = Polygon::<8>::new(&outline).unwrap();
 /// shape.fill(&mut fb, FillRule::NonZero, Rgb565::CYAN).unwrap();

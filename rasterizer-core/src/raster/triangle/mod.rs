@@ -29,7 +29,7 @@ use setup::{walk_spans, Sorted, SpanSink};
 ///
 /// let mut buf = [0u16; 16 * 16];
 /// let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 16, 16).unwrap();
-/// let px = |x, y| SubPoint::<4>::new(x * 16, y * 16);
+/// let px = |x, y| SubPoint::new(x * 16, y * 16);
 /// fill_triangle(&mut fb, [px(0, 0), px(16, 0), px(0, 16)], Rgb565::GREEN).unwrap();
 /// assert_eq!(fb.pixel(Point::new(0, 0)), Some(Rgb565::GREEN));
 /// assert_eq!(fb.pixel(Point::new(15, 15)), Some(Rgb565::BLACK));

@@ -281,9 +281,8 @@ mod tests {
             };
             // Whole pixels now and then, so that vertices fall on rows and edges.
             let w = if next(4) == 0 { 16 } else { 1 };
-            let v = [0, 1, 2].map(|_| {
-                SubPoint::<4>::new((next(60 * 16) - 80) / w * w, (next(50 * 16) - 80) / w * w)
-            });
+            let v = [0, 1, 2]
+                .map(|_| SubPoint::new((next(60 * 16) - 80) / w * w, (next(50 * 16) - 80) / w * w));
             let Some(t) = Sorted::new(&v) else { continue };
             let (mut a, mut b) = (Spans(std::vec::Vec::new()), Spans(std::vec::Vec::new()));
             let _ = walk_spans(&t, 16, &clip, &mut a);
@@ -311,7 +310,7 @@ mod tests {
         for _ in 0..200_000 {
             // Vertices within a few pixels of each other, some on pixel centres and rows.
             let (cx, cy) = (next(48 * 16) - 64, next(40 * 16) - 64);
-            let v = [0, 1, 2].map(|_| SubPoint::<4>::new(cx + next(80) - 40, cy + next(80) - 40));
+            let v = [0, 1, 2].map(|_| SubPoint::new(cx + next(80) - 40, cy + next(80) - 40));
             let Some(t) = Sorted::new(&v) else { continue };
             let [v0, v1, v2] = t.v;
             let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
