@@ -12,7 +12,7 @@ use std::cell::RefCell;
 use tests::StrictMock;
 
 /// A triangle whose vertices sit at w = 1, 4 and 16, carrying values 0, 40000, 80000.
-fn setup() -> ([ScreenVertex<[i32; 1]>; 3], [f64; 3], [f64; 3]) {
+fn setup() -> ([ScreenVertex<[i32; 1], 4>; 3], [f64; 3], [f64; 3]) {
     let pts = [(4.0, 4.0), (60.0, 10.0), (20.0, 44.0)];
     let w = [1.0, 4.0, 16.0];
     let val = [0.0, 40000.0, 80000.0];
