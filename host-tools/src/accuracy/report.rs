@@ -395,13 +395,13 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
          - **Wrong pixels**: differing pixels plus same-triangle pixels more than one step off \
          in colour: the plot's error.\n\
          - **Knobs** (`host-tools/src/accuracy/config.rs`): the geometry format (`Scalar`), \
-         `Pipeline`'s `BITS` and `PERSPECTIVE`, the table size `N` of `rotation_y_with::<N>` and \
-         `perspective_with::<N>`, and its `rasterizer_core::numerics` type: the divide method \
-         (exact division per coordinate; one reciprocal per vertex, then multiplications; a \
-         64-entry table and two Newton steps, no division), the fractional bits of interpolated \
-         colour and depth (with exact or gradient span starts), and the span starts (32-bit \
-         wrapping planes in the fused loop, the default; exact; or from gradients rounded once \
-         per triangle).\n\
+         `Pipeline`'s `BITS`, the table size `N` of `rotation_y_with::<N>` and \
+         `perspective_with::<N>`, and its `rasterizer_core::numerics::Numerics` type: the divide \
+         method (exact division per coordinate; one reciprocal per vertex, then multiplications; \
+         a 64-entry table and two Newton steps, no division), the fractional bits of \
+         interpolated colour and depth (with exact or gradient span starts), the span starts \
+         (32-bit wrapping planes in the fused loop, the default; exact; or from gradients \
+         rounded once per triangle) and perspective-correct interpolation.\n\
          - **Instructions**: callgrind `--toggle-collect='*counted_frame*'` on the hidden \
          `accuracy-count CONFIGURATION` command, one M1 frame into Rgb565 after a warm frame, \
          release build, x86-64. The sine table is read only when matrices are built, so its size \
