@@ -2,18 +2,93 @@
 //!
 //! Draw points, lines, triangles and polygons into a [`surface::Framebuffer`] over a slice you own,
 //! or into any embedded-graphics `DrawTarget` through [`surface::AnyTarget`]; draw lit meshes
-//! through [`pipeline::Pipeline`]. One `use` of the [`prelude`] brings what a typical program names:
+//! through [`pipeline::Pipeline`], whole or in bands. One `use` of the [`prelude`] brings what a
+//! typical program names. Each task below is a doc test.
 //!
+//! # A line
 //! ```
 //! use rasterizer_core::prelude::*;
 //!
 //! let mut buf = [0u16; 320 * 240];
 //! let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 320, 240).unwrap();
 //! draw_line(&mut fb, Point::new(0, 0), Point::new(319, 239), Rgb565::WHITE).unwrap();
-//! // Vertices in 28.4 fixed point: 16 units to the pixel.
+//! assert_eq!(fb.pixel(Point::new(160, 120)), Some(Rgb565::WHITE));
+//! ```
+//!
+//! # A Gouraud-shaded triangle
+//! Vertices are in sub-pixel fixed point, 28.4 by default (16 units to the pixel); the colours
+//! are interpolated per channel at the target's depth.
+//! ```
+//! use rasterizer_core::prelude::*;
+//!
+//! let mut buf = [0u16; 320 * 240];
+//! let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 320, 240).unwrap();
 //! let v = [SubPoint::new(160 * 16, 8), SubPoint::new(300 * 16, 230 * 16), SubPoint::new(20 * 16, 200 * 16)];
 //! fill_triangle_gouraud(&mut fb, v, [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE]).unwrap();
-//! assert_eq!(fb.pixel(Point::new(0, 0)), Some(Rgb565::WHITE));
+//! assert_ne!(fb.pixel(Point::new(160, 150)), Some(Rgb565::BLACK));
+//! ```
+//!
+//! # A lit mesh
+//! The stages are chosen at compile time: here back faces culled, a depth buffer and Gouraud
+//! lighting (`NoCull`, `NoDepth` and `Unlit` are the zero-cost "off" forms).
+//! ```
+//! use rasterizer_core::prelude::*;
+//!
+//! let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
+//! let corners = [p(1, 1, 1), p(-1, -1, 1), p(-1, 1, -1), p(1, -1, -1)]; // a tetrahedron
+//! let triangles = [[0u16, 1, 3], [0, 2, 1], [0, 3, 2], [1, 2, 3]];
+//! let mesh = Mesh::new(&corners, &triangles).with_normals(&corners);
+//! let viewport = Viewport::new(160, 120);
+//! let camera = Transforms::look_at(p(0, 0, 4), p(0, 0, 0), Angle::from_degrees(60), viewport).unwrap();
+//! let material = Material::new(Rgb888::new(200, 120, 60));
+//! let lighting = Lighting::with_lights(material, [Light::directional(p(1, 1, 1))], p(0, 0, 4)).unwrap();
+//! let (mut colors, mut depths) = ([0u16; 160 * 120], [u16::MAX; 160 * 120]);
+//! let mut fb = Framebuffer::<Rgb565>::new(&mut colors, 160, 120).unwrap();
+//! let depth = DepthBuffer::new(&mut depths, 160, 120, Compare::Less).unwrap();
+//! let mut pipeline = Pipeline::new(&camera, viewport, CullClockwise, depth, GouraudLit::new(lighting));
+//! // One slot per vertex: each vertex is transformed and lit once a frame.
+//! let stats = pipeline.draw(&mut fb, &mesh, &mut [VertexSlot::EMPTY; 4]).unwrap();
+//! assert_eq!(stats.drawn + stats.culled, 4);
+//! ```
+//!
+//! # A frame in bands, to a display
+//! For a display whose frame does not fit in RAM: each band is drawn into a small buffer and handed
+//! to a callback, where firmware sends it to the display (one address window, one burst of pixels;
+//! with DMA, the transfer of one band overlaps drawing the next into a second buffer). The pixels
+//! equal the whole-frame draw.
+//! ```
+//! use rasterizer_core::prelude::*;
+//! # let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
+//! # let corners = [p(1, 1, 1), p(-1, -1, 1), p(-1, 1, -1), p(1, -1, -1)];
+//! # let triangles = [[0u16, 1, 3], [0, 2, 1], [0, 3, 2], [1, 2, 3]];
+//! # let mesh = Mesh::new(&corners, &triangles).with_normals(&corners);
+//! # let camera = Transforms::look_at(p(0, 0, 4), p(0, 0, 0), Angle::from_degrees(60), Viewport::new(240, 240)).unwrap();
+//! # let lighting = Lighting::with_lights(Material::new(Rgb888::new(200, 120, 60)), [Light::directional(p(1, 1, 1))], p(0, 0, 4)).unwrap();
+//! // The display: anything that takes a rectangle of pixels (here a buffer standing for it).
+//! let mut display = vec![0u16; 240 * 240];
+//! let mut send = |area: Rectangle, pixels: &[u16]| {
+//!     let start = area.top_left.y as usize * 240;
+//!     display[start..start + pixels.len()].copy_from_slice(pixels);
+//! };
+//!
+//! const ROWS: u32 = 16;
+//! let mut depths = [u16::MAX; 240 * ROWS as usize]; // one band of depths
+//! let depth = DepthBuffer::new(&mut depths, 240, ROWS, Compare::Less).unwrap();
+//! let mut pipeline = Pipeline::new(&camera, Viewport::new(240, 240), CullClockwise, depth, GouraudLit::new(lighting));
+//! let banding = Banding { width: 240, height: 240, rows: ROWS, background: Rgb565::BLACK, clear_depth: u16::MAX };
+//! let mut band = [0u16; 240 * ROWS as usize];
+//! let mut bins = [BinEntry::ZERO; 8]; // one per visible triangle (and per 255 invisible ones)
+//! pipeline.draw_banded(&mesh, &banding, &mut band, &mut bins, &mut [VertexSlot::EMPTY; 4], |b| {
+//!     let rows = b.framebuffer().size().height;
+//!     send(Rectangle::new(Point::new(0, b.y0()), Size::new(240, rows)), b.framebuffer().as_slice());
+//! }).unwrap();
+//! # let mut whole = vec![0u16; 240 * 240];
+//! # let mut fb = Framebuffer::<Rgb565>::new(&mut whole, 240, 240).unwrap();
+//! # let mut depths = vec![u16::MAX; 240 * 240];
+//! # pipeline.depth = DepthBuffer::new(&mut depths, 240, 240, Compare::Less).unwrap();
+//! # pipeline.draw(&mut fb, &mesh, &mut [VertexSlot::EMPTY; 4]).unwrap();
+//! # assert!(display.iter().any(|&c| c != 0));
+//! # assert_eq!(display, whole);
 //! ```
 //!
 //! # Layout
@@ -69,3 +144,8 @@ pub mod transform;
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]
 struct ReadmeExamples;
+
+/// The crate README's example, compiled and run as a doc test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct CrateReadmeExamples;
