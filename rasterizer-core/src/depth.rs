@@ -13,10 +13,18 @@ pub enum Compare {
     Less,
     /// Draw when nearer or equal.
     LessEqual,
-    /// Draw when equal (a second pass over the same geometry, e.g. a decal).
+    /// Draw when farther.
+    Greater,
+    /// Draw when farther or equal.
+    GreaterEqual,
+    /// Draw when equal.
     Equal,
+    /// Draw when different.
+    NotEqual,
     /// Always draw (and store the depth).
     Always,
+    /// Never draw.
+    Never,
 }
 
 impl Compare {
@@ -26,8 +34,12 @@ impl Compare {
         match self {
             Compare::Less => new < old,
             Compare::LessEqual => new <= old,
+            Compare::Greater => new > old,
+            Compare::GreaterEqual => new >= old,
             Compare::Equal => new == old,
+            Compare::NotEqual => new != old,
             Compare::Always => true,
+            Compare::Never => false,
         }
     }
 }
