@@ -4,7 +4,7 @@
 //! and `draw` with the unlit, flat and Phong shading models)
 //! against euc 0.5.3 (`f32`, Gouraud, `f32` depth buffer, back
 //! faces culled; `benches/support/euc3d.rs`) drawing the same scene, in the same run. The scenes
-//! come from `host_tools::scenes3d`, as in `examples/count3d.rs`.
+//! come from `fixtures::scenes3d`, as in `examples/count3d.rs`.
 //!
 //! Each timed iteration is one frame's drawing only: the colour and depth buffers are cleared
 //! before it, outside the timed part (`iter_custom`), as in the instruction counts. Throughput is
@@ -25,8 +25,8 @@ use criterion::{
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use euc3d::EucScene;
-use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
-use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
+use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
+use fixtures::scenes3d::{lighting, transforms, Scene, DIFFUSE};
 use rasterizer_core::math::Fx16;
 use rasterizer_core::pipeline::cull::CullClockwise;
 use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
@@ -111,14 +111,14 @@ fn scene(c: &mut Criterion, scene: Scene) {
     other_shading(
         &mut g,
         "ours_flat",
-        FlatLit::new(lighting()),
+        FlatLit::new(lighting::<1>()),
         &mesh,
         &mut fb,
     );
     other_shading(
         &mut g,
         "ours_phong",
-        PhongLit::new(lighting()),
+        PhongLit::new(lighting::<1>()),
         &mesh,
         &mut fb,
     );

@@ -37,7 +37,7 @@
 //! `benches/support/euc3d.rs`) into a `u16` Rgb565 buffer with an `f32` depth buffer.
 //!
 //! The scenes (camera, projection, lighting, the meshes' normalisation) are those of
-//! `host_tools::scenes3d`: model rotated 30° about Y; camera at (0, 0, 3) looking at the origin, up
+//! `fixtures::scenes3d`: model rotated 30° about Y; camera at (0, 0, 3) looking at the origin, up
 //! +Y; 60° vertical field of view, aspect 4:3, near 0.1, far 100; 320 x 240 Rgb565. Lighting: one
 //! directional white light from (1, 1, 1), ambient white, material ambient (40, 30, 30), diffuse
 //! (220, 140, 80), specular white, shininess 16, Blinn-Phong, eye at (0, 0, 3) in world space.
@@ -59,9 +59,9 @@ use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use euc3d::{EucColor, EucDepth, EucScene};
-use host_tools::obj::LoadedMesh;
-use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
-use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
+use fixtures::obj::LoadedMesh;
+use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
+use fixtures::scenes3d::{lighting, transforms, Scene, DIFFUSE};
 use rasterizer_core::math::Fx16;
 use rasterizer_core::pipeline::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::pipeline::shading::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};

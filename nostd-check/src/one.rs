@@ -200,25 +200,9 @@ mod three_d {
 
     #[cfg(not(feature = "unlit"))]
     fn shading() -> Sh {
-        use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-        use rasterizer_core::math::Vec3;
-        use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-        let mut lighting = Lighting::<Fx16, 1>::new(
-            Material {
-                ambient: Rgb888::new(40, 30, 30),
-                diffuse: Rgb888::new(220, 140, 80),
-                specular: Rgb888::WHITE,
-                shininess: 16,
-            },
-            Rgb888::WHITE,
-            Specular::BlinnPhong,
-            Vec3::from_ints(0, 0, 3),
-        );
-        let _ = lighting.add_light(Light::Directional {
-            direction: black_box(Vec3::from_ints(1, 1, 1)),
-            color: Rgb888::WHITE,
-        });
-        Sh::new(lighting)
+        use fixtures::scenes3d::{light_direction, lighting_with};
+        // The light's direction is opaque, so that its normalisation is not folded away.
+        Sh::new(lighting_with::<1>(black_box(light_direction())))
     }
 
     /// The M1 frame; returns the number of triangles drawn.

@@ -27,7 +27,7 @@ pub use encode::{decode_normal, encode, quantise_normal, MeshData, Quantiser};
 pub use rust_source::{bytes_from_rust_source, is_rust_identifier, rust_source, static_name_for};
 pub use triangulate::{newell_normal, triangulate_polygon};
 
-use crate::vec64::{cross, dot, sub, V3 as P3};
+use fixtures::vec64::{cross, dot, sub, V3 as P3};
 use indicatif::{ProgressBar, ProgressStyle};
 use rasterizer_core::mesh::{PackedMesh, MAX_COUNT};
 use std::collections::HashMap;

@@ -8,7 +8,7 @@
 //! triangles without a panic: when no ear is found the most convex corner is clipped anyway, and a
 //! polygon with no area at all is fanned; triangles of no area are dropped later.
 
-use crate::vec64::{cross, dot, sub, V3 as P3};
+use fixtures::vec64::{cross, dot, sub, V3 as P3};
 
 /// `v` scaled to unit length, or `None` for a zero or non-finite vector.
 pub(super) fn normalize(v: P3) -> Option<P3> {

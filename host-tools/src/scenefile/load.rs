@@ -7,8 +7,8 @@ use super::format::{
 use super::limits;
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
-use crate::obj::RawMesh;
 use embedded_graphics_core::pixelcolor::Rgb888;
+use fixtures::obj::RawMesh;
 use rasterizer_core::math::Fx16;
 use rasterizer_core::mesh::{PackedMesh, MAGIC};
 use rasterizer_core::shade::{Material, Specular};
