@@ -19,7 +19,7 @@ use rasterizer_core::pipeline::shading::{
     FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors,
 };
 use rasterizer_core::pipeline::{
-    Mesh, MeshSource, Pipeline, RenderStats, Transforms, VertexSlot, Viewport,
+    Mesh, MeshSource, Pipeline, RenderStats, Transforms, VertexSlot, Viewport, DEFAULT_BITS,
 };
 use rasterizer_core::raster::interp::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
@@ -420,8 +420,13 @@ where
     D: DepthTest,
     Sh: Shading<S, Color = Rgb888>,
 {
-    let mut p =
-        Pipeline::<S, C, D, Sh, 4, P>::new(&job.transforms, job.viewport, cull, depth, shading);
+    let mut p = Pipeline::<S, C, D, Sh, DEFAULT_BITS, P>::new(
+        &job.transforms,
+        job.viewport,
+        cull,
+        depth,
+        shading,
+    );
     if let Some(n) = job.normal_matrix {
         p.set_normal_matrix(n);
     }
