@@ -1,9 +1,10 @@
 //! What firmware does with rasterizer-core, on the host so that CI can build and run it: a mesh
 //! converted on the PC (`host-tools convert suzanne.obj -o suzanne.rmsh`) is embedded with
 //! `include_bytes!`, read in place, and rendered into a static 320x240 Rgb565 framebuffer with
-//! Gouraud lighting, a depth buffer and back-face culling (the M1 benchmark scene). A second frame
-//! is rendered in 16-row bands through a 10 KB buffer, as a board without 150 KB of RAM would,
-//! and must match the first. Both draws share one vertex scratch (16 bytes per mesh vertex), so
+//! Gouraud lighting, a depth buffer and back-face culling: the M1 benchmark scene, its camera and
+//! lighting taken from the benchmarks' own definition (`fixtures` without its `std` feature). A
+//! second frame is rendered in 16-row bands through a 10 KB buffer, as a board without 150 KB of
+//! RAM would, and must match the first. Both draws share one vertex scratch (16 bytes per mesh vertex), so
 //! each vertex is transformed and lit once a frame however many bands use it.
 //!
 //! On a microcontroller, `main` would be the reset handler and the band callback would start the
@@ -11,19 +12,8 @@
 #![no_std]
 #![no_main]
 
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics_core::prelude::*;
-use rasterizer_core::cull::CullClockwise;
-use rasterizer_core::depth::{Compare, DepthBuffer};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::shade::GouraudLit;
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::VertexSlot,
-    transform::Transforms, transform::Viewport,
-};
+use fixtures::scenes3d;
+use rasterizer_core::prelude::*;
 
 /// The converted mesh, in flash.
 static SUZANNE: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
@@ -56,40 +46,13 @@ pub extern "C" fn rust_eh_personality() {}
 #[link(name = "c")]
 unsafe extern "C" {}
 
-fn scene() -> (Transforms<Fx16>, Lighting<Fx16, 1>) {
-    let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
-    let transforms = Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(30)),
-        view: Mat4::look_at(p(0, 0, 3), p(0, 0, 0), p(0, 1, 0)).unwrap_or_default(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(4, 3),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap_or_default(),
-    };
-    let material = Material {
-        ambient: Rgb888::new(40, 30, 30),
-        diffuse: Rgb888::new(220, 140, 80),
-        specular: Rgb888::WHITE,
-        shininess: 16,
-    };
-    let mut lighting = Lighting::new(material, Rgb888::WHITE, Specular::BlinnPhong, p(0, 0, 3));
-    let _ = lighting.add_light(Light::Directional {
-        direction: p(1, 1, 1),
-        color: Rgb888::WHITE,
-    });
-    (transforms, lighting)
-}
-
 /// Renders the frame whole, then in bands; 0 when both agree and something was drawn.
 #[unsafe(no_mangle)]
 pub extern "C" fn main() -> i32 {
     let Ok(mesh) = PackedMesh::parse(SUZANNE) else {
         return 1;
     };
-    let (transforms, lighting) = scene();
+    let (transforms, lighting) = (scenes3d::transforms(), scenes3d::lighting::<1>());
     let viewport = Viewport::new(W, H);
     // SAFETY: single-threaded, and each static is borrowed once here.
     #[allow(static_mut_refs)]

@@ -10,7 +10,7 @@ mod eg;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use host_tools::scenes::{self, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
+use fixtures::scenes::{self, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
 use rasterizer_core::surface::Framebuffer;
 use std::hint::black_box;
 

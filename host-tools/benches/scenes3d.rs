@@ -4,7 +4,7 @@
 //! and `draw` with the unlit, flat and Phong shading models)
 //! against euc 0.5.3 (`f32`, Gouraud, `f32` depth buffer, back
 //! faces culled; `benches/support/euc3d.rs`) drawing the same scene, in the same run. The scenes
-//! come from `host_tools::scenes3d`, as in `examples/count3d.rs`.
+//! come from `fixtures::scenes3d`, as in `examples/count3d.rs`.
 //!
 //! Each timed iteration is one frame's drawing only: the colour and depth buffers are cleared
 //! before it, outside the timed part (`iter_custom`), as in the instruction counts. Throughput is
@@ -25,8 +25,8 @@ use criterion::{
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use euc3d::EucScene;
-use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
-use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
+use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
+use fixtures::scenes3d::{lighting, transforms, Scene, DIFFUSE};
 use rasterizer_core::cull::CullClockwise;
 use rasterizer_core::depth::{Compare, DepthBuffer};
 use rasterizer_core::math::Fx16;
@@ -39,20 +39,8 @@ use std::time::{Duration, Instant};
 fn scene(c: &mut Criterion, scene: Scene) {
     let loaded = scene.load().expect("the scene's model");
     let mesh = loaded.mesh();
-    let xf = transforms();
     let mut buf = vec![0u16; PIXELS].into_boxed_slice();
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, WIDTH, HEIGHT).expect("320 x 240 buffer");
-    let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
-    let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less).expect("depth buffer");
-    // 26.6 screen coordinates, affine interpolation: the pipeline of the `m1` count.
-    let mut p: Pipeline<Fx16, _, _, _, 6> = Pipeline::new(
-        &xf,
-        Viewport::new(WIDTH, HEIGHT),
-        CullClockwise,
-        depth,
-        GouraudLit::<Fx16, Rgb565, 1>::new(lighting()),
-    );
-    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
     let euc = EucScene::new(&loaded);
     let (mut color, mut euc_depth) = EucScene::buffers();
 
@@ -61,35 +49,10 @@ fn scene(c: &mut Criterion, scene: Scene) {
     g.sampling_mode(SamplingMode::Flat);
     // M3 takes tens of milliseconds a frame: fewer samples keep the run short.
     g.sample_size(if scene == Scene::M3 { 10 } else { 20 });
-    g.bench_function("ours", |b| {
-        b.iter_custom(|iters| {
-            let mut total = Duration::ZERO;
-            for _ in 0..iters {
-                let Ok(()) = fb.clear(Rgb565::BLACK);
-                p.depth.clear(u16::MAX);
-                let t = Instant::now();
-                let stats = p.draw(&mut fb, black_box(&mesh), &mut scratch);
-                total += t.elapsed();
-                black_box(stats.expect("the depth buffer covers the frame"));
-            }
-            total
-        })
-    });
+    let gouraud = || GouraudLit::<Fx16, Rgb565, 1>::new(lighting());
+    draw(&mut g, "ours", gouraud(), &mesh, &mut fb, true);
     // Every vertex transformed and shaded by each triangle that uses it: what the scratch saves.
-    g.bench_function("ours_noscratch", |b| {
-        b.iter_custom(|iters| {
-            let mut total = Duration::ZERO;
-            for _ in 0..iters {
-                let Ok(()) = fb.clear(Rgb565::BLACK);
-                p.depth.clear(u16::MAX);
-                let t = Instant::now();
-                let stats = p.draw(&mut fb, black_box(&mesh), &mut []);
-                total += t.elapsed();
-                black_box(stats.expect("the depth buffer covers the frame"));
-            }
-            total
-        })
-    });
+    draw(&mut g, "ours_noscratch", gouraud(), &mesh, &mut fb, false);
     g.bench_function("euc", |b| {
         b.iter_custom(|iters| {
             let mut total = Duration::ZERO;
@@ -103,37 +66,28 @@ fn scene(c: &mut Criterion, scene: Scene) {
         })
     });
     // The other shading models, ours only (euc is compared on Gouraud).
-    drop(p);
     let unlit = Unlit {
         color: Rgb565::from(DIFFUSE),
     };
-    other_shading(&mut g, "ours_unlit", unlit, &mesh, &mut fb);
-    other_shading(
-        &mut g,
-        "ours_flat",
-        FlatLit::new(lighting()),
-        &mesh,
-        &mut fb,
-    );
-    other_shading(
-        &mut g,
-        "ours_phong",
-        PhongLit::new(lighting()),
-        &mesh,
-        &mut fb,
-    );
+    draw(&mut g, "ours_unlit", unlit, &mesh, &mut fb, true);
+    let flat = FlatLit::<Fx16, Rgb565, 1>::new(lighting());
+    draw(&mut g, "ours_flat", flat, &mesh, &mut fb, true);
+    let phong = PhongLit::<Fx16, Rgb565, 1>::new(lighting());
+    draw(&mut g, "ours_phong", phong, &mesh, &mut fb, true);
     g.finish();
     black_box((fb.as_slice(), color.as_ref()));
 }
 
-/// Times `draw` of the scene with another shading model (depth buffer, back faces culled, 26.6, a
-/// full vertex scratch).
-fn other_shading<Sh: Shading<Fx16, Color = Rgb565>>(
+/// Times `draw` of the scene with `shading`: a depth buffer, back faces culled, 26.6 screen
+/// coordinates and affine interpolation (the pipeline of the `m1` count), with a full vertex
+/// scratch or, without `scratch`, an empty one. Only the draw is timed, not the clearing.
+fn draw<Sh: Shading<Fx16, Color = Rgb565>>(
     g: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
     shading: Sh,
     mesh: &Mesh<'_, Fx16, u32>,
     fb: &mut Framebuffer<'_, Rgb565>,
+    scratch: bool,
 ) {
     let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
     let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less).expect("depth buffer");
@@ -144,7 +98,8 @@ fn other_shading<Sh: Shading<Fx16, Color = Rgb565>>(
         depth,
         shading,
     );
-    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+    let slots = if scratch { mesh.positions.len() } else { 0 };
+    let mut scratch = vec![VertexSlot::EMPTY; slots];
     g.bench_function(name, |b| {
         b.iter_custom(|iters| {
             let mut total = Duration::ZERO;

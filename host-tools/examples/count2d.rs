@@ -20,7 +20,7 @@ mod eg;
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use host_tools::scenes::{self, CountingTarget, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
+use fixtures::scenes::{self, CountingTarget, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
 use rasterizer_core::surface::Framebuffer;
 use std::hint::black_box;
 use std::process::ExitCode;

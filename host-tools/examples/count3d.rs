@@ -37,7 +37,7 @@
 //! `benches/support/euc3d.rs`) into a `u16` Rgb565 buffer with an `f32` depth buffer.
 //!
 //! The scenes (camera, projection, lighting, the meshes' normalisation) are those of
-//! `host_tools::scenes3d`: model rotated 30° about Y; camera at (0, 0, 3) looking at the origin, up
+//! `fixtures::scenes3d`: model rotated 30° about Y; camera at (0, 0, 3) looking at the origin, up
 //! +Y; 60° vertical field of view, aspect 4:3, near 0.1, far 100; 320 x 240 Rgb565. Lighting: one
 //! directional white light from (1, 1, 1), ambient white, material ambient (40, 30, 30), diffuse
 //! (220, 140, 80), specular white, shininess 16, Blinn-Phong, eye at (0, 0, 3) in world space.
@@ -59,9 +59,9 @@ use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use euc3d::{EucColor, EucDepth, EucScene};
-use host_tools::obj::LoadedMesh;
-use host_tools::scenes::{HEIGHT, PIXELS, WIDTH};
-use host_tools::scenes3d::{lighting, transforms, Scene, DIFFUSE};
+use fixtures::obj::LoadedMesh;
+use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
+use fixtures::scenes3d::{lighting, transforms, Scene, DIFFUSE};
 use rasterizer_core::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
 use rasterizer_core::math::Fx16;
@@ -128,110 +128,48 @@ fn draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
         .expect("the depth buffer covers the frame")
 }
 
-// The counted frames: one per combination. `black_box(NAME)` makes each function's code distinct.
-
-#[inline(never)]
-fn frame_m1(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1");
-    draw(p, fb, mesh, scratch)
+// The counted frames: one per combination, each `#[inline(never)]` with its own name in
+// `black_box`, so that no two are identical and none can be merged into another. The name is
+// what `scripts/figures.sh` tells callgrind to count (`*::frame_<COMBINATION>*`).
+macro_rules! frame {
+    ($name:ident: $cull:ty, $depth:ty, $shading:ty) => {
+        frame!($name: $cull, $depth, $shading, |p, fb, mesh, scratch| draw(p, fb, mesh, scratch));
+    };
+    ($name:ident: $cull:ty, $depth:ty, $shading:ty,
+     |$p:ident, $fb:ident, $mesh:ident, $scratch:ident| $body:expr) => {
+        #[inline(never)]
+        fn $name(
+            $p: &mut Pipe<$cull, $depth, $shading>,
+            $fb: &mut Fb<'_>,
+            $mesh: &Mesh3<'_>,
+            $scratch: Scratch<'_, $shading>,
+        ) -> RenderStats {
+            black_box(stringify!($name));
+            $body
+        }
+    };
 }
 
-#[inline(never)]
-fn frame_m1_noscratch(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    _scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1_noscratch");
+type Gouraud = GouraudLit<Fx16, Rgb565, 1>;
+
+frame!(frame_m1: CullClockwise, DepthBuffer<'_>, Gouraud);
+frame!(frame_m1_noscratch: CullClockwise, DepthBuffer<'_>, Gouraud, |p, fb, mesh, _scratch| {
     draw(p, fb, mesh, &mut [])
-}
-
-#[inline(never)]
-fn frame_m1_nodepth(
-    p: &mut Pipeline<Fx16, CullClockwise, NoDepth, GouraudLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1_nodepth");
-    draw(p, fb, mesh, scratch)
-}
-
-#[inline(never)]
-fn frame_m1_nocull(
-    p: &mut Pipeline<Fx16, NoCull, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1_nocull");
-    draw(p, fb, mesh, scratch)
-}
-
-#[inline(never)]
-fn frame_m1_unlit(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Unlit<Rgb565>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, Unlit<Rgb565>>,
-) -> RenderStats {
-    black_box("frame_m1_unlit");
-    draw(p, fb, mesh, scratch)
-}
-
-#[inline(never)]
-fn frame_m1_flat(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, FlatLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, FlatLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1_flat");
-    draw(p, fb, mesh, scratch)
-}
-
-#[inline(never)]
-fn frame_m1_phong(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, PhongLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, PhongLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1_phong");
-    draw(p, fb, mesh, scratch)
-}
-
-#[inline(never)]
-fn frame_m1_unlit_nodepth_nocull(
-    p: &mut Pipeline<Fx16, NoCull, NoDepth, Unlit<Rgb565>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, Unlit<Rgb565>>,
-) -> RenderStats {
-    black_box("frame_m1_unlit_nodepth_nocull");
-    draw(p, fb, mesh, scratch)
-}
-
-#[inline(never)]
-fn frame_m1_wireframe(
-    p: &mut Pipeline<Fx16, CullClockwise, NoDepth, Unlit<Rgb565>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, Unlit<Rgb565>>,
-) -> RenderStats {
-    black_box("frame_m1_wireframe");
+});
+frame!(frame_m1_nodepth: CullClockwise, NoDepth, Gouraud);
+frame!(frame_m1_nocull: NoCull, DepthBuffer<'_>, Gouraud);
+frame!(frame_m1_unlit: CullClockwise, DepthBuffer<'_>, Unlit<Rgb565>);
+frame!(frame_m1_flat: CullClockwise, DepthBuffer<'_>, FlatLit<Fx16, Rgb565, 1>);
+frame!(frame_m1_phong: CullClockwise, DepthBuffer<'_>, PhongLit<Fx16, Rgb565, 1>);
+frame!(frame_m1_unlit_nodepth_nocull: NoCull, NoDepth, Unlit<Rgb565>);
+frame!(frame_m1_wireframe: CullClockwise, NoDepth, Unlit<Rgb565>, |p, fb, mesh, scratch| {
     let Ok(stats) = p.draw_wireframe(fb, mesh, scratch, Rgb565::WHITE);
     stats
-}
+});
+frame!(frame_m1_depth_always: CullClockwise, DepthBuffer<'_>, Gouraud);
+frame!(frame_m1_cull_keepall: KeepAll, DepthBuffer<'_>, Gouraud);
 
-type BandPipeline<'a> =
-    Pipeline<Fx16, CullClockwise, DepthBuffer<'a>, GouraudLit<Fx16, Rgb565, 1>, 6>;
+type BandPipeline<'a> = Pipe<CullClockwise, DepthBuffer<'a>, Gouraud>;
 
 /// One banded M1 frame: each finished band is copied into `fb` (where firmware would start the
 /// display's DMA). The copy goes row by row: glibc copies a larger block with `rep movsb`,
@@ -244,7 +182,7 @@ fn banded(
     mesh: &Mesh3<'_>,
     band: &mut [u16],
     bins: &mut [BinEntry],
-    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
+    scratch: Scratch<'_, Gouraud>,
 ) -> RenderStats {
     let banding = Banding {
         width: WIDTH,
@@ -278,7 +216,7 @@ macro_rules! band_frame {
             mesh: &Mesh3<'_>,
             band: &mut [u16],
             bins: &mut [BinEntry],
-            scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
+            scratch: Scratch<'_, Gouraud>,
         ) -> RenderStats {
             black_box(stringify!($name));
             banded(p, $rows, fb, mesh, band, bins, scratch)
@@ -292,47 +230,24 @@ band_frame!(frame_m1_band32, 32);
 band_frame!(frame_m1_band240, 240);
 band_frame!(frame_m1_band16_noscratch, 16);
 
-#[inline(never)]
-fn frame_m1_depth_always(
-    p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1_depth_always");
-    draw(p, fb, mesh, scratch)
-}
-
-#[inline(never)]
-fn frame_m1_cull_keepall(
-    p: &mut Pipeline<Fx16, KeepAll, DepthBuffer<'_>, GouraudLit<Fx16, Rgb565, 1>, 6>,
-    fb: &mut Fb<'_>,
-    mesh: &Mesh3<'_>,
-    scratch: Scratch<'_, GouraudLit<Fx16, Rgb565, 1>>,
-) -> RenderStats {
-    black_box("frame_m1_cull_keepall");
-    draw(p, fb, mesh, scratch)
-}
-
 /// Builds a pipeline, draws the warm frame (not counted), clears both buffers (not counted) and
 /// calls `frame` once for the counted frame.
 fn run<C, D, Sh>(
     mut p: Pipeline<Fx16, C, D, Sh, 6>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
-    clear_depth: fn(&mut D),
     frame: FrameFn<C, D, Sh>,
 ) -> RenderStats
 where
     C: Cull,
-    D: DepthTest,
+    D: DepthTest + Clear,
     Sh: Shading<Fx16, Color = Rgb565>,
 {
     // One slot per mesh vertex, allocated outside the counted frame (the caller's RAM).
     let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
     let _ = draw(&mut p, fb, mesh, &mut scratch);
     let Ok(()) = fb.clear(Rgb565::BLACK);
-    clear_depth(&mut p.depth);
+    p.depth.clear_all();
     frame(
         &mut p,
         black_box(fb),
@@ -345,11 +260,20 @@ fn zb(z: &mut [u16], compare: Compare) -> DepthBuffer<'_> {
     DepthBuffer::new(z, WIDTH, HEIGHT, compare).expect("320 x 240 depth buffer")
 }
 
-fn clear_z(d: &mut DepthBuffer<'_>) {
-    d.clear(u16::MAX);
+/// Clearing a depth stage to the far plane between the warm and the counted frame.
+trait Clear {
+    fn clear_all(&mut self);
 }
 
-fn no_z(_: &mut NoDepth) {}
+impl Clear for DepthBuffer<'_> {
+    fn clear_all(&mut self) {
+        self.clear(u16::MAX);
+    }
+}
+
+impl Clear for NoDepth {
+    fn clear_all(&mut self) {}
+}
 
 #[inline(never)]
 fn frame_euc(scene: &EucScene, color: &mut EucColor, depth: &mut EucDepth) {
@@ -518,92 +442,39 @@ fn main() -> ExitCode {
     let mut buf = vec![0u16; PIXELS].into_boxed_slice();
     let mut fb = Fb::new(&mut buf, WIDTH, HEIGHT).expect("320 x 240 buffer");
     let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
-    let gouraud = || GouraudLit::<Fx16, Rgb565, 1>::new(lighting());
+    let gouraud = || Gouraud::new(lighting());
+    let flat = || FlatLit::<Fx16, Rgb565, 1>::new(lighting());
+    let phong = || PhongLit::<Fx16, Rgb565, 1>::new(lighting());
     let unlit = Unlit {
         color: Rgb565::from(DIFFUSE),
     };
 
+    // A pipeline of the given stages, counted through `run`.
+    macro_rules! count {
+        ($cull:expr, $depth:expr, $shading:expr, $frame:expr) => {
+            run(
+                Pipeline::new(&xf, vp, $cull, $depth, $shading),
+                &mut fb,
+                &mesh,
+                $frame,
+            )
+        };
+    }
+    let less = |z| zb(z, Compare::Less);
     let stats = match name {
-        "m1" => run(
-            Pipeline::new(
-                &xf,
-                vp,
-                CullClockwise,
-                zb(&mut zbuf, Compare::Less),
-                gouraud(),
-            ),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1,
+        "m1" => count!(CullClockwise, less(&mut zbuf), gouraud(), frame_m1),
+        "m1_noscratch" => count!(
+            CullClockwise,
+            less(&mut zbuf),
+            gouraud(),
+            frame_m1_noscratch
         ),
-        "m1_noscratch" => run(
-            Pipeline::new(
-                &xf,
-                vp,
-                CullClockwise,
-                zb(&mut zbuf, Compare::Less),
-                gouraud(),
-            ),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1_noscratch,
-        ),
-        "m1_nodepth" => run(
-            Pipeline::new(&xf, vp, CullClockwise, NoDepth, gouraud()),
-            &mut fb,
-            &mesh,
-            no_z,
-            frame_m1_nodepth,
-        ),
-        "m1_nocull" => run(
-            Pipeline::new(&xf, vp, NoCull, zb(&mut zbuf, Compare::Less), gouraud()),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1_nocull,
-        ),
-        "m1_unlit" => run(
-            Pipeline::new(&xf, vp, CullClockwise, zb(&mut zbuf, Compare::Less), unlit),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1_unlit,
-        ),
-        "m1_flat" => run(
-            Pipeline::new(
-                &xf,
-                vp,
-                CullClockwise,
-                zb(&mut zbuf, Compare::Less),
-                FlatLit::<Fx16, Rgb565, 1>::new(lighting()),
-            ),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1_flat,
-        ),
-        "m1_phong" => run(
-            Pipeline::new(
-                &xf,
-                vp,
-                CullClockwise,
-                zb(&mut zbuf, Compare::Less),
-                PhongLit::<Fx16, Rgb565, 1>::new(lighting()),
-            ),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1_phong,
-        ),
-        "m1_unlit_nodepth_nocull" => run(
-            Pipeline::new(&xf, vp, NoCull, NoDepth, unlit),
-            &mut fb,
-            &mesh,
-            no_z,
-            frame_m1_unlit_nodepth_nocull,
-        ),
+        "m1_nodepth" => count!(CullClockwise, NoDepth, gouraud(), frame_m1_nodepth),
+        "m1_nocull" => count!(NoCull, less(&mut zbuf), gouraud(), frame_m1_nocull),
+        "m1_unlit" => count!(CullClockwise, less(&mut zbuf), unlit, frame_m1_unlit),
+        "m1_flat" => count!(CullClockwise, less(&mut zbuf), flat(), frame_m1_flat),
+        "m1_phong" => count!(CullClockwise, less(&mut zbuf), phong(), frame_m1_phong),
+        "m1_unlit_nodepth_nocull" => count!(NoCull, NoDepth, unlit, frame_m1_unlit_nodepth_nocull),
         "m1_wireframe" => {
             let mut p = Pipeline::new(&xf, vp, CullClockwise, NoDepth, unlit);
             let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
@@ -616,26 +487,11 @@ fn main() -> ExitCode {
                 black_box(&mut scratch),
             )
         }
-        "m1_depth_always" => run(
-            Pipeline::new(
-                &xf,
-                vp,
-                CullClockwise,
-                zb(&mut zbuf, Compare::Always),
-                gouraud(),
-            ),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1_depth_always,
-        ),
-        "m1_cull_keepall" => run(
-            Pipeline::new(&xf, vp, KeepAll, zb(&mut zbuf, Compare::Less), gouraud()),
-            &mut fb,
-            &mesh,
-            clear_z,
-            frame_m1_cull_keepall,
-        ),
+        "m1_depth_always" => {
+            let z = zb(&mut zbuf, Compare::Always);
+            count!(CullClockwise, z, gouraud(), frame_m1_depth_always)
+        }
+        "m1_cull_keepall" => count!(KeepAll, less(&mut zbuf), gouraud(), frame_m1_cull_keepall),
         band if band.starts_with("m1_band") => {
             let noscratch = band.ends_with("_noscratch");
             let rows: u32 = band

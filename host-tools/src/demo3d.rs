@@ -19,12 +19,12 @@ use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::Pixel;
-use host_tools::obj::LoadedMesh;
+use fixtures::obj::LoadedMesh;
+use fixtures::scenes3d::{lighting, transforms};
 use rasterizer_core::cull::{CullClockwise, CullCounterClockwise};
 use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
 use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::surface::{AnyTarget, Framebuffer};
 use rasterizer_core::{
     mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
@@ -122,49 +122,10 @@ fn v3(x: f64, y: f64, z: f64) -> Vec3<Fx16> {
     Vec3::new(fx(x), fx(y), fx(z))
 }
 
-/// The M1 benchmark scene's transforms: Suzanne rotated 30° about Y, the camera at (0, 0, 3) looking
-/// at the origin, 60° vertical field of view, 4:3, near 0.1, far 100.
-pub fn m1_transforms() -> Transforms<Fx16> {
-    Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(30)),
-        view: Mat4::look_at(
-            Vec3::from_ints(0, 0, 3),
-            Vec3::from_ints(0, 0, 0),
-            Vec3::from_ints(0, 1, 0),
-        )
-        .expect("the eye is not the target"),
-        projection: perspective(60, fx(0.1), fx(100.0)),
-    }
-}
-
 /// A 4:3 perspective projection with a vertical field of view of `fov` degrees.
 fn perspective(fov: i32, near: Fx16, far: Fx16) -> Mat4<Fx16> {
     Mat4::perspective(Angle::from_degrees(fov), Fx16::from_ratio(4, 3), near, far)
         .expect("valid projection")
-}
-
-/// The M1 benchmark scene's lighting: one white directional light from (1, 1, 1), a warm clay
-/// material with a Blinn-Phong highlight, the eye at (0, 0, 3).
-pub fn m1_lighting() -> Lighting<Fx16, 2> {
-    let material = Material {
-        ambient: Rgb888::new(40, 30, 30),
-        diffuse: Rgb888::new(220, 140, 80),
-        specular: Rgb888::WHITE,
-        shininess: 16,
-    };
-    let mut lighting = Lighting::new(
-        material,
-        Rgb888::WHITE,
-        Specular::BlinnPhong,
-        Vec3::from_ints(0, 0, 3),
-    );
-    lighting
-        .add_light(Light::Directional {
-            direction: Vec3::from_ints(1, 1, 1),
-            color: Rgb888::WHITE,
-        })
-        .expect("a free slot and a non-zero direction");
-    lighting
 }
 
 /// Renders into a 320x240 `Framebuffer<Rgb565>` (cleared to the background) with a depth buffer
@@ -201,7 +162,7 @@ fn suzanne_wireframe(models: &Models, display: &mut Display) -> SceneResult {
     via_framebuffer(display, |fb, _depth| {
         let viewport = Viewport::new(WIDTH, HEIGHT);
         let mut p = Pipeline::new(
-            &m1_transforms(),
+            &transforms(),
             viewport,
             CullClockwise,
             NoDepth,
@@ -224,7 +185,7 @@ where
 {
     via_framebuffer(display, |fb, depth| {
         let viewport = Viewport::new(WIDTH, HEIGHT);
-        let mut p = Pipeline::new(&m1_transforms(), viewport, CullClockwise, depth, shading);
+        let mut p = Pipeline::new(&transforms(), viewport, CullClockwise, depth, shading);
         let mesh = models.suzanne.mesh();
         let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
         let stats = p.draw(fb, &mesh, &mut scratch).map_err(|e| e.to_string())?;
@@ -234,7 +195,11 @@ where
 
 /// Suzanne lit once per triangle.
 fn suzanne_flat(models: &Models, display: &mut Display) -> SceneResult {
-    suzanne_filled(models, display, FlatLit::<_, Rgb565, 2>::new(m1_lighting()))
+    suzanne_filled(
+        models,
+        display,
+        FlatLit::<_, Rgb565, 2>::new(lighting::<2>()),
+    )
 }
 
 /// Suzanne lit per vertex with the file's normals, colours interpolated.
@@ -242,7 +207,7 @@ fn suzanne_gouraud(models: &Models, display: &mut Display) -> SceneResult {
     suzanne_filled(
         models,
         display,
-        GouraudLit::<_, Rgb565, 2>::new(m1_lighting()),
+        GouraudLit::<_, Rgb565, 2>::new(lighting::<2>()),
     )
 }
 
@@ -251,7 +216,7 @@ fn suzanne_phong(models: &Models, display: &mut Display) -> SceneResult {
     suzanne_filled(
         models,
         display,
-        PhongLit::<_, Rgb565, 2>::new(m1_lighting()),
+        PhongLit::<_, Rgb565, 2>::new(lighting::<2>()),
     )
 }
 
@@ -498,7 +463,7 @@ fn near_plane_crossing(models: &Models, display: &mut Display) -> SceneResult {
         }
     }
     let suzanne = models.suzanne.mesh();
-    let mut lighting = m1_lighting();
+    let mut lighting = lighting::<2>();
     let [x, y, z] = GROUND_EYE;
     lighting.set_eye(v3(x, y, z));
     // Near: close to the camera, turned towards it, her nose through the near plane.

@@ -204,9 +204,11 @@ fn figures(stdout: &str, pair: &str) -> (u64, f64, u32) {
     (pixels, percent, max)
 }
 
-/// Measured on the M1 Suzanne (Gouraud, 320x240): 16.16 and f32 differ in 196 pixels (0.255 %),
-/// mostly single steps of lit colour plus a few silhouette pixels covered by one and not the
-/// other; f32 and f64 in 3 pixels (0.004 %), by one step.
+/// Measured on the M1 Suzanne (Gouraud, 320x240, the pipeline's 6 sub-pixel bits): 16.16 and
+/// f32 differ in 190 pixels (0.247 %), mostly single steps of lit colour plus a few silhouette
+/// pixels covered by one and not the other; f32 and f64 in 30 pixels (0.039 %), by at most 3
+/// steps (with 4 bits: 3 pixels, one step; the finer grid puts more vertices near a rounding
+/// boundary, where f32 and f64 round apart and shift a triangle's gradients).
 #[test]
 fn compare_suzanne_fixed_and_float_are_close() {
     let dir = scratch("compare");
@@ -227,7 +229,7 @@ fn compare_suzanne_fixed_and_float_are_close() {
         "16.16 vs f32 differ in {share} % of the pixels"
     );
     let (_, share, max) = figures(&stdout, "f32   vs f64");
-    assert!(share < 0.1 && max <= 2, "f32 vs f64: {share} %, max {max}");
+    assert!(share < 0.1 && max <= 3, "f32 vs f64: {share} %, max {max}");
     let (_, share, _) = figures(&stdout, "16.16 vs f64");
     assert!(
         share < 1.0,

@@ -1,25 +1,17 @@
-//! The M1 scene that both builds draw: Suzanne's packed mesh and its camera.
+//! The M1 scene that both builds draw: Suzanne's packed mesh and the benchmarks' camera
+//! (`fixtures::scenes3d`).
 
 use core::hint::black_box;
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use fixtures::scenes3d::{camera, ROTATION_Y_DEGREES};
+use rasterizer_core::math::{Angle, Fx16, Mat4};
 use rasterizer_core::transform::Transforms;
 
 /// The mesh, converted on the host.
 pub static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
 
-/// Suzanne turned 30 degrees, seen from (0, 0, 3) through a 60-degree 4:3 lens (near 0.1, far
-/// 100).
+/// Suzanne turned as in M1, seen through M1's camera on a 4:3 frame. The angle is opaque so that
+/// the matrices are computed, as from a firmware's input, not folded into constants.
 pub fn transforms() -> Transforms<Fx16> {
-    let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
-    Transforms {
-        model: Mat4::rotation_y(black_box(Angle::from_degrees(30))),
-        view: Mat4::look_at(p(0, 0, 3), p(0, 0, 0), p(0, 1, 0)).unwrap_or_default(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(4, 3),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap_or_default(),
-    }
+    let model = Mat4::rotation_y(black_box(Angle::from_degrees(ROTATION_Y_DEGREES)));
+    camera(model, 320, 240)
 }

@@ -23,51 +23,11 @@ const W: u32 = 320;
 #[allow(dead_code)]
 const H: u32 = 240;
 
-#[cfg(any(
-    all(feature = "unlit", feature = "flat"),
-    all(feature = "unlit", feature = "gouraud"),
-    all(feature = "unlit", feature = "phong"),
-    all(feature = "flat", feature = "gouraud"),
-    all(feature = "flat", feature = "phong"),
-    all(feature = "gouraud", feature = "phong"),
-))]
-compile_error!("choose at most one shading feature: unlit, flat, gouraud or phong");
-
-#[cfg(all(
-    any(
-        feature = "depth",
-        feature = "cull",
-        feature = "banded",
-        feature = "noscratch"
-    ),
-    not(any(
-        feature = "unlit",
-        feature = "flat",
-        feature = "gouraud",
-        feature = "phong"
-    ))
-))]
-compile_error!(
-    "depth, cull, banded and noscratch need a shading feature: unlit, flat, gouraud or phong"
-);
+// The feature groups `three_d` and `two_d`, and the combinations refused, are in `build.rs`.
 
 /// A whole 320 x 240 Rgb565 frame (a static, for the 2D calls and the whole-frame 3D draws) as a
 /// framebuffer.
-#[cfg(any(
-    feature = "line2d",
-    feature = "triangle2d",
-    feature = "gouraud2d",
-    feature = "polygon2d",
-    all(
-        any(
-            feature = "unlit",
-            feature = "flat",
-            feature = "gouraud",
-            feature = "phong"
-        ),
-        not(feature = "banded")
-    )
-))]
+#[cfg(any(two_d, all(three_d, not(feature = "banded"))))]
 fn frame() -> Option<
     rasterizer_core::surface::Framebuffer<'static, embedded_graphics_core::pixelcolor::Rgb565>,
 > {
@@ -80,12 +40,7 @@ fn frame() -> Option<
 }
 
 /// The 2D calls of the chosen features.
-#[cfg(any(
-    feature = "line2d",
-    feature = "triangle2d",
-    feature = "gouraud2d",
-    feature = "polygon2d"
-))]
+#[cfg(two_d)]
 fn draw_2d() {
     use embedded_graphics_core::pixelcolor::Rgb565;
     use embedded_graphics_core::prelude::*;
@@ -95,7 +50,7 @@ fn draw_2d() {
         return;
     };
     #[allow(unused_variables)]
-    let sp = |x: i32, y: i32| black_box(SubPoint::new(x * 16 + 5, y * 16 + 11));
+    let sp = |x: i32, y: i32| black_box(SubPoint::<4>::new(x * 16 + 5, y * 16 + 11));
     #[cfg(feature = "line2d")]
     {
         let p = |x: i32, y: i32| black_box(Point::new(x, y));
@@ -135,12 +90,7 @@ fn draw_2d() {
 }
 
 /// The 3D configuration of the chosen features.
-#[cfg(any(
-    feature = "unlit",
-    feature = "flat",
-    feature = "gouraud",
-    feature = "phong"
-))]
+#[cfg(three_d)]
 mod three_d {
     use super::{H, W};
     use core::hint::black_box;
@@ -200,25 +150,9 @@ mod three_d {
 
     #[cfg(not(feature = "unlit"))]
     fn shading() -> Sh {
-        use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-        use rasterizer_core::math::Vec3;
-        use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-        let mut lighting = Lighting::<Fx16, 1>::new(
-            Material {
-                ambient: Rgb888::new(40, 30, 30),
-                diffuse: Rgb888::new(220, 140, 80),
-                specular: Rgb888::WHITE,
-                shininess: 16,
-            },
-            Rgb888::WHITE,
-            Specular::BlinnPhong,
-            Vec3::from_ints(0, 0, 3),
-        );
-        let _ = lighting.add_light(Light::Directional {
-            direction: black_box(Vec3::from_ints(1, 1, 1)),
-            color: Rgb888::WHITE,
-        });
-        Sh::new(lighting)
+        use fixtures::scenes3d::{light_direction, lighting_with};
+        // The light's direction is opaque, so that its normalisation is not folded away.
+        Sh::new(lighting_with::<1>(black_box(light_direction())))
     }
 
     /// The M1 frame; returns the number of triangles drawn.
@@ -297,21 +231,11 @@ mod three_d {
 /// The calls of the chosen combination; exits with 1 if a 3D configuration drew nothing.
 #[unsafe(no_mangle)]
 pub extern "C" fn main() -> i32 {
-    #[cfg(any(
-        feature = "line2d",
-        feature = "triangle2d",
-        feature = "gouraud2d",
-        feature = "polygon2d"
-    ))]
+    #[cfg(two_d)]
     draw_2d();
     #[allow(unused_mut)]
     let mut drawn = 0u32;
-    #[cfg(any(
-        feature = "unlit",
-        feature = "flat",
-        feature = "gouraud",
-        feature = "phong"
-    ))]
+    #[cfg(three_d)]
     {
         drawn += three_d::draw();
         // Nothing drawn means a broken configuration: fail the run.

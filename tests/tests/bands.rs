@@ -20,19 +20,19 @@ use rasterizer_core::{
     transform::Transforms, transform::Viewport,
 };
 
-fn suzanne() -> host_tools::obj::LoadedMesh {
+fn suzanne() -> fixtures::obj::LoadedMesh {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
-    host_tools::obj::LoadedMesh::load(&path).unwrap()
+    fixtures::obj::LoadedMesh::load(&path).unwrap()
 }
 
 /// The M1 camera with the model turned `yaw` degrees about y.
 fn transforms(w: u32, h: u32, yaw: i32) -> Transforms<Fx16> {
-    host_tools::scenes3d::camera(Mat4::rotation_y(Angle::from_degrees(yaw)), w, h)
+    fixtures::scenes3d::camera(Mat4::rotation_y(Angle::from_degrees(yaw)), w, h)
 }
 
 // The M1 lighting, shared with the benchmarks.
-use host_tools::scenes3d::lighting;
+use fixtures::scenes3d::lighting;
 
 /// How much vertex scratch a draw gets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -205,7 +205,7 @@ fn suzanne_bands_for_every_numerics() {
             Viewport::new(160, 120),
             CullClockwise,
             DepthBuffer::new(depth, 160, rows, Compare::Less).unwrap(),
-            GouraudLit::new(lighting()),
+            GouraudLit::new(lighting::<1>()),
         )
         .with_numerics::<N>()
     }

@@ -1,7 +1,7 @@
 //! Phong and Blinn-Phong lighting against an f64 reference of the same formula, and the edge cases.
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use host_tools::reference3d::{lit, RefLight};
+use fixtures::reference3d::{lit, RefLight};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
@@ -52,7 +52,7 @@ fn chans(c: Rgb888) -> [f64; 3] {
     [c.r() as f64, c.g() as f64, c.b() as f64]
 }
 
-/// The exact lit colour per channel, unrounded, clamped to 255 (`host_tools::reference3d::lit`).
+/// The exact lit colour per channel, unrounded, clamped to 255 (`fixtures::reference3d::lit`).
 fn reference(s: &Scene) -> [f64; 3] {
     let lights: Vec<RefLight> = s.lights.iter().map(|&(p, v, c)| (p, v, rgb(c))).collect();
     lit(

@@ -294,7 +294,7 @@ where
     N: Numerics,
 {
     let (w, h) = (160u32, 120u32);
-    let loaded = host_tools::obj::LoadedMesh::load(
+    let loaded = fixtures::obj::LoadedMesh::load(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj"),
     )
     .unwrap();
@@ -312,7 +312,7 @@ where
     let mut depth = vec![u16::MAX; (w * h) as usize];
     let db = DepthBuffer::new(&mut depth, w, h, Compare::Less).unwrap();
     let mut p = Pipeline::new(
-        &host_tools::scenes3d::transforms(),
+        &fixtures::scenes3d::transforms(),
         Viewport::new(w, h),
         CullClockwise,
         db,
@@ -385,7 +385,7 @@ where
 /// times `2^FUSED_FRAC` overflowed the loop's 32 bits, so whole faces were lit wrongly.
 #[test]
 fn wrapping_spans_match_exact_spans_for_every_shading_model() {
-    use host_tools::scenes3d::lighting;
+    use fixtures::scenes3d::lighting;
     use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, VertexColors};
     let one = [1; 3];
     wrapping_against_exact::<Rgb565, _>(
@@ -395,11 +395,11 @@ fn wrapping_spans_match_exact_spans_for_every_shading_model() {
         },
         [0; 3],
     );
-    wrapping_against_exact::<Rgb565, _>("flat 565", FlatLit::new(lighting()), [0; 3]);
+    wrapping_against_exact::<Rgb565, _>("flat 565", FlatLit::new(lighting::<1>()), [0; 3]);
     wrapping_against_exact::<Rgb565, _>("vertex colours 565", VertexColors::new(), one);
     wrapping_against_exact::<Rgb888, _>("vertex colours 888", VertexColors::new(), one);
-    wrapping_against_exact::<Rgb565, _>("Gouraud 565", GouraudLit::new(lighting()), one);
-    wrapping_against_exact::<Rgb888, _>("Gouraud 888", GouraudLit::new(lighting()), one);
-    wrapping_against_exact::<Rgb565, _>("Phong 565", PhongLit::new(lighting()), one);
-    wrapping_against_exact::<Rgb888, _>("Phong 888", PhongLit::new(lighting()), one);
+    wrapping_against_exact::<Rgb565, _>("Gouraud 565", GouraudLit::new(lighting::<1>()), one);
+    wrapping_against_exact::<Rgb888, _>("Gouraud 888", GouraudLit::new(lighting::<1>()), one);
+    wrapping_against_exact::<Rgb565, _>("Phong 565", PhongLit::new(lighting::<1>()), one);
+    wrapping_against_exact::<Rgb888, _>("Phong 888", PhongLit::new(lighting::<1>()), one);
 }

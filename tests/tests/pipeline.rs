@@ -1,9 +1,9 @@
-//! The 3D pipeline against an independent `f64` reference (`host_tools::reference3d`): projection
+//! The 3D pipeline against an independent `f64` reference (`fixtures::reference3d`): projection
 //! accuracy, hard clipping cases, depth-test order invariance and whole-mesh renders.
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use host_tools::obj::LoadedMesh;
-use host_tools::reference3d::{
+use fixtures::obj::LoadedMesh;
+use fixtures::reference3d::{
     self as r, color_id, f, f3, fx, FaceIds, FaceMesh, RefCull, RefRender, M4, V3,
 };
 use proptest::prelude::*;

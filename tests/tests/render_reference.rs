@@ -16,12 +16,12 @@
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use host_tools::obj::LoadedMesh;
+use fixtures::obj::LoadedMesh;
+use fixtures::scenes3d::{camera, lighting, DIFFUSE, ROTATION_Y_DEGREES};
 use rasterizer_core::cull::CullClockwise;
 use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::math::{Angle, Fx16, Mat4};
 use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
 use rasterizer_core::surface::Framebuffer;
 use rasterizer_core::{
     mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
@@ -102,8 +102,7 @@ impl Style {
     }
 }
 
-/// The camera at (0, 0, 3) looking at the origin, 60° vertical field of view, 4:3, near 0.1, far
-/// 100; the model matrix depends on the mesh.
+/// The M1 camera (`fixtures::scenes3d`) at 160 x 120; the model matrix depends on the mesh.
 fn transforms(model: Model) -> Transforms<Fx16> {
     let model = match model {
         Model::Cube => {
@@ -112,48 +111,9 @@ fn transforms(model: Model) -> Transforms<Fx16> {
                 .then(&Mat4::rotation_y(Angle::from_degrees(35)))
                 .then(&Mat4::rotation_x(Angle::from_degrees(25)))
         }
-        Model::Suzanne => Mat4::rotation_y(Angle::from_degrees(30)),
+        Model::Suzanne => Mat4::rotation_y(Angle::from_degrees(ROTATION_Y_DEGREES)),
     };
-    Transforms {
-        model,
-        view: Mat4::look_at(
-            Vec3::from_ints(0, 0, 3),
-            Vec3::from_ints(0, 0, 0),
-            Vec3::from_ints(0, 1, 0),
-        )
-        .unwrap(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(4, 3),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap(),
-    }
-}
-
-/// One white directional light from (1, 1, 1), a clay material with a Blinn-Phong highlight, the
-/// eye at the camera.
-fn lighting() -> Lighting<Fx16, 2> {
-    let material = Material {
-        ambient: Rgb888::new(40, 30, 30),
-        diffuse: Rgb888::new(220, 140, 80),
-        specular: Rgb888::WHITE,
-        shininess: 16,
-    };
-    let mut lighting = Lighting::new(
-        material,
-        Rgb888::WHITE,
-        Specular::BlinnPhong,
-        Vec3::from_ints(0, 0, 3),
-    );
-    lighting
-        .add_light(Light::Directional {
-            direction: Vec3::from_ints(1, 1, 1),
-            color: Rgb888::WHITE,
-        })
-        .unwrap();
-    lighting
+    camera(model, WIDTH, HEIGHT)
 }
 
 /// Draws `mesh` filled, with a depth buffer and back faces culled, into `fb`.
@@ -222,7 +182,7 @@ fn render(model: Model, style: Style) -> Vec<u8> {
             assert!(stats.drawn > 0, "nothing drawn: {stats:?}");
         }
         Style::Unlit => {
-            let color = Rgb888::new(220, 140, 80);
+            let color = DIFFUSE;
             fill(&mut fb, &xf, &mesh, Unlit { color });
         }
         Style::VertexColors => fill(&mut fb, &xf, &mesh, VertexColors::<Rgb888>::new()),

@@ -43,7 +43,7 @@
 
 use core::hint::black_box;
 use core::mem::size_of;
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::prelude::*;
 use rasterizer_core::cull::{Cull, CullClockwise, NoCull};
 use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
@@ -253,7 +253,7 @@ fn self_check() {
 // --- The scene ---
 
 // The M1 scene's matrices and lighting, shared with the benchmarks.
-use host_tools::scenes3d::{lighting, transforms};
+use fixtures::scenes3d::{lighting, transforms, DIFFUSE};
 
 /// How the frame is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -523,7 +523,7 @@ where
 fn stack_unlit() {
     // The diffuse colour of the lit material, as count3d's unlit M1.
     report(&shading_configs("unlit", || Unlit {
-        color: Rgb565::from(Rgb888::new(220, 140, 80)),
+        color: Rgb565::from(DIFFUSE),
     }));
 }
 

@@ -7,7 +7,7 @@
 //! `STRESS_SCENES` sets the count (CI: 1,000).
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use host_tools::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
+use fixtures::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
 use rasterizer_core::cull::NoCull;
 use rasterizer_core::depth::{Compare, DepthBuffer};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};

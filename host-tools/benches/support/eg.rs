@@ -6,7 +6,7 @@
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{Line, PrimitiveStyle, Triangle};
-use host_tools::scenes::{LineSeg, Tri};
+use fixtures::scenes::{LineSeg, Tri};
 
 /// Draws L1: one-pixel stroked `Line`s.
 pub fn draw_lines_eg<D: DrawTarget<Color = Rgb565>>(

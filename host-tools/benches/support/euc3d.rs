@@ -1,5 +1,5 @@
 //! The comparison renderer of the 3D benchmarks: euc 0.5.3, a pure-Rust `f32` software renderer,
-//! drawing the scenes of `host_tools::scenes3d` (same mesh, camera, projection, size and lighting)
+//! drawing the scenes of `fixtures::scenes3d` (same mesh, camera, projection, size and lighting)
 //! with Gouraud shading, a depth test and back-face culling.
 //!
 //! Shared by `benches/scenes3d.rs` and `examples/count3d.rs` (through `#[path]`), so both draw
@@ -34,9 +34,9 @@ use embedded_graphics_core::prelude::IntoStorage;
 use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingEnabled, Triangles};
 use euc::{Pipeline, Target};
-use host_tools::obj::LoadedMesh;
-use host_tools::scenes::{HEIGHT, WIDTH};
-use host_tools::scenes3d;
+use fixtures::obj::LoadedMesh;
+use fixtures::scenes::{HEIGHT, WIDTH};
+use fixtures::scenes3d;
 use rasterizer_core::math::{Fx16, Vec3};
 
 /// euc's colour buffer: one Rgb565 word per pixel.
@@ -115,7 +115,7 @@ pub struct EucScene {
 }
 
 impl EucScene {
-    /// The scene of `host_tools::scenes3d` with `mesh` (which must have normals).
+    /// The scene of `fixtures::scenes3d` with `mesh` (which must have normals).
     pub fn new(mesh: &LoadedMesh) -> Self {
         let normals = mesh.normals.as_ref().expect("the scenes have normals");
         let (s, c) = (scenes3d::ROTATION_Y_DEGREES as f32).to_radians().sin_cos();

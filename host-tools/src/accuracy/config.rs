@@ -7,10 +7,10 @@
 
 use super::metrics::{image_errors, vertex_errors, Errors};
 use super::scene::{lighting, transforms, vec_s, Prepared, SceneDef};
-use crate::reference3d::{color_id, id_color, FaceIds};
 use crate::scenefile::F64;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics_core::prelude::DrawTarget;
+use fixtures::reference3d::{color_id, id_color, FaceIds};
 use rasterizer_core::cull::{Cull, CullClockwise};
 use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
 use rasterizer_core::math::{Fx16, Fx24, Fx8, Scalar, Vec3};

@@ -4,7 +4,7 @@
 //! Everything here is a plain function of images and numbers, so it is tested on hand-made
 //! inputs.
 
-use crate::reference3d::RefRender;
+use fixtures::reference3d::RefRender;
 
 /// Depths within this many of the depth buffer's 65,535 steps are a tie, not a depth-order
 /// mistake: the buffer stores whole steps, so no format can order surfaces closer than one step.

@@ -1,7 +1,8 @@
-//! The report's plot, written as SVG text: error against instructions per frame (log scale), one
-//! numbered point per configuration, the Pareto front drawn as a line through its points.
+//! The report's plot, drawn with plotters' SVG backend: error against instructions per frame (both
+//! log scale), one numbered point per configuration, the Pareto front drawn as a line through its
+//! points.
 
-use std::fmt::Write;
+use plotters::prelude::*;
 
 /// One point of the plot.
 #[derive(Debug, Clone, PartialEq)]
@@ -16,18 +17,12 @@ pub struct Point {
     pub front: bool,
 }
 
-const W: f64 = 960.0;
-const H: f64 = 560.0;
-const LEFT: f64 = 80.0;
-const RIGHT: f64 = 700.0;
-const TOP: f64 = 50.0;
-const BOTTOM: f64 = 490.0;
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
+const SIZE: (u32, u32) = (960, 560);
+/// The width of the chart; the legend takes the rest.
+const CHART: u32 = 720;
+const FRONT: RGBColor = RGBColor(0xdd, 0x33, 0x33);
+const FRONT_TEXT: RGBColor = RGBColor(0xbb, 0, 0);
+const INK: RGBColor = RGBColor(0x22, 0x22, 0x22);
 
 /// Ticks for a log axis from `lo` to `hi`: the multiples 1..9 of the powers of ten inside, or
 /// only 1, 2 and 5 times them when that gives too many.
@@ -83,25 +78,30 @@ fn trim(v: f64) -> String {
 /// The SVG document: `title` on top, `x_name` and `y_name` on the axes.
 pub fn svg(points: &[Point], title: &str, x_name: &str, y_name: &str) -> String {
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" viewBox="0 0 {W} {H}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(s, r#"<rect width="{W}" height="{H}" fill="white"/>"#);
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="28" font-size="16" text-anchor="middle">{}</text>"#,
-        (LEFT + RIGHT) / 2.0,
-        esc(title)
-    );
+    // Drawing into a string fails only on a plotters bug; the document is then cut short.
+    let _ = draw(&mut s, points, title, x_name, y_name);
+    s
+}
+
+fn draw<'a>(
+    s: &'a mut String,
+    points: &[Point],
+    title: &str,
+    x_name: &str,
+    y_name: &str,
+) -> Result<(), Box<dyn std::error::Error + 'a>> {
+    let root = SVGBackend::with_string(s, SIZE).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (chart_area, legend) = root.split_horizontally(CHART);
     if points.is_empty() {
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle">no instruction counts: run without --no-count</text></svg>"#,
-            (LEFT + RIGHT) / 2.0,
-            (TOP + BOTTOM) / 2.0
-        );
-        return s;
+        let note = "no instruction counts: run without --no-count";
+        let chart_area = chart_area.titled(title, ("sans-serif", 16))?;
+        chart_area.draw(&Text::new(
+            note,
+            (CHART as i32 / 3, 240),
+            ("sans-serif", 12),
+        ))?;
+        return Ok(root.present()?);
     }
     let (mut xlo, mut xhi) = points.iter().fold((f64::MAX, f64::MIN), |(a, b), p| {
         (a.min(p.cost), b.max(p.cost))
@@ -112,112 +112,81 @@ pub fn svg(points: &[Point], title: &str, x_name: &str, y_name: &str) -> String 
     let positive = points.iter().map(|p| p.error).filter(|&e| e > 0.0);
     let ylo = positive.clone().fold(f64::MAX, f64::min).min(1.0) / 1.5;
     let yhi = positive.fold(0.0, f64::max).max(ylo * 10.0) * 1.5;
-    let x = |v: f64| LEFT + (v.ln() - xlo.ln()) / (xhi.ln() - xlo.ln()) * (RIGHT - LEFT);
-    let y = |v: f64| BOTTOM - (v.max(ylo).ln() - ylo.ln()) / (yhi.ln() - ylo.ln()) * (BOTTOM - TOP);
-    // Axes and grid.
-    let _ = writeln!(
-        s,
-        r##"<rect x="{LEFT}" y="{TOP}" width="{}" height="{}" fill="none" stroke="#444"/>"##,
-        RIGHT - LEFT,
-        BOTTOM - TOP
-    );
-    for t in log_ticks(xlo, xhi) {
-        let xp = x(t);
-        let _ = writeln!(
-            s,
-            r##"<line x1="{xp:.1}" y1="{TOP}" x2="{xp:.1}" y2="{BOTTOM}" stroke="#ddd"/><text x="{xp:.1}" y="{}" text-anchor="middle">{}</text>"##,
-            BOTTOM + 16.0,
-            short(t)
-        );
-    }
-    for v in log_ticks(ylo, yhi) {
-        let yp = y(v);
-        let _ = writeln!(
-            s,
-            r##"<line x1="{LEFT}" y1="{yp:.1}" x2="{RIGHT}" y2="{yp:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{}</text>"##,
-            LEFT - 6.0,
-            yp + 4.0,
-            trim_small(v)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#,
-        (LEFT + RIGHT) / 2.0,
-        BOTTOM + 40.0,
-        esc(x_name)
-    );
-    let _ = writeln!(
-        s,
-        r#"<text x="20" y="{}" text-anchor="middle" transform="rotate(-90 20 {})">{}</text>"#,
-        (TOP + BOTTOM) / 2.0,
-        (TOP + BOTTOM) / 2.0,
-        esc(y_name)
-    );
+    let mut chart = ChartBuilder::on(&chart_area)
+        .caption(title, ("sans-serif", 18))
+        .margin(20)
+        .margin_bottom(40)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(
+            (xlo..xhi).log_scale().with_key_points(log_ticks(xlo, xhi)),
+            (ylo..yhi).log_scale().with_key_points(log_ticks(ylo, yhi)),
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc(x_name)
+        .y_desc(y_name)
+        .x_label_formatter(&|v| short(*v))
+        .y_label_formatter(&|v| trim_small(*v))
+        .bold_line_style(RGBColor(0xdd, 0xdd, 0xdd))
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 14))
+        .draw()?;
     // The front as a line, in cost order.
-    let mut front: Vec<&Point> = points.iter().filter(|p| p.front).collect();
-    front.sort_by(|a, b| a.cost.total_cmp(&b.cost));
-    let path: Vec<String> = front
+    let mut front: Vec<(f64, f64)> = points
         .iter()
-        .map(|p| format!("{:.1},{:.1}", x(p.cost), y(p.error)))
+        .filter(|p| p.front)
+        .map(|p| (p.cost, p.error.max(ylo)))
         .collect();
-    let _ = writeln!(
-        s,
-        r##"<polyline points="{}" fill="none" stroke="#d33" stroke-width="2"/>"##,
-        path.join(" ")
-    );
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    chart.draw_series(LineSeries::new(front, FRONT.stroke_width(2)))?;
     // Points, numbered; labels of coinciding points are stacked.
-    let mut placed: Vec<(f64, f64, usize)> = Vec::new();
+    let at: Vec<(i32, i32)> = points
+        .iter()
+        .map(|p| chart.backend_coord(&(p.cost, p.error.max(ylo))))
+        .collect();
     for (i, p) in points.iter().enumerate() {
-        let (px, py) = (x(p.cost), y(p.error));
-        let (fill, stroke) = if p.front {
-            ("#d33", "#800")
-        } else {
-            ("white", "#333")
-        };
-        let _ = writeln!(
-            s,
-            r#"<circle cx="{px:.1}" cy="{py:.1}" r="5" fill="{fill}" stroke="{stroke}" stroke-width="1.5"/>"#
-        );
-        let stack = placed
+        let (x, y) = at[i];
+        let stack = at[..i]
             .iter()
-            .filter(|(qx, qy, _)| (qx - px).abs() < 14.0 && (qy - py).abs() < 12.0)
-            .count();
-        placed.push((px, py, i));
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}" font-size="11">{}</text>"#,
-            px + 8.0 + 18.0 * stack as f64,
-            py - 6.0,
-            i + 1
-        );
+            .filter(|q| (q.0 - x).abs() < 14 && (q.1 - y).abs() < 12)
+            .count() as i32;
+        let (fill, stroke) = if p.front {
+            (FRONT, RGBColor(0x80, 0, 0))
+        } else {
+            (WHITE, INK)
+        };
+        chart.draw_series([EmptyElement::at((p.cost, p.error.max(ylo)))
+            + Circle::new((0, 0), 5, fill.filled())
+            + Circle::new((0, 0), 5, stroke.stroke_width(1))
+            + Text::new(
+                (i + 1).to_string(),
+                (8 + 18 * stack, -16),
+                ("sans-serif", 13),
+            )])?;
     }
     // Legend.
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" font-weight="bold">configurations</text>"#,
-        RIGHT + 20.0,
-        TOP + 4.0
-    );
+    let bold = ("sans-serif", 14, FontStyle::Bold);
+    legend.draw(&Text::new("configurations", (0, 40), bold))?;
     for (i, p) in points.iter().enumerate() {
-        let yp = TOP + 22.0 + 17.0 * i as f64;
-        let _ = writeln!(
-            s,
-            r##"<text x="{}" y="{yp:.1}" fill="{}">{:>2}  {}{}</text>"##,
-            RIGHT + 20.0,
-            if p.front { "#b00" } else { "#222" },
-            i + 1,
-            esc(&p.label),
-            if p.front { "  (front)" } else { "" }
-        );
+        let color = if p.front { FRONT_TEXT } else { INK };
+        let front = if p.front { "  (front)" } else { "" };
+        let line = format!("{:>2}  {}{front}", i + 1, p.label);
+        let y = 58 + 17 * i as i32;
+        legend.draw(&Text::new(
+            line,
+            (0, y),
+            ("sans-serif", 14).into_font().color(&color),
+        ))?;
     }
-    let _ = writeln!(
-        s,
-        r##"<text x="{LEFT}" y="{}" font-size="11" fill="#555">filled red: on the Pareto front (no other configuration is both cheaper and more accurate), joined by the red line</text>"##,
-        H - 10.0
-    );
-    s.push_str("</svg>\n");
-    s
+    let note = "filled red: on the Pareto front (no other configuration is both cheaper and more \
+                accurate), joined by the red line";
+    root.draw(&Text::new(
+        note,
+        (80, 542),
+        ("sans-serif", 13).into_font().color(&INK),
+    ))?;
+    Ok(root.present()?)
 }
 
 #[cfg(test)]
@@ -241,13 +210,16 @@ mod tests {
             },
         ];
         let s = svg(&pts, "t", "x", "y");
-        assert_eq!(s.matches("<circle").count(), 2);
+        assert_eq!(s.matches("<circle").count(), 4, "{s}");
         assert!(s.contains("<polyline"));
         assert!(s.contains("b &lt;x&gt;"));
-        assert!(s.ends_with("</svg>\n"));
+        assert!(s.trim_end().ends_with("</svg>"));
+        assert_eq!(short(2.5e6), "2.5M");
+        assert_eq!(short(850e3), "850k");
+        assert_eq!(trim_small(0.05), "0.05");
+        assert!(svg(&[], "t", "x", "y").contains("no instruction counts"));
         assert_eq!(log_ticks(0.95e6, 2.1e6), vec![1e6, 2e6]);
         assert_eq!(log_ticks(5.5e6, 8.5e6), vec![6e6, 7e6, 8e6]);
         assert_eq!(log_ticks(0.01, 100.0).len(), 13);
-        assert_eq!(trim_small(0.05), "0.05");
     }
 }

@@ -289,7 +289,7 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
     let _ = writeln!(s, "## Errors per scene\n");
     let _ = writeln!(
         s,
-        "Against the f64 reference (`host_tools::reference3d`): the same scene built in f64 from \
+        "Against the f64 reference (`fixtures::reference3d`): the same scene built in f64 from \
          the same parameters, clipped, projected and rasterized in f64 (pixel centres, top-left \
          rule), lit per vertex in f64 and interpolated perspective-correctly. Definitions under \
          [How it is measured](#how-it-is-measured).\n"

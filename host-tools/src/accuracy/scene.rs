@@ -2,12 +2,15 @@
 //! into the `f64` reference (matrices, lit vertex colours, the reference render) and into any
 //! pipeline format, so both sides start from the same parameters.
 
-use crate::obj::LoadedMesh;
-use crate::reference3d::{self as r, RefCull, RefLight, RefRender, M4, V3};
-use crate::scenes::XorShift32;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use fixtures::obj::LoadedMesh;
+use fixtures::reference3d::{self as r, RefCull, RefLight, RefRender, M4, V3};
+use fixtures::scenes::XorShift32;
+use fixtures::scenes3d::{
+    material, EYE, FAR, FOV_Y_DEGREES, LIGHT_DIRECTION, NEAR, ROTATION_Y_DEGREES,
+};
 use rasterizer_core::math::{Angle, Fx16, Mat4, Scalar, Vec3};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+use rasterizer_core::shade::{Light, Lighting, Specular};
 use rasterizer_core::transform::Transforms;
 use std::path::{Path, PathBuf};
 
@@ -37,12 +40,12 @@ impl Camera {
     pub fn workload() -> Self {
         Self {
             scale: 1.0,
-            yaw: Angle::from_degrees(30),
-            eye: [0.0, 0.0, 3.0],
+            yaw: Angle::from_degrees(ROTATION_Y_DEGREES),
+            eye: EYE.map(f64::from),
             target: [0.0; 3],
-            fov: Angle::from_degrees(60),
-            near: 0.1,
-            far: 100.0,
+            fov: Angle::from_degrees(FOV_Y_DEGREES),
+            near: NEAR.0 as f64 / NEAR.1 as f64,
+            far: f64::from(FAR),
         }
     }
 
@@ -140,19 +143,12 @@ pub fn transforms<S: Scalar, const N: usize>(
     })
 }
 
-/// The material of M1 (count3d's): ambient (40, 30, 30), diffuse (220, 140, 80), white specular,
-/// shininess 16, Blinn-Phong, white ambient light.
-pub fn material() -> Material {
-    Material {
-        ambient: Rgb888::new(40, 30, 30),
-        diffuse: Rgb888::new(220, 140, 80),
-        specular: Rgb888::WHITE,
-        shininess: 16,
-    }
-}
-
-/// The one light: directional, white, from (1, 1, 1).
-pub const LIGHT_FROM: V3 = [1.0, 1.0, 1.0];
+/// The one light: directional, white, from M1's [`LIGHT_DIRECTION`].
+pub const LIGHT_FROM: V3 = [
+    LIGHT_DIRECTION[0] as f64,
+    LIGHT_DIRECTION[1] as f64,
+    LIGHT_DIRECTION[2] as f64,
+];
 
 /// The pipeline's lighting for a camera in format `S`.
 pub fn lighting<S: Scalar>(cam: &Camera) -> Lighting<S, 1> {

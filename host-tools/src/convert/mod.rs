@@ -1,11 +1,7 @@
 //! The `convert` command: OBJ -> packed mesh (or Rust source).
 //!
-//! The OBJ text is read twice. A line scanner (module `scan`) checks everything that needs a line
-//! number (tobj gives none, and lets broken files through silently: NaN coordinates, index 0, a
-//! BOM that eats the first vertex, bare-CR files with no triangles, `l` polylines that become
-//! filled polygons), and hands tobj a cleaned-up copy of the text. tobj (with `triangulate: false`)
-//! then supplies the numbers. Polygons are triangulated here by ear clipping
-//! ([`triangulate_polygon`]), so concave faces come out right. Then: optional welding, dropping
+//! The OBJ file is read by `fixtures::obj::read` (the reader every path that loads a model
+//! shares: line checks, tobj's numbers, ear clipping). Then: optional welding, dropping
 //! triangles with a repeated vertex or no area after quantisation, dropping unused vertices,
 //! optional centring, normals, per-axis quantisation over the bounding box, and [`encode()`].
 //! Every blob is checked with `PackedMesh::parse` before it is written, and the position error
@@ -20,14 +16,13 @@
 
 mod encode;
 mod rust_source;
-mod scan;
-mod triangulate;
 
 pub use encode::{decode_normal, encode, quantise_normal, MeshData, Quantiser};
+pub use fixtures::obj::{newell_normal, triangulate_polygon, ObjError as ConvertError, Warning};
 pub use rust_source::{bytes_from_rust_source, is_rust_identifier, rust_source, static_name_for};
-pub use triangulate::{newell_normal, triangulate_polygon};
 
-use crate::vec64::{cross, dot, sub, V3 as P3};
+use fixtures::obj::{normalize, Progress as _};
+use fixtures::vec64::{cross, dot, sub, V3 as P3};
 use indicatif::{ProgressBar, ProgressStyle};
 use rasterizer_core::mesh::{PackedMesh, MAX_COUNT};
 use std::collections::HashMap;
@@ -110,47 +105,6 @@ pub struct Options {
     pub progress: bool,
 }
 
-/// Why a file could not be converted.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ConvertError {
-    /// The file, as named on the command line.
-    pub file: String,
-    /// The 1-based line to blame, if any.
-    pub line: Option<usize>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for ConvertError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.line {
-            Some(line) => write!(f, "{}:{line}: {}", self.file, self.message),
-            None => write!(f, "{}: {}", self.file, self.message),
-        }
-    }
-}
-
-impl std::error::Error for ConvertError {}
-
-/// Something odd but usable in the input.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Warning {
-    /// The 1-based line it concerns, if any.
-    pub line: Option<usize>,
-    /// What was found and what was done about it.
-    pub message: String,
-}
-
-impl Warning {
-    /// The warning as `file:line: message` (without the `warning: ` prefix).
-    pub fn display(&self, file: &str) -> String {
-        match self.line {
-            Some(line) => format!("{file}:{line}: {}", self.message),
-            None => format!("{file}: {}", self.message),
-        }
-    }
-}
-
 /// The figures of one conversion.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Report {
@@ -200,19 +154,7 @@ pub struct Conversion {
 /// A progress bar on stderr, or nothing.
 struct Progress(Option<ProgressBar>);
 
-impl Progress {
-    fn new(enabled: bool) -> Self {
-        Self(enabled.then(|| {
-            let bar = ProgressBar::new(0);
-            bar.set_style(
-                ProgressStyle::with_template("{msg:>14} [{bar:40}] {percent:>3}%")
-                    .unwrap_or_else(|_| ProgressStyle::default_bar())
-                    .progress_chars("=> "),
-            );
-            bar
-        }))
-    }
-
+impl fixtures::obj::Progress for Progress {
     fn stage(&self, message: &'static str, len: u64) {
         if let Some(bar) = &self.0 {
             bar.set_message(message);
@@ -225,6 +167,20 @@ impl Progress {
         if let Some(bar) = &self.0 {
             bar.set_position(pos);
         }
+    }
+}
+
+impl Progress {
+    fn new(enabled: bool) -> Self {
+        Self(enabled.then(|| {
+            let bar = ProgressBar::new(0);
+            bar.set_style(
+                ProgressStyle::with_template("{msg:>14} [{bar:40}] {percent:>3}%")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar())
+                    .progress_chars("=> "),
+            );
+            bar
+        }))
     }
 
     fn finish(&self) {
@@ -279,108 +235,21 @@ fn convert_inner(
         warnings.push(Warning { line, message });
     };
 
-    progress.stage("scanning", bytes.len() as u64);
-    let scan = scan::scan(
+    let obj = fixtures::obj::read(
         file,
         bytes,
         mtl_dir,
         opts.center_unit_sphere,
         warnings,
-        &|p| progress.set(p),
+        progress,
     )?;
-
-    progress.stage("parsing", 1);
-    let load = tobj::LoadOptions {
-        triangulate: false,
-        single_index: false,
-        ..Default::default()
-    };
-    let (models, _materials) =
-        tobj::load_obj_buf(&mut scan.text.as_bytes(), &load, |_| Ok(Default::default()))
-            .map_err(|e| fail(format!("tobj rejected the file after checking: {e}")))?;
-
-    // tobj renumbers vertices per model; the scanner's corners give the file's numbering back.
-    let mismatch = || fail("internal error: tobj's faces differ from the scanner's".into());
-    let nv = scan.v_count;
-    let keep_possible = scan.all_normals && !scan.vn_lines.is_empty();
-    let mut pos = vec![[f64::NAN; 3]; nv];
-    let mut col = vec![[0u8; 3]; if scan.colours { nv } else { 0 }];
-    let mut file_normals = vec![
-        [0f64; 3];
-        if keep_possible {
-            scan.vn_lines.len()
-        } else {
-            0
-        }
-    ];
-    let mut face_no = 0usize;
-    for model in &models {
-        let m = &model.mesh;
-        let faces = if m.face_arities.is_empty() {
-            m.indices.len() / 3
-        } else {
-            m.face_arities.len()
-        };
-        let mut k = 0usize;
-        for fi in 0..faces {
-            let arity = m.face_arities.get(fi).map_or(3, |&a| a as usize);
-            let face = scan.faces.get(face_no).ok_or_else(mismatch)?;
-            if face.len as usize != arity {
-                return Err(mismatch());
-            }
-            for c in 0..arity {
-                let corner = scan.corners[face.first as usize + c];
-                let local = *m.indices.get(k).ok_or_else(mismatch)? as usize;
-                let p = m
-                    .positions
-                    .get(3 * local..3 * local + 3)
-                    .ok_or_else(mismatch)?;
-                pos[corner.v as usize] = [0, 1, 2].map(|i| f64::from(p[i]));
-                if scan.colours {
-                    let c3 = m
-                        .vertex_color
-                        .get(3 * local..3 * local + 3)
-                        .ok_or_else(mismatch)?;
-                    col[corner.v as usize] =
-                        [0, 1, 2].map(|i| (f64::from(c3[i]).clamp(0.0, 1.0) * 255.0).round() as u8);
-                }
-                if keep_possible {
-                    let nl = *m.normal_indices.get(k).ok_or_else(mismatch)? as usize;
-                    let n = m.normals.get(3 * nl..3 * nl + 3).ok_or_else(mismatch)?;
-                    file_normals[corner.vn as usize] = [0, 1, 2].map(|i| f64::from(n[i]));
-                }
-                k += 1;
-            }
-            face_no += 1;
-        }
-    }
-    if face_no != scan.faces.len() {
-        return Err(mismatch());
-    }
-    drop(models);
-
-    // Triangulate. A triangle is three corner indices (into scan.corners).
-    progress.stage("triangulating", scan.faces.len() as u64);
-    let mut tris: Vec<[u32; 3]> = Vec::with_capacity(scan.corners.len());
-    let mut triangles_in = 0usize;
-    let mut polygon = Vec::new();
-    for (i, face) in scan.faces.iter().enumerate() {
-        let f = face.first;
-        triangles_in += face.len as usize - 2;
-        if face.len == 3 {
-            tris.push([f, f + 1, f + 2]);
-        } else {
-            polygon.clear();
-            polygon.extend((f..f + face.len).map(|c| pos[scan.corners[c as usize].v as usize]));
-            for t in triangulate_polygon(&polygon) {
-                tris.push(t.map(|c| f + c as u32));
-            }
-        }
-        if i % 16384 == 0 {
-            progress.set(i as u64);
-        }
-    }
-    let pos_of = |c: u32| scan.corners[c as usize].v;
+    let (pos, corners, mut tris) = (&obj.positions, &obj.corners, obj.triangles.clone());
+    let nv = pos.len();
+    let col = obj.colors.as_deref().unwrap_or_default();
+    let triangles_in = tris.len();
+    let keep_possible = obj.normals.is_some();
+    let file_normals = obj.normals.as_deref().unwrap_or_default();
+    let pos_of = |c: u32| corners[c as usize].v;
 
     // Weld: every position id maps to the first identical one (same position and colour).
     let mut canon: Vec<u32> = (0..nv as u32).collect();
@@ -496,7 +365,7 @@ fn convert_inner(
         NormalMode::Smooth
     });
     if mode == NormalMode::Keep && !keep_possible {
-        let why = if scan.vn_lines.is_empty() {
+        let why = if obj.vn_lines.is_empty() {
             "the file has no normals"
         } else {
             "not every face corner has a normal"
@@ -510,7 +379,7 @@ fn convert_inner(
     }
     let face_normal = |t: &[u32; 3]| {
         let [a, b, c] = t.map(|c| tpos[vid(c) as usize]);
-        triangulate::normalize(cross(sub(b, a), sub(c, a)))
+        normalize(cross(sub(b, a), sub(c, a)))
     };
     let mut smooth = vec![[0f64; 3]; if mode == NormalMode::None { 0 } else { nv }];
     if mode != NormalMode::None {
@@ -527,7 +396,7 @@ fn convert_inner(
             }
         }
         for s in &mut smooth {
-            *s = triangulate::normalize(*s).unwrap_or([0.0, 0.0, 1.0]);
+            *s = normalize(*s).unwrap_or([0.0, 0.0, 1.0]);
         }
     }
     let mut bad_normals: Vec<usize> = Vec::new();
@@ -536,14 +405,14 @@ fn convert_inner(
         let mut referenced = vec![false; file_normals.len()];
         for t in &tris {
             for &c in t {
-                referenced[scan.corners[c as usize].vn as usize] = true;
+                referenced[corners[c as usize].vn as usize] = true;
             }
         }
         file_normals
             .iter()
             .enumerate()
             .map(|(i, &n)| {
-                let unit = triangulate::normalize(n);
+                let unit = normalize(n);
                 if referenced[i] {
                     match unit {
                         None => bad_normals.push(i),
@@ -560,7 +429,7 @@ fn convert_inner(
     if let Some(&first) = bad_normals.first() {
         warn(
             warnings,
-            Some(scan.vn_lines[first] as usize),
+            Some(obj.vn_lines[first] as usize),
             format!(
                 "normal of zero length: vertices using it get smooth normals ({} such normal{})",
                 bad_normals.len(),
@@ -571,7 +440,7 @@ fn convert_inner(
     if let Some(&first) = non_unit.first() {
         warn(
             warnings,
-            Some(scan.vn_lines[first] as usize),
+            Some(obj.vn_lines[first] as usize),
             format!(
                 "normal not of unit length: normalised ({} such normal{})",
                 non_unit.len(),
@@ -599,7 +468,7 @@ fn convert_inner(
                 NormalMode::None => (None, 0),
                 NormalMode::Smooth => (Some(smooth[v as usize]), 0),
                 NormalMode::Keep => {
-                    let vn = scan.corners[c as usize].vn;
+                    let vn = corners[c as usize].vn;
                     let n = unit_file_normals[vn as usize].unwrap_or(smooth[v as usize]);
                     let key = if opts.weld {
                         normal_key(quantise_normal(n))
@@ -645,8 +514,9 @@ fn convert_inner(
         positions: out_pos.iter().map(|&v| quanta[v as usize]).collect(),
         normals: (mode != NormalMode::None)
             .then(|| out_nrm.iter().map(|&n| quantise_normal(n)).collect()),
-        colors: scan
-            .colours
+        colors: obj
+            .colors
+            .is_some()
             .then(|| out_pos.iter().map(|&v| col[v as usize]).collect()),
         triangles: out_tris,
     };

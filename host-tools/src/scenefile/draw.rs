@@ -421,9 +421,8 @@ where
     Sh: Shading<S, Color = Rgb888>,
     N: Numerics,
 {
-    let mut p = Pipeline::new(&job.transforms, job.viewport, cull, depth, shading)
-        .with_bits::<4>()
-        .with_numerics::<N>();
+    let mut p =
+        Pipeline::new(&job.transforms, job.viewport, cull, depth, shading).with_numerics::<N>();
     if let Some(n) = job.normal_matrix {
         p.set_normal_matrix(n);
     }

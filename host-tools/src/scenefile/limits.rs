@@ -11,6 +11,7 @@
 //! coordinate it produces stay within ±[`MAX_CLIP`] so the clipper's edge vectors still fit 16.16.
 
 use super::format::Camera;
+use fixtures::vec64::{cross, norm, sub as sub3};
 use rasterizer_core::geom::GUARD_BAND_PIXELS;
 use std::fmt::Write;
 
@@ -57,22 +58,6 @@ pub fn vector(v: &[f64]) -> String {
         let _ = write!(s, "{}{}", if i > 0 { ", " } else { "" }, num(*x));
     }
     s + "]"
-}
-
-pub(super) fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// `key = value` is finite with every component within ±`limit`.

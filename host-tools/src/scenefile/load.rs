@@ -7,8 +7,9 @@ use super::format::{
 use super::limits;
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
-use crate::obj::RawMesh;
 use embedded_graphics_core::pixelcolor::Rgb888;
+use fixtures::obj::RawMesh;
+use fixtures::vec64::{cross, norm, sub as sub3};
 use rasterizer_core::math::Fx16;
 use rasterizer_core::mesh::{PackedMesh, MAGIC};
 use rasterizer_core::shade::{Material, Specular};
@@ -121,22 +122,6 @@ fn rgb(c: Color) -> Rgb888 {
 
 fn finite(v: &[f64]) -> bool {
     v.iter().all(|x| x.is_finite())
-}
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// Reads and checks a scene file and loads its meshes.

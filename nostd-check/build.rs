@@ -1,0 +1,27 @@
+//! Names the feature groups of `src/one.rs`, `cfg(three_d)` (a shading feature is on) and
+//! `cfg(two_d)` (a 2D one is), and refuses the combinations that make no binary.
+
+fn on(feature: &str) -> bool {
+    std::env::var_os(format!("CARGO_FEATURE_{}", feature.to_uppercase())).is_some()
+}
+
+fn main() {
+    println!("cargo::rustc-check-cfg=cfg(three_d)");
+    println!("cargo::rustc-check-cfg=cfg(two_d)");
+    let shading = ["unlit", "flat", "gouraud", "phong"];
+    let stages = ["depth", "cull", "banded", "noscratch"];
+    match shading.into_iter().filter(|f| on(f)).count() {
+        0 if stages.into_iter().any(on) => {
+            panic!("depth, cull, banded and noscratch need a shading feature: {shading:?}")
+        }
+        0 => {}
+        1 => println!("cargo::rustc-cfg=three_d"),
+        _ => panic!("choose at most one shading feature: {shading:?}"),
+    }
+    if ["line2d", "triangle2d", "gouraud2d", "polygon2d"]
+        .into_iter()
+        .any(on)
+    {
+        println!("cargo::rustc-cfg=two_d");
+    }
+}

@@ -1,0 +1,161 @@
+//! The default build: every public drawing entry point, into each pixel format, through the
+//! framebuffer's fast paths and the generic `DrawTarget` adapter, and the 3D draws.
+
+use core::hint::black_box;
+use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
+use embedded_graphics_core::prelude::*;
+use rasterizer_core::geom::SubPoint;
+use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
+use rasterizer_core::raster::point::draw_point;
+use rasterizer_core::raster::polygon::{FillRule, Polygon};
+use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
+use rasterizer_core::surface::{AnyTarget, Framebuffer, Surface};
+
+static mut RGB565: [u16; 64 * 48] = [0; 64 * 48];
+
+fn draw_all<S: Surface>(s: &mut S, a: S::Color, b: S::Color, c: S::Color) -> Result<(), S::Error>
+where
+    S::Color: rasterizer_core::color::Channels,
+{
+    let p = |x: i32, y: i32| black_box(Point::new(x, y));
+    let sp = |x: i32, y: i32| black_box(SubPoint::<4>::new(x, y));
+    draw_point(s, p(3, 4), a)?;
+    draw_line(s, p(-5, 2), p(70, 40), a)?;
+    draw_line_gradient(s, p(0, 47), p(63, 0), a, b)?;
+    draw_triangle(s, [p(1, 1), p(60, 5), p(20, 40)], b)?;
+    fill_triangle(s, [sp(10, 10), sp(900, 100), sp(300, 700)], a)?;
+    fill_triangle_gouraud(s, [sp(10, 10), sp(900, 100), sp(300, 700)], [a, b, c])?;
+    let star = [
+        sp(500, 50),
+        sp(700, 700),
+        sp(50, 250),
+        sp(950, 250),
+        sp(300, 700),
+    ];
+    if let Ok(poly) = Polygon::<8>::new(&star) {
+        poly.fill(s, FillRule::NonZero, c)?;
+        poly.fill(s, FillRule::EvenOdd, a)?;
+    }
+    Ok(())
+}
+
+/// The 3D entry points: packed mesh, pipeline draws (filled, wireframe, banded; with a short
+/// vertex scratch and with none) with the float-free default stages.
+fn draw_3d(buf: &mut [u16]) -> u32 {
+    use rasterizer_core::cull::{CullClockwise, NoCull};
+    use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
+    use rasterizer_core::math::{Fx16, Vec3};
+    use rasterizer_core::mesh::PackedMesh;
+    use rasterizer_core::shade::{FlatLit, PhongLit, Unlit};
+    use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+    use rasterizer_core::{
+        pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::VertexSlot,
+        transform::Viewport,
+    };
+
+    let Ok(mesh) = PackedMesh::parse(black_box(crate::m1::MESH)) else {
+        return 0;
+    };
+    let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
+    let xf = crate::m1::transforms();
+    let mut lighting = Lighting::<Fx16, 2>::new(
+        Material {
+            ambient: Rgb888::new(9, 9, 9),
+            diffuse: Rgb888::WHITE,
+            specular: Rgb888::WHITE,
+            shininess: 8,
+        },
+        Rgb888::WHITE,
+        Specular::Phong,
+        p(0, 0, 3),
+    );
+    let _ = lighting.add_light(Light::Point {
+        position: p(2, 2, 2),
+        color: Rgb888::WHITE,
+    });
+    let vp = Viewport::new(64, 48);
+    let mut drawn = 0;
+    let Ok(mut fb) = Framebuffer::<Rgb565>::new(buf, 64, 48) else {
+        return 0;
+    };
+    let mut z = [u16::MAX; 64 * 48];
+    if let Ok(depth) = DepthBuffer::new(&mut z, 64, 48, Compare::Less) {
+        let mut pl = Pipeline::new(
+            &xf,
+            vp,
+            CullClockwise,
+            depth,
+            PhongLit::<Fx16, Rgb565, 2>::new(lighting.clone()),
+        );
+        // Shorter than the mesh: the first 16 vertices are kept, the others processed per triangle.
+        let mut scratch = [VertexSlot::EMPTY; 16];
+        drawn += pl.draw(&mut fb, &mesh, &mut scratch).map_or(0, |s| s.drawn);
+    }
+    let mut pl = Pipeline::new(&xf, vp, NoCull, NoDepth, Unlit { color: Rgb565::RED });
+    drawn += pl.draw(&mut fb, &mesh, &mut []).map_or(0, |s| s.drawn);
+    drawn += pl
+        .draw_wireframe(&mut fb, &mesh, &mut [], Rgb565::WHITE)
+        .map_or(0, |s| s.drawn);
+    // Bands of 8 rows.
+    let mut band_z = [u16::MAX; 64 * 8];
+    if let Ok(depth) = DepthBuffer::new(&mut band_z, 64, 8, Compare::Less) {
+        let mut pl = Pipeline::new(
+            &xf,
+            vp,
+            CullClockwise,
+            depth,
+            FlatLit::<Fx16, Rgb565, 2>::new(lighting),
+        );
+        let mut band = [0u16; 64 * 8];
+        let mut bins = [BinEntry::ZERO; 1024];
+        let mut scratch = [VertexSlot::EMPTY; 64];
+        let banding = Banding {
+            width: 64,
+            height: 48,
+            rows: 8,
+            background: Rgb565::BLACK,
+            clear_depth: u16::MAX,
+        };
+        drawn += pl
+            .draw_banded(&mesh, &banding, &mut band, &mut bins, &mut scratch, |b| {
+                black_box(b.framebuffer().as_slice());
+            })
+            .map_or(0, |s| s.drawn);
+    }
+    drawn
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn main() -> i32 {
+    // Rgb565 through the framebuffer's own fast paths, in a static buffer as firmware would.
+    #[allow(static_mut_refs)]
+    let buf = unsafe { &mut RGB565 };
+    if let Ok(mut fb) = Framebuffer::<Rgb565>::new(buf, 64, 48) {
+        let _ = draw_all(&mut fb, Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE);
+        // And through the generic DrawTarget adapter.
+        let _ = draw_all(
+            &mut AnyTarget::new(&mut fb),
+            Rgb565::WHITE,
+            Rgb565::CYAN,
+            Rgb565::BLACK,
+        );
+        black_box(fb.as_slice());
+    }
+    let mut rgb = [0u8; 16 * 16 * 3];
+    if let Ok(mut fb) = Framebuffer::<Rgb888>::new(&mut rgb, 16, 16) {
+        let _ = draw_all(&mut fb, Rgb888::RED, Rgb888::GREEN, Rgb888::BLUE);
+    }
+    let mut gray = [0u8; 16 * 16];
+    if let Ok(mut fb) = Framebuffer::<Gray8>::new(&mut gray, 16, 16) {
+        let _ = draw_all(&mut fb, Gray8::WHITE, Gray8::new(80), Gray8::BLACK);
+    }
+    let mut mono = [0u8; 2 * 16];
+    if let Ok(mut fb) = Framebuffer::<BinaryColor>::new(&mut mono, 16, 16) {
+        let _ = fb.clear(BinaryColor::Off);
+        let _ = draw_all(&mut fb, BinaryColor::On, BinaryColor::Off, BinaryColor::On);
+    }
+    black_box((&rgb, &gray, &mono));
+    let mut small = [0u16; 64 * 48];
+    black_box(draw_3d(&mut small));
+    0
+}
