@@ -6,3 +6,5 @@ pub mod convert;
 pub mod figures;
 pub mod output;
 pub mod scenefile;
+#[cfg(feature = "view")]
+pub mod view;

@@ -47,6 +47,10 @@ enum Command {
     Demo(DemoArgs),
     /// Convert an OBJ file into the packed fixed-point mesh firmware embeds (or Rust source).
     Convert(host_tools::convert::ConvertArgs),
+    /// Show a scene file in a live window, turned with the arrow keys or the mouse (feature `view`).
+    #[cfg(feature = "view")]
+    #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
+    View(host_tools::view::ViewArgs),
     /// Render a scene file to a PNG through embedded-graphics-simulator.
     #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
     Render(host_tools::scenefile::RenderArgs),
@@ -54,6 +58,7 @@ enum Command {
     #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
     Animate(host_tools::scenefile::AnimateArgs),
     /// Render a scene in fixed point and in floating point and write the difference image.
+    #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
     Compare(host_tools::scenefile::CompareArgs),
     /// Sweep the accuracy knobs against an f64 reference and write docs/ACCURACY.md and its plot.
     #[command(
@@ -97,6 +102,8 @@ fn main() -> ExitCode {
         })
         .map_err(Into::into),
         Command::Convert(args) => host_tools::convert::run(&args),
+        #[cfg(feature = "view")]
+        Command::View(args) => host_tools::view::run(&args),
         Command::Render(args) => host_tools::scenefile::render(&args),
         Command::Animate(args) => host_tools::scenefile::animate(&args),
         Command::Compare(args) => host_tools::scenefile::compare(&args),

@@ -275,3 +275,48 @@ fn animate_writes_the_frames() {
     pngs.dedup();
     assert_eq!(pngs.len(), 5, "some frames are identical");
 }
+
+/// `view`'s frames: a pose with no tilt is `render`'s picture, a tilt turns the meshes, and the
+/// stats count what the meshes drew.
+#[test]
+fn posed_frames_and_their_stats() {
+    use host_tools::scenefile::{load, render_image, render_posed, Pose};
+    use rasterizer_core::math::Angle;
+    let scene = load(&scenes_dir().join("suzanne_gouraud.toml")).unwrap();
+    let yaw = Angle::from_degrees(40);
+    let plain = render_image(&scene, yaw, 1).unwrap();
+    let pose = |pitch| Pose { yaw, pitch };
+    let (same, stats) = render_posed(&scene, pose(Angle(0)), 1).unwrap();
+    assert!(plain.as_image_buffer() == same.as_image_buffer());
+    assert!(stats.triangles > 300 && stats.triangles < 968, "{stats:?}");
+    // Every drawn triangle writes at least a pixel on average, and no more than the frame
+    // holds a few times over (overdraw).
+    let area = u64::from(scene.width) * u64::from(scene.height);
+    assert!(
+        stats.pixels > stats.triangles && stats.pixels < 4 * area,
+        "{stats:?}"
+    );
+    let (tilted, tilted_stats) = render_posed(&scene, pose(Angle::from_degrees(30)), 1).unwrap();
+    assert!(tilted.as_image_buffer() != same.as_image_buffer());
+    assert!(tilted_stats.triangles > 300, "{tilted_stats:?}");
+}
+
+/// The help of the scene commands says where the format is described and the ranges allowed.
+#[test]
+fn scene_help_names_the_format_and_the_ranges() {
+    let doc = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/SCENES.md");
+    assert!(doc.is_file(), "{}", doc.display());
+    for (cmd, ranges) in [
+        ("render", &["1 ..= 16", "4096 x 4096"][..]),
+        ("animate", &["1 ..= 16", "1 ..= 720", "4096 x 4096"][..]),
+        ("compare", &["4096 x 4096"][..]),
+    ] {
+        let out = bin().args([cmd, "--help"]).output().unwrap();
+        let (stdout, _) = text(&out);
+        assert!(out.status.success(), "{cmd}");
+        assert!(stdout.contains("docs/SCENES.md"), "{cmd} --help: {stdout}");
+        for r in ranges {
+            assert!(stdout.contains(r), "{cmd} --help lacks {r}: {stdout}");
+        }
+    }
+}

@@ -30,39 +30,82 @@ use rasterizer_core::{
 };
 use std::convert::Infallible;
 
+use super::counting::Counting;
+
 /// Renders the whole scene (meshes in 16.16, then shapes) in its pixel format and returns the
 /// simulator's RGB output image at `scale`. `turn` rotates every mesh about the world's Y axis.
 ///
 /// # Errors
 /// A message for the `error:` line (a pipeline that could not be set up).
 pub fn render_image(scene: &Scene, turn: Angle, scale: u32) -> Result<OutputImage<Rgb888>, String> {
+    let pose = Pose {
+        yaw: turn,
+        pitch: Angle(0),
+    };
+    Ok(render_posed(scene, pose, scale)?.0)
+}
+
+/// How the meshes are turned: about the world's Y axis, then about its X axis.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Pose {
+    /// The turn about Y.
+    pub yaw: Angle,
+    /// The tilt about X, after the turn.
+    pub pitch: Angle,
+}
+
+/// What drawing the meshes of a frame did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    /// Triangles handed to the rasterizer.
+    pub triangles: u64,
+    /// Pixels the meshes wrote (a pixel written twice counts twice).
+    pub pixels: u64,
+}
+
+/// [`render_image`] with the meshes in any pose, and what drawing them did.
+///
+/// # Errors
+/// As [`render_image`].
+pub fn render_posed(
+    scene: &Scene,
+    pose: Pose,
+    scale: u32,
+) -> Result<(OutputImage<Rgb888>, FrameStats), String> {
     let settings = OutputSettingsBuilder::new().scale(scale).build();
     Ok(match scene.format {
-        PixelFormat::Rgb565 => {
-            render_display::<Rgb565>(scene, turn)?.to_rgb_output_image(&settings)
-        }
-        PixelFormat::Rgb888 => {
-            render_display::<Rgb888>(scene, turn)?.to_rgb_output_image(&settings)
-        }
-        PixelFormat::Gray8 => render_display::<Gray8>(scene, turn)?.to_rgb_output_image(&settings),
-        PixelFormat::Binary => {
-            render_display::<BinaryColor>(scene, turn)?.to_rgb_output_image(&settings)
-        }
+        PixelFormat::Rgb565 => output(render_display::<Rgb565>(scene, pose)?, &settings),
+        PixelFormat::Rgb888 => output(render_display::<Rgb888>(scene, pose)?, &settings),
+        PixelFormat::Gray8 => output(render_display::<Gray8>(scene, pose)?, &settings),
+        PixelFormat::Binary => output(render_display::<BinaryColor>(scene, pose)?, &settings),
     })
+}
+
+/// A display's output image at `settings`, with its stats.
+fn output<C>(
+    (display, stats): (SimulatorDisplay<C>, FrameStats),
+    settings: &embedded_graphics_simulator::OutputSettings,
+) -> (OutputImage<Rgb888>, FrameStats)
+where
+    C: PixelColor + Into<Rgb888>,
+{
+    (display.to_rgb_output_image(settings), stats)
 }
 
 /// The scene drawn onto a simulator display of colour `C`: the meshes into a
 /// `Framebuffer<Rgb888>` (the shaders produce `Rgb888` and convert each pixel to the target's
 /// colour in any case, so this gives the pixels a pipeline of colour `C` would), copied onto the
 /// display converted to `C`; then the shapes straight onto the display through `AnyTarget`.
-fn render_display<C>(scene: &Scene, turn: Angle) -> Result<SimulatorDisplay<C>, String>
+fn render_display<C>(scene: &Scene, pose: Pose) -> Result<(SimulatorDisplay<C>, FrameStats), String>
 where
     C: PixelColor + From<Rgb888> + Channels,
 {
     let size = Size::new(scene.width, scene.height);
     let mut display = SimulatorDisplay::with_default_color(size, C::from(scene.background));
+    let mut stats = FrameStats::default();
     if !scene.meshes.is_empty() {
-        let rgb = render_3d_pixels::<Fx16>(scene, turn)?;
+        let rgb;
+        (rgb, stats) = render_3d_pixels::<Fx16>(scene, pose)?;
         let w = scene.width as usize;
         let Ok(()) = display.draw_iter(
             rgb.into_iter()
@@ -71,7 +114,7 @@ where
         );
     }
     draw_shapes(scene, &mut display);
-    Ok(display)
+    Ok((display, stats))
 }
 
 /// Only the meshes, in the scalar `S`, onto an `Rgb888` display cleared to the background.
@@ -81,7 +124,7 @@ where
 pub fn render_3d<S: Real>(scene: &Scene) -> Result<SimulatorDisplay<Rgb888>, String> {
     let size = Size::new(scene.width, scene.height);
     let mut display = SimulatorDisplay::with_default_color(size, scene.background);
-    let rgb = render_3d_pixels::<S>(scene, Angle(0))?;
+    let (rgb, _) = render_3d_pixels::<S>(scene, Pose::default())?;
     let w = scene.width as usize;
     let Ok(()) = display.draw_iter(
         rgb.into_iter()
@@ -92,17 +135,27 @@ pub fn render_3d<S: Real>(scene: &Scene) -> Result<SimulatorDisplay<Rgb888>, Str
 }
 
 /// The meshes rendered in `S` into a framebuffer cleared to the background, row by row.
-fn render_3d_pixels<S: Real>(scene: &Scene, turn: Angle) -> Result<Vec<Rgb888>, String> {
+fn render_3d_pixels<S: Real>(
+    scene: &Scene,
+    pose: Pose,
+) -> Result<(Vec<Rgb888>, FrameStats), String> {
     let (w, h) = (scene.width, scene.height);
     let len = Framebuffer::<Rgb888>::required_len(w, h).ok_or("the output is too large")?;
     let mut bytes = vec![0u8; len];
-    let mut fb = Framebuffer::<Rgb888>::new(&mut bytes, w, h).map_err(|e| e.to_string())?;
-    let Ok(()) = fb.clear(scene.background);
-    draw_meshes::<S>(scene, &mut fb, turn)?;
-    Ok((0..h as i32)
+    let fb = Framebuffer::<Rgb888>::new(&mut bytes, w, h).map_err(|e| e.to_string())?;
+    let mut target = Counting::new(fb);
+    let Ok(()) = target.inner.clear(scene.background);
+    let triangles = draw_meshes::<S>(scene, &mut target, pose)?;
+    let stats = FrameStats {
+        triangles,
+        pixels: target.pixels,
+    };
+    let fb = &target.inner;
+    let rgb = (0..h as i32)
         .flat_map(|y| (0..w as i32).map(move |x| Point::new(x, y)))
         .map(|p| fb.pixel(p).unwrap_or(scene.background))
-        .collect())
+        .collect();
+    Ok((rgb, stats))
 }
 
 /// Any mesh source behind one type, so the pipelines are compiled once for all mesh kinds.
@@ -133,7 +186,7 @@ impl<S> MeshSource<S> for DynMesh<'_, S> {
 }
 
 /// The target every pipeline draws into.
-type Target<'a> = Framebuffer<'a, Rgb888>;
+type Target<'a> = Counting<Framebuffer<'a, Rgb888>>;
 
 /// A vector of `f64`s in `S`.
 fn v3<S: Real>(v: [f64; 3]) -> Vec3<S> {
@@ -147,24 +200,33 @@ fn degrees(d: f64) -> Angle {
 
 /// A mesh's model matrix (scale, rotate x, y, z, translate, then the turntable's turn about Y)
 /// and, for a non-uniform scale, the matrix for its normals.
-fn model_of<S: Real>(m: &SceneMesh, turn: Angle) -> (Mat4<S>, Option<Mat4<S>>) {
+fn model_of<S: Real>(m: &SceneMesh, pose: Pose) -> (Mat4<S>, Option<Mat4<S>>) {
+    // A tilt of zero adds no matrix: the turntable's pictures stay as they were.
+    let turn = |m: Mat4<S>| {
+        let m = m.then(&Mat4::rotation_y(pose.yaw));
+        if pose.pitch == Angle(0) {
+            m
+        } else {
+            m.then(&Mat4::rotation_x(pose.pitch))
+        }
+    };
     let [sx, sy, sz] = m.scale;
     let rotation = Mat4::rotation_x(degrees(m.rotate[0]))
         .then(&Mat4::rotation_y(degrees(m.rotate[1])))
         .then(&Mat4::rotation_z(degrees(m.rotate[2])));
     let model = Mat4::scale(S::from_f64(sx), S::from_f64(sy), S::from_f64(sz))
         .then(&rotation)
-        .then(&Mat4::translation(v3(m.translate)))
-        .then(&Mat4::rotation_y(turn));
+        .then(&Mat4::translation(v3(m.translate)));
+    let model = turn(model);
     let normal = (sx != sy || sy != sz).then(|| {
         // The inverse transpose of scale-then-rotate is the inverse scale, then the rotation.
-        Mat4::scale(
+        let normal = Mat4::scale(
             S::from_f64(1.0 / sx),
             S::from_f64(1.0 / sy),
             S::from_f64(1.0 / sz),
         )
-        .then(&rotation)
-        .then(&Mat4::rotation_y(turn))
+        .then(&rotation);
+        turn(normal)
     });
     (model, normal)
 }
@@ -179,7 +241,8 @@ struct Job<'a, S: Real> {
 }
 
 /// The meshes, in order, sharing one depth buffer.
-fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, turn: Angle) -> Result<(), String> {
+/// Returns the triangles handed to the rasterizer.
+fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> Result<u64, String> {
     let cam = &scene.camera;
     let (w, h) = (scene.width, scene.height);
     let view = Mat4::look_at(v3::<S>(cam.eye), v3(cam.target), v3(cam.up)).ok_or_else(|| {
@@ -203,8 +266,9 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, turn: Angle) -> 
         )
     })?;
     let mut zbuf = vec![u16::MAX; w as usize * h as usize];
+    let mut triangles = 0;
     for mesh in &scene.meshes {
-        let (model, normal_matrix) = model_of::<S>(mesh, turn);
+        let (model, normal_matrix) = model_of::<S>(mesh, pose);
         let mut lighting = Lighting::new(mesh.material, scene.ambient, scene.specular, v3(cam.eye));
         for light in &scene.lights {
             let light = match light {
@@ -239,15 +303,16 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, turn: Angle) -> 
         match &mesh.data {
             MeshData::Packed(bytes) => {
                 let packed = PackedMesh::parse(bytes).map_err(|e| e.to_string())?;
-                by_cull(target, &DynMesh(&packed), &job, &mut zbuf);
+                triangles += u64::from(by_cull(target, &DynMesh(&packed), &job, &mut zbuf).drawn);
             }
             MeshData::Owned(owned) => {
                 let data = Converted::<S>::new(owned);
-                by_cull(target, &DynMesh(&data.mesh()), &job, &mut zbuf);
+                let mesh = DynMesh(&data.mesh());
+                triangles += u64::from(by_cull(target, &mesh, &job, &mut zbuf).drawn);
             }
         }
     }
-    Ok(())
+    Ok(triangles)
 }
 
 /// An [`OwnedMesh`] in the scalar `S`.
@@ -282,7 +347,12 @@ impl<S: Real> Converted<S> {
 }
 
 /// Picks the culling stage.
-fn by_cull<S: Real, M>(target: &mut Target<'_>, mesh: &M, job: &Job<'_, S>, zbuf: &mut [u16])
+fn by_cull<S: Real, M>(
+    target: &mut Target<'_>,
+    mesh: &M,
+    job: &Job<'_, S>,
+    zbuf: &mut [u16],
+) -> RenderStats
 where
     M: MeshSource<S>,
 {
@@ -300,7 +370,8 @@ fn by_depth<S: Real, M, C: Cull>(
     job: &Job<'_, S>,
     zbuf: &mut [u16],
     cull: C,
-) where
+) -> RenderStats
+where
     M: MeshSource<S>,
 {
     if job.mesh.wireframe {
@@ -313,17 +384,18 @@ fn by_depth<S: Real, M, C: Cull>(
             Unlit { color },
         );
         let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
-        let Ok(_) = p.draw_wireframe(target, mesh, &mut scratch, color);
-        return;
+        let Ok(stats) = p.draw_wireframe(target, mesh, &mut scratch, color);
+        return stats;
     }
     if job.mesh.depth {
         let (w, h) = (job.viewport.width, job.viewport.height);
         // The buffer has exactly w * h entries, so this cannot fail.
-        if let Ok(depth) = DepthBuffer::new(zbuf, w, h, Compare::Less) {
-            by_shading(target, mesh, job, cull, depth);
+        match DepthBuffer::new(zbuf, w, h, Compare::Less) {
+            Ok(depth) => by_shading(target, mesh, job, cull, depth),
+            Err(_) => RenderStats::default(),
         }
     } else {
-        by_shading(target, mesh, job, cull, NoDepth);
+        by_shading(target, mesh, job, cull, NoDepth)
     }
 }
 

@@ -1,121 +1,16 @@
 //! Scene files and the `render`, `animate` and `compare` commands.
 //!
-//! A scene file is TOML. It names the output, an optional camera, lights and meshes for the 3D
-//! part, and 2D shapes drawn on top. Unknown keys and bad values are errors that name the file
-//! and the line. Every table but `[output]` is optional. The meshes are drawn first, in order,
-//! sharing one depth buffer; then the shapes, in order.
-//!
-//! ```toml
-//! [output]
-//! width = 320                # 1 ..= 4096 display pixels (see Limits below)
-//! height = 240
-//! format = "rgb565"          # rgb565 | rgb888 (default) | gray8 | binary
-//! background = [14, 16, 26]  # [r, g, b] or "#0e101a"; default black
-//! scale = 2                  # PNG pixels per display pixel (1 ..= 16), `--scale` overrides
-//!
-//! [camera]                   # these are the defaults
-//! eye = [0.0, 0.0, 3.0]
-//! target = [0.0, 0.0, 0.0]
-//! up = [0.0, 1.0, 0.0]
-//! fov = 60.0                 # vertical, degrees
-//! near = 0.1
-//! far = 100.0
-//!
-//! [render]                   # the 3D stages; a mesh may override the first five
-//! wireframe = false          # true: Pipeline::draw_wireframe in the mesh's colour (no depth test)
-//! shading = "gouraud"        # none | vertex_colors | flat | gouraud | phong
-//! depth = true               # a 16-bit depth buffer (Compare::Less)
-//! cull = "cw"                # none | cw (drop clockwise = back faces of CCW meshes) | ccw
-//! perspective_correct = false
-//! specular = "blinn_phong"   # none | phong | blinn_phong
-//! ambient = [255, 255, 255]  # ambient light colour
-//!
-//! [[lights]]                 # at most 4
-//! kind = "directional"       # directional: `direction` towards the light
-//! direction = [1.0, 1.0, 1.0]
-//! color = [255, 255, 255]
-//!
-//! [[lights]]
-//! kind = "point"             # point: `position` in world space, no attenuation
-//! position = [0.0, 2.0, 2.0]
-//! color = "#406080"
-//!
-//! [[meshes]]
-//! path = "../models/suzanne.obj"  # relative to this file: OBJ, or a packed .rmsh blob
-//! fit_unit_sphere = false    # centre the bounding box, scale into the unit sphere
-//! normals = "auto"           # auto (file's if usable, else smooth) | file | smooth | face
-//! vertex_colors = "file"     # file | position | normal (generated, for vertex_colors shading)
-//! scale = 1.0                # or [x, y, z]
-//! rotate = [0.0, 30.0, 0.0]  # degrees about x, then y, then z
-//! translate = [0.0, 0.0, 0.0]
-//! color = [220, 140, 80]     # unlit/wireframe colour and the material's default
-//! material = { ambient = [44, 28, 16], diffuse = [220, 140, 80], specular = [255, 255, 255], shininess = 16 }
-//! shading = "phong"          # overrides [render]; also wireframe, depth, cull, perspective_correct
-//!
-//! [[shapes]]                 # 2D, pixel coordinates, x right, y down
-//! kind = "line"              # point | line | triangle | outline | polygon
-//! from = [10.0, 10.0]
-//! to = [100.5, 40.25]
-//! colors = [[255, 0, 0], [0, 0, 255]]  # a gradient; or `color = ...` for one colour
-//! clip = [0, 0, 160, 120]    # optional: draw only inside [x, y, width, height]
-//!
-//! [[shapes]]
-//! kind = "polygon"
-//! vertices = [[20.0, 200.0], [60.0, 150.5], [100.0, 200.0], [60.0, 180.0]]
-//! fill_rule = "non_zero"     # even_odd (default) | non_zero
-//! color = [80, 200, 120]
-//! ```
-//!
-//! Points, lines and outlines light the pixel containing each coordinate (pixel `(x, y)` covers
-//! `[x, x + 1) x [y, y + 1)`); filled triangles and polygons take sub-pixel vertices, rounded to
-//! 1/16 pixel (28.4 fixed point), and sample pixel centres. A triangle takes `color` (flat) or
-//! `colors` (three, Gouraud); an outline `color`; a point `at` and `color`.
-//!
-//! # Limits
-//!
-//! The geometry runs in 16.16 fixed point (±32768 in steps of 1/65536), which saturates rather
-//! than fails, so the loader refuses any value that would leave its range, naming the file, the
-//! line, the key, the value and the allowed range (see [`limits`]). The checks come after
-//! `fit_unit_sphere`, so a model with huge coordinates loads when it is fitted.
-//!
-//! | what | allowed |
-//! |---|---|
-//! | `[output]` `width`, `height` | 1 ..= 4096 ([`MAX_SIZE`]) |
-//! | output image after scaling | at most 16,777,216 pixels ([`MAX_OUTPUT_PIXELS`], 4096 x 4096); `compare`'s is three panels wide |
-//! | `animate --frames` | 1 ..= 720 ([`MAX_FRAMES`]); a GIF frame at most 65535 pixels a side |
-//! | `eye`, `target`, `up`, light `position` and `direction` | each component within ±8192 ([`limits::MAX_COORD`]) |
-//! | `eye` to `target`; `up`, a light `direction` | at least 1/256 long; `up` at least 0.45° off the view direction |
-//! | `fov` | 1 ..= 179 degrees |
-//! | `near`, `far` | 1/8192 <= near < far <= 16384 |
-//! | mesh `scale` | each factor's magnitude 1/1024 ..= 8192 |
-//! | mesh `translate` | each component within ±8192 |
-//! | a mesh's model-space vertices (after `fit_unit_sphere`) | within ±32767, the box's largest side at least 1/256 |
-//! | a mesh after scale and translate | within 8192 of the origin |
-//! | clip space (mesh and camera together) | within ±16384 ([`limits::MAX_CLIP`]) for any turn of `animate` |
-//! | filled `triangle`, `polygon` vertices | within ±2,097,152 px (the core's `GUARD_BAND_PIXELS`) |
-//! | `point`, `line`, `outline` coordinates | whole `i32` pixels |
-//!
-//! Memory: one image is rendered at a time and streamed through the encoder into the output
-//! file (GIF frames one by one, PNG sequences file by file), so the peak does not grow with the
-//! number of frames: at most about 12.5 bytes per output pixel, so about 210 MB at the limit.
-//! Measured (maximum resident set size, release build): 186 MB to render a 4096 x 4096 scene, 203
-//! MB to animate it into a GIF, 134 MB for a GIF of a 1024 x 1024 scene at scale 4; 15 MB for a
-//! GIF of a 320 x 240 scene at scale 4 with 36, 144 or 720 frames. [`LIMITS_HELP`], which
-//! `render --help` and `animate --help` show, says the same.
-//!
-//! Meshes are drawn through `rasterizer_core::pipeline::Pipeline`, whose type is chosen from the
-//! stages asked for (culling × depth × shading × perspective), so a stage that is off is not in
-//! the code that runs. Lit shading uses the mesh's material, the lights, the ambient light and the
-//! camera's eye. Everything before the pipeline (parsing, mesh preparation) uses `f64` on the host;
-//! the geometry runs in 16.16 (`compare` also runs it in `f32` and `f64`).
+#![doc = include_str!("../../../docs/SCENES.md")]
 
+mod counting;
 mod draw;
 mod format;
 pub mod limits;
 mod load;
 mod reference;
 
-pub use draw::{render_3d, render_image};
+pub use counting::Counting;
+pub use draw::{render_3d, render_image, render_posed, FrameStats, Pose};
 pub use format::{
     Camera, Color, CullMode, FillRuleDef, LightDef, MaterialDef, MeshDef, NormalsMode, Output,
     PixelFormat, RenderOptions, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel,
@@ -147,7 +42,7 @@ pub struct RenderArgs {
     /// The PNG to write.
     #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
-    /// PNG pixels per display pixel (default: the scene's `output.scale`).
+    /// PNG pixels per display pixel, 1 ..= 16 (default: the scene's `output.scale`).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub scale: Option<u32>,
 }
@@ -161,13 +56,13 @@ pub struct AnimateArgs {
     /// derived from (`out.gif` gives `out_000.png`, `out_001.png`, ...).
     #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
-    /// Frames in one full turn (at most 720).
+    /// Frames in one full turn, 1 ..= 720.
     #[arg(long, value_name = "N", default_value_t = 36, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_FRAMES)))]
     pub frames: u32,
     /// Write numbered PNG files instead of a GIF.
     #[arg(long)]
     pub png_sequence: bool,
-    /// PNG pixels per display pixel (default: the scene's `output.scale`).
+    /// PNG pixels per display pixel, 1 ..= 16 (default: the scene's `output.scale`).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub scale: Option<u32>,
     /// Time per GIF frame in milliseconds (default: one turn in 3 s, at least 20 ms per frame).
@@ -195,7 +90,7 @@ pub struct CompareArgs {
     /// What the difference image compares 16.16 with (all pairs are printed either way).
     #[arg(long, value_enum, default_value = "f32")]
     pub reference: Reference,
-    /// PNG pixels per display pixel (default: the scene's `output.scale`).
+    /// PNG pixels per display pixel, 1 ..= 16 (default: the scene's `output.scale`).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub scale: Option<u32>,
 }
@@ -213,7 +108,9 @@ pub const MAX_FRAMES: u32 = 720;
 pub const MAX_GIF_SIDE: u32 = u16::MAX as u32;
 
 /// The limits and the memory they bound, shown by `render --help` and `animate --help`.
-pub const LIMITS_HELP: &str = "Limits: scenes are at most 4096 x 4096 display pixels; an output \
+pub const LIMITS_HELP: &str = "Scene files: the format and every allowed value are in docs/SCENES.md; \
+    examples are in assets/scenes/.\n\n\
+    Limits: scenes are at most 4096 x 4096 display pixels; an output \
     image is at most 16777216 pixels (4096 x 4096) after scaling, so a 4096 x 4096 scene renders \
     at scale 1 and a 1024 x 1024 one at up to scale 4; animate makes at most 720 frames, and a GIF \
     frame is at most 65535 pixels wide and tall. A request beyond a limit is refused before \

@@ -1,0 +1,151 @@
+//! `view`: a scene file in a live SDL2 window, rendered again every frame.
+//!
+//! Each frame is the same picture `render` writes (the embedded-graphics simulator's display and
+//! output settings), shown in a window of this module's own: the simulator's `Window` cannot
+//! change its title, and the title carries the frame time, the triangles drawn and the pixels the
+//! meshes wrote. Left and right arrows (or dragging with the mouse) turn the meshes about the
+//! vertical axis, up and down tilt them; Escape or Q closes the window.
+
+use crate::scenefile::{load, render_posed, Pose};
+use rasterizer_core::math::Angle;
+use sdl2::event::Event;
+use sdl2::keyboard::Keycode;
+use sdl2::pixels::PixelFormatEnum;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// Options of the `view` command.
+#[derive(Debug, clap::Args)]
+pub struct ViewArgs {
+    /// The scene file (format: docs/SCENES.md).
+    pub scene: PathBuf,
+    /// Window pixels per display pixel, 1 ..= 16 (default: the scene's `output.scale`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub scale: Option<u32>,
+    /// Close the window after this many frames (for scripts and tests; default: when closed).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: Option<u32>,
+    /// Write what the window shows, read back from it, to this PNG when it closes.
+    #[arg(long, value_name = "FILE")]
+    pub screenshot: Option<PathBuf>,
+}
+
+/// The turn of one arrow key press or one pixel of mouse drag, in 1/65536 turn.
+const KEY_STEP: i32 = 65536 / 72;
+const DRAG_STEP: i32 = 65536 / 720;
+
+/// Runs `view`.
+///
+/// # Errors
+/// A message for the `error:` line: the scene, SDL2 (no display, for example), or the screenshot.
+pub fn run(args: &ViewArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let scene = load(&args.scene)?;
+    let scale = args.scale.unwrap_or(scene.scale);
+    let name = args.scene.file_name().map_or_else(
+        || args.scene.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let sdl = sdl2::init()?;
+    let video = sdl.video()?;
+    let (mut yaw, mut pitch) = (0i32, 0i32);
+    let pose = |yaw: i32, pitch: i32| Pose {
+        yaw: Angle(yaw.rem_euclid(65536) as u16),
+        pitch: Angle(pitch.rem_euclid(65536) as u16),
+    };
+    // The first frame fixes the window's size (the output image's, spacing included).
+    let (first, _) = render_posed(&scene, pose(0, 0), scale)?;
+    let first = first.as_image_buffer();
+    let (w, h) = (first.width(), first.height());
+    let window = video
+        .window(&name, w, h)
+        .position_centered()
+        .build()
+        .map_err(|e| e.to_string())?;
+    let mut canvas = window
+        .into_canvas()
+        .software()
+        .build()
+        .map_err(|e| e.to_string())?;
+    let creator = canvas.texture_creator();
+    let mut texture = creator
+        .create_texture_streaming(PixelFormatEnum::RGB24, w, h)
+        .map_err(|e| e.to_string())?;
+    let mut events = sdl.event_pump()?;
+    let mut frame = 0u32;
+    let mut dragging = false;
+    'frames: loop {
+        for event in events.poll_iter() {
+            match event {
+                Event::Quit { .. }
+                | Event::KeyDown {
+                    keycode: Some(Keycode::Escape | Keycode::Q),
+                    ..
+                } => break 'frames,
+                Event::KeyDown {
+                    keycode: Some(key), ..
+                } => match key {
+                    Keycode::Left => yaw -= KEY_STEP,
+                    Keycode::Right => yaw += KEY_STEP,
+                    Keycode::Up => pitch -= KEY_STEP,
+                    Keycode::Down => pitch += KEY_STEP,
+                    _ => {}
+                },
+                Event::MouseButtonDown { .. } => dragging = true,
+                Event::MouseButtonUp { .. } => dragging = false,
+                Event::MouseMotion { xrel, yrel, .. } if dragging => {
+                    yaw += xrel * DRAG_STEP;
+                    pitch += yrel * DRAG_STEP;
+                }
+                _ => {}
+            }
+        }
+        let start = Instant::now();
+        let (image, stats) = render_posed(&scene, pose(yaw, pitch), scale)?;
+        let took = start.elapsed();
+        let pixels = image.as_image_buffer();
+        texture
+            .update(None, pixels.as_raw(), w as usize * 3)
+            .map_err(|e| e.to_string())?;
+        canvas.copy(&texture, None, None)?;
+        canvas.present();
+        canvas
+            .window_mut()
+            .set_title(&title(&name, took, stats.triangles, stats.pixels))?;
+        frame += 1;
+        if args.frames.is_some_and(|n| frame >= n) {
+            break;
+        }
+        // Rendering is the work; a short pause keeps an idle window from using a whole core.
+        std::thread::sleep(Duration::from_millis(4));
+    }
+    if let Some(path) = &args.screenshot {
+        let shot = canvas.read_pixels(None, PixelFormatEnum::RGB24)?;
+        if shot.len() != w as usize * h as usize * 3 {
+            return Err("the window's pixels have another size than the picture".into());
+        }
+        crate::output::write_png(path, &[args.scene.as_path()], w, h, &shot)?;
+    }
+    Ok(())
+}
+
+/// The window title: what the frame cost and did.
+fn title(name: &str, took: Duration, triangles: u64, pixels: u64) -> String {
+    format!(
+        "{name} | {:.1} ms | {triangles} triangles drawn | {pixels} pixels written",
+        took.as_secs_f64() * 1000.0
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_title_names_time_triangles_and_pixels() {
+        let t = title("m.toml", Duration::from_micros(12_345), 609, 14_773);
+        assert_eq!(
+            t,
+            "m.toml | 12.3 ms | 609 triangles drawn | 14773 pixels written"
+        );
+    }
+}
