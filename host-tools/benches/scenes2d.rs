@@ -11,7 +11,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use fixtures::scenes::{self, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
-use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::prelude::*;
 use std::hint::black_box;
 
 fn lines(c: &mut Criterion, fb: &mut Framebuffer<Rgb565>, l1: &[LineSeg]) {

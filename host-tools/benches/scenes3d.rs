@@ -27,12 +27,8 @@ use embedded_graphics::prelude::*;
 use euc3d::EucScene;
 use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
 use fixtures::scenes3d::{lighting, transforms, Scene, DIFFUSE};
-use rasterizer_core::cull::CullClockwise;
-use rasterizer_core::depth::{Compare, DepthBuffer};
-use rasterizer_core::math::Fx16;
-use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Viewport};
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 

@@ -21,7 +21,7 @@ mod eg;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use fixtures::scenes::{self, CountingTarget, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
-use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::prelude::*;
 use std::hint::black_box;
 use std::process::ExitCode;
 

@@ -62,15 +62,11 @@ use euc3d::{EucColor, EucDepth, EucScene};
 use fixtures::obj::LoadedMesh;
 use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
 use fixtures::scenes3d::{lighting, transforms, Scene, DIFFUSE};
-use rasterizer_core::cull::{Cull, CullClockwise, NoCull};
-use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::math::Fx16;
-use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    mesh::Mesh, pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::RenderStats,
-    pipeline::VertexSlot, transform::Viewport,
-};
+use rasterizer_core::cull::Cull;
+use rasterizer_core::depth::DepthTest;
+use rasterizer_core::pipeline::RenderStats;
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
 use std::hint::black_box;
 use std::path::Path;
 use std::process::ExitCode;

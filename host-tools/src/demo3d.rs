@@ -15,21 +15,10 @@ use crate::demo::{hsv, Display, SceneResult, BACKGROUND};
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::text::{Baseline, Text};
 use embedded_graphics::Drawable;
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Point, Size};
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::Pixel;
 use fixtures::obj::LoadedMesh;
 use fixtures::scenes3d::{lighting, transforms};
-use rasterizer_core::cull::{CullClockwise, CullCounterClockwise};
-use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
-use rasterizer_core::surface::{AnyTarget, Framebuffer};
-use rasterizer_core::{
-    mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
-    transform::Viewport,
-};
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
 use std::path::Path;
 
 /// Width of every 3D picture, in display pixels.

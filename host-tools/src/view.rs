@@ -7,7 +7,7 @@
 //! vertical axis, up and down tilt them; Escape or Q closes the window.
 
 use crate::scenefile::{load, render_posed, Pose};
-use rasterizer_core::math::Angle;
+use rasterizer_core::prelude::*;
 use sdl2::event::Event;
 use sdl2::keyboard::Keycode;
 use sdl2::pixels::PixelFormatEnum;

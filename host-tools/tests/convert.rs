@@ -2,7 +2,8 @@
 //! file and line and writes nothing, odd input warns and converts, and what is written reads back
 //! within the stated error.
 
-use rasterizer_core::mesh::{PackedMesh, FLAG_U32_INDICES};
+use rasterizer_core::mesh::FLAG_U32_INDICES;
+use rasterizer_core::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -1,20 +1,9 @@
 //! Every shared model converts and renders from its packed blob (the firmware's path), and a few
 //! match reference PNGs exactly (`UPDATE_REFERENCE=1` writes them).
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use embedded_graphics_core::prelude::*;
 use host_tools::convert::{convert_obj, Options};
-use rasterizer_core::cull::NoCull;
-use rasterizer_core::depth::{Compare, DepthBuffer};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::shade::GouraudLit;
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    mesh::MeshSource, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
-    transform::Viewport,
-};
+use rasterizer_core::mesh::MeshSource;
+use rasterizer_core::prelude::*;
 use std::path::{Path, PathBuf};
 
 const W: u32 = 160;

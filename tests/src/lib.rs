@@ -1,11 +1,8 @@
 //! Shared test helpers: a strict mock target and reference rasterizers written independently of
 //! `rasterizer-core` (exact integer or `i128` arithmetic, no Bresenham, no edge walking).
 
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
-use embedded_graphics_core::prelude::{PixelColor, PointsIter};
-use embedded_graphics_core::Pixel;
-use rasterizer_core::geom::SubPoint;
+use embedded_graphics_core::prelude::PointsIter;
+use rasterizer_core::prelude::*;
 
 pub mod packed;
 

@@ -1,6 +1,5 @@
 //! The convenience API: the prelude's constructors build exactly what the long forms build.
 
-use embedded_graphics_core::primitives::Rectangle;
 use rasterizer_core::depth::DepthBufferError;
 use rasterizer_core::numerics::{Divide, Numerics, Perspective, SpanStart, Standard};
 use rasterizer_core::pipeline::{BandError, DrawError, RenderStats};

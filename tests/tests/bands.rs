@@ -4,20 +4,13 @@
 //! and any number of bands.
 
 use embedded_graphics_core::pixelcolor::raw::RawU16;
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics_core::prelude::*;
-use embedded_graphics_core::primitives::Rectangle;
 use proptest::prelude::*;
-use rasterizer_core::cull::{CullClockwise, NoCull};
-use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::depth::DepthTest;
 use rasterizer_core::numerics::{Divide, Numerics, SpanStart, Standard};
-use rasterizer_core::shade::{GouraudLit, Shading, VertexColors};
-use rasterizer_core::surface::Framebuffer;
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
 use rasterizer_core::{
-    mesh::Mesh, mesh::MeshSource, pipeline::BandError, pipeline::Banding, pipeline::BinEntry,
-    pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot, pipeline::DEFAULT_BITS,
-    transform::Transforms, transform::Viewport,
+    mesh::MeshSource, pipeline::BandError, pipeline::RenderStats, pipeline::DEFAULT_BITS,
 };
 
 fn suzanne() -> fixtures::obj::LoadedMesh {

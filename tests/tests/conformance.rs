@@ -1,11 +1,7 @@
 //! Triangle coverage against Mesa's llvmpipe: every case in `tests/conformance/triangles` (copied from
 //! the team's shared conformance set) must be reproduced pixel for pixel.
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use embedded_graphics_core::prelude::*;
-use rasterizer_core::geom::SubPoint;
-use rasterizer_core::raster::triangle::fill_triangle;
-use rasterizer_core::surface::{AnyTarget, Framebuffer};
+use rasterizer_core::prelude::*;
 use serde_json::Value;
 use std::path::PathBuf;
 use tests::StrictMock;

@@ -1,17 +1,9 @@
 //! The `float` comparison backend: the same pipeline on `f32` (micromath) agrees with 16.16 and
 //! with f64 maths within stated bounds.
 
-use embedded_graphics_core::pixelcolor::Rgb888;
-use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
-use rasterizer_core::cull::CullClockwise;
-use rasterizer_core::depth::NoDepth;
-use rasterizer_core::math::{Angle, Fx16, Mat4, Scalar, Vec3};
-use rasterizer_core::shade::Unlit;
-use rasterizer_core::{
-    mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
-    transform::Viewport,
-};
+use rasterizer_core::math::Scalar;
+use rasterizer_core::prelude::*;
 
 fn transforms<S: Scalar>(yaw: u16, dist: i32, fov: i32) -> Transforms<S> {
     Transforms {

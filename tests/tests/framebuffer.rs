@@ -1,11 +1,9 @@
 //! The framebuffer targets: construction errors, every pixel format, span fast paths against the
 //! plain `draw_iter` path, and out-of-bounds input.
 
-use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::prelude::*;
-use embedded_graphics_core::primitives::Rectangle;
 use proptest::prelude::*;
-use rasterizer_core::surface::{Framebuffer, FramebufferError, Surface, MAX_DIMENSION};
+use rasterizer_core::prelude::*;
+use rasterizer_core::surface::{FramebufferError, MAX_DIMENSION};
 
 #[test]
 fn wrong_length_is_a_typed_error() {

@@ -1,12 +1,11 @@
 //! Phong and Blinn-Phong lighting against an f64 reference of the same formula, and the edge cases.
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use fixtures::reference3d::{lit, RefLight};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
-use rasterizer_core::math::{Fx, Fx16, Fx8, Vec3};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
+use rasterizer_core::math::{Fx, Fx8};
+use rasterizer_core::prelude::*;
 
 // ---------------------------------------------------------------------------------------------
 // The f64 reference.

@@ -1,15 +1,9 @@
 //! Lines, points and line clipping: ASCII patterns in every octant, properties against the
 //! independent reference in `tests::reference_line`, and the i32 limits.
 
-use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::prelude::*;
-use embedded_graphics_core::primitives::Rectangle;
 use proptest::prelude::*;
-use rasterizer_core::raster::point::draw_point;
-use rasterizer_core::surface::{AnyTarget, Framebuffer};
-use rasterizer_core::{
-    geom::line::Line, raster::line::draw_line, raster::line::draw_line_gradient,
-};
+use rasterizer_core::geom::line::Line;
+use rasterizer_core::prelude::*;
 use tests::{reference_line, StrictMock};
 
 fn line_mock(w: u32, h: u32, a: (i32, i32), b: (i32, i32)) -> StrictMock<BinaryColor> {

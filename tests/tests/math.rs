@@ -2,7 +2,8 @@
 
 use proptest::prelude::*;
 use rasterizer_core::math::trig::{sin_cos_table, Q30_ONE};
-use rasterizer_core::math::{Angle, Fx, Fx16, Fx24, Fx8, Mat4, Scalar, Vec3};
+use rasterizer_core::math::{Fx, Fx24, Fx8, Scalar};
+use rasterizer_core::prelude::*;
 
 fn f(x: Fx16) -> f64 {
     x.to_bits() as f64 / 65536.0

@@ -5,11 +5,10 @@
 //! property; `MESH_FUZZ_CASES=1000000 cargo test --release -p tests --test mesh_format` runs the
 //! long version (see the CHANGELOG for the last long run).
 
-use embedded_graphics_core::pixelcolor::RgbColor;
 use proptest::prelude::*;
-use rasterizer_core::math::{Fx16, Vec3};
+use rasterizer_core::mesh::MeshError;
 use rasterizer_core::mesh::MeshSource;
-use rasterizer_core::mesh::{MeshError, PackedMesh};
+use rasterizer_core::prelude::*;
 use tests::packed::{encode, Vert};
 
 fn cases(default: u32) -> u32 {

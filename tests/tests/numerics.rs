@@ -3,22 +3,12 @@
 //! fewer fractional bits within their stated error, and every choice keeps coverage unchanged
 //! (band renders equal to whole frames for every choice: `bands.rs`).
 
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
-use rasterizer_core::cull::CullClockwise;
-use rasterizer_core::geom::SubPoint;
-use rasterizer_core::math::{Fx, Fx16, Mat4, Vec4};
+use rasterizer_core::math::{Fx, Vec4};
 use rasterizer_core::numerics::{Divide, Numerics, SpanStart, Standard};
-use rasterizer_core::shade::{Shading, Unlit};
-use rasterizer_core::surface::{AnyTarget, Framebuffer};
-use rasterizer_core::{
-    depth::Compare, depth::DepthBuffer, raster::interp::fill_triangle_interp_with,
-    raster::interp::ScreenVertex,
-};
-use rasterizer_core::{
-    pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms, transform::Viewport,
-};
+use rasterizer_core::prelude::*;
+use rasterizer_core::raster::interp::{fill_triangle_interp_with, ScreenVertex};
+use rasterizer_core::shade::Shading;
 
 /// Exact division and exact span starts: what the other knobs are measured against. (`Standard`
 /// starts spans with the pipeline's wrapping planes; `fill_triangle_interp_with` treats that as

@@ -1,13 +1,8 @@
 //! Perspective-correct interpolation against the exact f64 formula, and its difference from
 //! affine interpolation on a triangle that recedes in depth.
 
-use embedded_graphics_core::pixelcolor::Rgb888;
-use embedded_graphics_core::prelude::*;
-use rasterizer_core::geom::SubPoint;
-use rasterizer_core::surface::AnyTarget;
-use rasterizer_core::{
-    depth::NoDepth, raster::interp::fill_triangle_interp, raster::interp::ScreenVertex,
-};
+use rasterizer_core::prelude::*;
+use rasterizer_core::raster::interp::{fill_triangle_interp, ScreenVertex};
 use std::cell::RefCell;
 use tests::StrictMock;
 

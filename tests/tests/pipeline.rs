@@ -1,7 +1,6 @@
 //! The 3D pipeline against an independent `f64` reference (`fixtures::reference3d`): projection
 //! accuracy, hard clipping cases, depth-test order invariance and whole-mesh renders.
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use fixtures::obj::LoadedMesh;
 use fixtures::reference3d::{
     self as r, color_id, f, f3, fx, FaceIds, FaceMesh, RefCull, RefRender, M4, V3,
@@ -9,15 +8,10 @@ use fixtures::reference3d::{
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
-use rasterizer_core::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
-use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::shade::Unlit;
-use rasterizer_core::surface::AnyTarget;
-use rasterizer_core::{
-    mesh::MeshSource, pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot,
-    transform::Transforms, transform::Viewport,
-};
+use rasterizer_core::cull::Cull;
+use rasterizer_core::depth::DepthTest;
+use rasterizer_core::prelude::*;
+use rasterizer_core::{mesh::MeshSource, pipeline::RenderStats};
 use tests::StrictMock;
 
 const W: u32 = 320;

@@ -4,20 +4,13 @@
 //! space, in the filled, wireframe and banded paths.
 
 use embedded_graphics_core::pixelcolor::raw::RawU16;
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
-use rasterizer_core::cull::{Cull, CullClockwise, NoCull};
-use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
+use rasterizer_core::cull::Cull;
+use rasterizer_core::depth::DepthTest;
 use rasterizer_core::numerics::{Numerics, Perspective, Standard};
-use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
-use rasterizer_core::shade::{Light, Lighting, Material, Specular};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    mesh::Mesh, pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::RenderStats,
-    pipeline::VertexSlot, transform::Transforms, transform::Viewport,
-};
+use rasterizer_core::pipeline::RenderStats;
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
 
 /// A closed, smooth mesh: an octahedron subdivided twice and pushed out to the unit sphere.
 fn sphere() -> (Vec<Vec3<Fx16>>, Vec<[u16; 3]>) {

@@ -1,18 +1,11 @@
 //! Polygon fill: ASCII patterns, an independent winding-number reference, agreement with the
 //! triangle fill, and hard cases (degenerate, huge, outside the guard band, too many vertices).
 
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Dimensions, Point, Size};
-use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use embedded_graphics_core::primitives::{PointsIter, Rectangle};
-use embedded_graphics_core::Pixel;
+use embedded_graphics_core::primitives::PointsIter;
 use proptest::prelude::*;
-use rasterizer_core::geom::{SubPoint, GUARD_BAND_PIXELS};
-use rasterizer_core::raster::polygon::{
-    fill_polygon, FillRule, Polygon, PolygonError, PolygonFillError,
-};
-use rasterizer_core::raster::triangle::fill_triangle;
-use rasterizer_core::surface::{AnyTarget, Framebuffer, Surface};
+use rasterizer_core::geom::GUARD_BAND_PIXELS;
+use rasterizer_core::prelude::*;
+use rasterizer_core::raster::polygon::{PolygonError, PolygonFillError};
 use std::collections::BTreeSet;
 
 const RULES: [FillRule; 2] = [FillRule::EvenOdd, FillRule::NonZero];

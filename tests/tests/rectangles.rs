@@ -3,26 +3,9 @@
 //! checks) and every primitive draws exactly its pixels inside the rectangle and the target, none
 //! outside.
 
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Dimensions, Point, Size};
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::primitives::Rectangle;
-use embedded_graphics_core::Pixel;
 use proptest::prelude::*;
-use rasterizer_core::cull::NoCull;
-use rasterizer_core::depth::NoDepth;
-use rasterizer_core::geom::SubPoint;
-use rasterizer_core::math::{Fx16, Mat4, Vec3};
-use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
-use rasterizer_core::raster::point::draw_point;
-use rasterizer_core::raster::polygon::{FillRule, Polygon};
-use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::shade::Unlit;
-use rasterizer_core::surface::{AnyTarget, Band, ClipTo, Framebuffer, Surface};
-use rasterizer_core::{
-    mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
-    transform::Viewport,
-};
+use rasterizer_core::prelude::*;
+use rasterizer_core::surface::{Band, ClipTo};
 use std::collections::BTreeSet;
 use tests::StrictMock;
 

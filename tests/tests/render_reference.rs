@@ -14,19 +14,10 @@
 //! `target/render-diff/<case>.png` (the reference dimmed to grey, differing pixels in magenta) and
 //! fails with the number of differing pixels.
 
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use fixtures::obj::LoadedMesh;
 use fixtures::scenes3d::{camera, lighting, DIFFUSE, ROTATION_Y_DEGREES};
-use rasterizer_core::cull::CullClockwise;
-use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
-use rasterizer_core::math::{Angle, Fx16, Mat4};
-use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    mesh::Mesh, pipeline::Pipeline, pipeline::VertexSlot, transform::Transforms,
-    transform::Viewport,
-};
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
 use std::fs::File;
 use std::io::{BufReader, BufWriter};
 use std::path::{Path, PathBuf};

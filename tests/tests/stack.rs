@@ -43,22 +43,11 @@
 
 use core::hint::black_box;
 use core::mem::size_of;
-use embedded_graphics_core::pixelcolor::Rgb565;
-use embedded_graphics_core::prelude::*;
-use rasterizer_core::cull::{Cull, CullClockwise, NoCull};
-use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::geom::SubPoint;
-use rasterizer_core::math::Fx16;
-use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::raster::line::draw_line;
-use rasterizer_core::raster::polygon::{FillRule, Polygon};
-use rasterizer_core::raster::triangle::{fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    pipeline::BandError, pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline,
-    pipeline::RenderStats, pipeline::VertexSlot, transform::Viewport,
-};
+use rasterizer_core::cull::Cull;
+use rasterizer_core::depth::DepthTest;
+use rasterizer_core::pipeline::{BandError, RenderStats};
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
 
 /// The stack of each measuring thread.
 const THREAD_STACK: usize = 4 << 20;

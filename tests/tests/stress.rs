@@ -6,16 +6,8 @@
 //! just beyond the near plane (15/16 px); most differences are far closer (counted).
 //! `STRESS_SCENES` sets the count (CI: 1,000).
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use fixtures::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
-use rasterizer_core::cull::NoCull;
-use rasterizer_core::depth::{Compare, DepthBuffer};
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    pipeline::Banding, pipeline::BinEntry, pipeline::Pipeline, pipeline::VertexSlot,
-    transform::Transforms, transform::Viewport,
-};
+use rasterizer_core::prelude::*;
 
 /// Depths this close (in 1/65,535 of the depth range) are a tie: random soups have triangles that
 /// cut through each other, and along those lines the nearer one is decided by the vertex depths'

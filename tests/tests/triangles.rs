@@ -1,15 +1,10 @@
 //! Triangles: outline and fill patterns, coverage against the independent edge-function reference,
 //! watertightness of fans, grids and strips, Gouraud colour, and the hard cases by name.
 
-use embedded_graphics_core::pixelcolor::{BinaryColor, Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::prelude::*;
 use proptest::prelude::*;
-use rasterizer_core::geom::{SubPoint, GUARD_BAND_PIXELS};
-use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::surface::{AnyTarget, Framebuffer};
-use rasterizer_core::{
-    depth::NoDepth, raster::interp::fill_triangle_interp, raster::interp::ScreenVertex,
-};
+use rasterizer_core::geom::GUARD_BAND_PIXELS;
+use rasterizer_core::prelude::*;
+use rasterizer_core::raster::interp::{fill_triangle_interp, ScreenVertex};
 use std::collections::BTreeSet;
 use tests::{reference_triangle, StrictMock};
 

@@ -29,15 +29,13 @@
 //!   barycentric weights (one division per pixel), edges are inclusive (no top-left rule, shared
 //!   edges are drawn twice), and the colour is interpolated perspective-correctly (ours affinely).
 
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::prelude::IntoStorage;
 use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingEnabled, Triangles};
 use euc::{Pipeline, Target};
 use fixtures::obj::LoadedMesh;
 use fixtures::scenes::{HEIGHT, WIDTH};
 use fixtures::scenes3d;
-use rasterizer_core::math::{Fx16, Vec3};
+use rasterizer_core::prelude::*;
 
 /// euc's colour buffer: one Rgb565 word per pixel.
 pub type EucColor = Buffer2d<u16>;

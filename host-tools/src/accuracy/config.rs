@@ -8,19 +8,12 @@
 use super::metrics::{image_errors, vertex_errors, Errors};
 use super::scene::{lighting, transforms, vec_s, Prepared, SceneDef};
 use crate::scenefile::F64;
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::prelude::DrawTarget;
 use fixtures::reference3d::{color_id, id_color, FaceIds};
-use rasterizer_core::cull::{Cull, CullClockwise};
-use rasterizer_core::depth::{Compare, DepthBuffer, NoDepth};
-use rasterizer_core::math::{Fx16, Fx24, Fx8, Scalar, Vec3};
+use rasterizer_core::cull::Cull;
+use rasterizer_core::math::{Fx24, Fx8, Scalar};
 use rasterizer_core::numerics::{Divide, Numerics, SpanStart};
-use rasterizer_core::shade::{GouraudLit, Unlit};
-use rasterizer_core::surface::Framebuffer;
-use rasterizer_core::{
-    mesh::Mesh, pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot,
-    transform::Viewport,
-};
+use rasterizer_core::pipeline::RenderStats;
+use rasterizer_core::prelude::*;
 use std::hint::black_box;
 
 /// A geometry format with its name in the report.

@@ -2,16 +2,14 @@
 //! into the `f64` reference (matrices, lit vertex colours, the reference render) and into any
 //! pipeline format, so both sides start from the same parameters.
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use fixtures::obj::LoadedMesh;
 use fixtures::reference3d::{self as r, RefCull, RefLight, RefRender, M4, V3};
 use fixtures::scenes::XorShift32;
 use fixtures::scenes3d::{
     material, EYE, FAR, FOV_Y_DEGREES, LIGHT_DIRECTION, NEAR, ROTATION_Y_DEGREES,
 };
-use rasterizer_core::math::{Angle, Fx16, Mat4, Scalar, Vec3};
-use rasterizer_core::shade::{Light, Lighting, Specular};
-use rasterizer_core::transform::Transforms;
+use rasterizer_core::math::Scalar;
+use rasterizer_core::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The camera and model placement of a scene, every angle in the pipeline's angle unit so that

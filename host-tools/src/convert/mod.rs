@@ -24,7 +24,8 @@ pub use rust_source::{bytes_from_rust_source, is_rust_identifier, rust_source, s
 use fixtures::obj::{normalize, Progress as _};
 use fixtures::vec64::{cross, dot, sub, V3 as P3};
 use indicatif::{ProgressBar, ProgressStyle};
-use rasterizer_core::mesh::{PackedMesh, MAX_COUNT};
+use rasterizer_core::mesh::MAX_COUNT;
+use rasterizer_core::prelude::*;
 use std::collections::HashMap;
 use std::fmt;
 use std::io::IsTerminal;

@@ -1,12 +1,9 @@
 //! A surface that counts the pixels written through it, for `view`'s title: it forwards every
 //! call to the surface it wraps, so the pixels are exactly those of the wrapped surface alone.
 
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::Dimensions;
-use embedded_graphics_core::primitives::Rectangle;
-use embedded_graphics_core::Pixel;
 use rasterizer_core::geom::line::LinePoints;
-use rasterizer_core::surface::{DepthSpan, Surface};
+use rasterizer_core::prelude::*;
+use rasterizer_core::surface::DepthSpan;
 
 /// `inner`, counting the pixels written (a pixel written twice counts twice).
 #[derive(Debug)]
@@ -140,8 +137,6 @@ impl<T: Surface> Surface for Counting<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-    use rasterizer_core::prelude::*;
 
     #[test]
     fn counts_what_the_wrapped_surface_draws() {

@@ -4,30 +4,15 @@ use super::format::{CullMode, FillRuleDef, LightDef, PixelFormat, ShadingModel, 
 use super::load::{MeshData, OwnedMesh, Scene, SceneMesh};
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Point, Size};
-use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, PixelColor, Rgb565, Rgb888};
-use embedded_graphics_core::primitives::Rectangle;
-use embedded_graphics_core::Pixel;
 use embedded_graphics_simulator::{OutputImage, OutputSettingsBuilder, SimulatorDisplay};
 use rasterizer_core::color::Channels;
-use rasterizer_core::cull::{Cull, CullClockwise, CullCounterClockwise, NoCull};
-use rasterizer_core::depth::{Compare, DepthBuffer, DepthTest, NoDepth};
-use rasterizer_core::geom::SubPoint;
-use rasterizer_core::math::{Angle, Fx16, Mat4, Vec3};
-use rasterizer_core::mesh::PackedMesh;
+use rasterizer_core::cull::Cull;
+use rasterizer_core::depth::DepthTest;
 use rasterizer_core::numerics::{Numerics, Perspective, Standard};
-use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
-use rasterizer_core::raster::point::draw_point;
-use rasterizer_core::raster::polygon::{FillRule, Polygon};
-use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::shade::{FlatLit, GouraudLit, PhongLit, Shading, Unlit, VertexColors};
-use rasterizer_core::shade::{Light, Lighting};
-use rasterizer_core::surface::{AnyTarget, ClipTo, Framebuffer, Surface};
-use rasterizer_core::{
-    mesh::Mesh, mesh::MeshSource, pipeline::Pipeline, pipeline::RenderStats, pipeline::VertexSlot,
-    transform::Transforms, transform::Viewport,
-};
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::Shading;
+use rasterizer_core::surface::ClipTo;
+use rasterizer_core::{mesh::MeshSource, pipeline::RenderStats};
 use std::convert::Infallible;
 
 use super::counting::Counting;

@@ -7,12 +7,10 @@ use super::format::{
 use super::limits;
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
-use embedded_graphics_core::pixelcolor::Rgb888;
 use fixtures::obj::RawMesh;
 use fixtures::vec64::{cross, norm, sub as sub3};
-use rasterizer_core::math::Fx16;
-use rasterizer_core::mesh::{PackedMesh, MAGIC};
-use rasterizer_core::shade::{Material, Specular};
+use rasterizer_core::mesh::MAGIC;
+use rasterizer_core::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

@@ -21,12 +21,10 @@ pub use reference::{Real, F64};
 
 use crate::outln;
 use crate::output::{encode_png, write_png, OutputFile};
-use embedded_graphics_core::geometry::Point;
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics_simulator::SimulatorDisplay;
 use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbImage, RgbaImage};
-use rasterizer_core::math::{Angle, Fx16};
+use rasterizer_core::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The most lights a scene may have.

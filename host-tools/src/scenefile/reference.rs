@@ -7,7 +7,8 @@
 //! the perspective divide is integer in every format, so all three share the rasterizer, the
 //! lighting's integer stages and the 16.16 interpolation of Phong's normals.
 
-use rasterizer_core::math::{Angle, Fx16, Scalar};
+use rasterizer_core::math::Scalar;
+use rasterizer_core::prelude::*;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A scalar the scene can be rendered in: [`Scalar`] plus a conversion from the scene's `f64`s.
