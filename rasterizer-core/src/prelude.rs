@@ -18,12 +18,14 @@ pub use crate::geom::SubPoint;
 pub use crate::math::{Angle, Fx16, Mat4, Vec3};
 pub use crate::mesh::{Mesh, PackedMesh};
 pub use crate::pipeline::{Banding, BinEntry, GouraudPipeline, Pipeline, VertexSlot};
-pub use crate::raster::line::{draw_line, draw_line_gradient};
+pub use crate::raster::line::{draw_line, draw_line_aa, draw_line_alpha, draw_line_gradient};
 pub use crate::raster::point::draw_point;
 pub use crate::raster::polygon::{fill_polygon, FillRule, Polygon};
-pub use crate::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
+pub use crate::raster::triangle::{
+    draw_triangle, fill_triangle, fill_triangle_alpha, fill_triangle_gouraud,
+};
 pub use crate::shade::{
     FlatLit, GouraudLit, Light, Lighting, Material, PhongLit, Specular, Unlit, VertexColors,
 };
-pub use crate::surface::{AnyTarget, Framebuffer, Surface};
+pub use crate::surface::{AnyTarget, BlendError, Framebuffer, Surface};
 pub use crate::transform::{Transforms, Viewport};

@@ -38,7 +38,14 @@ fn outcode(p: Point, r: &PixelRect) -> u8 {
 /// The first and last step of `line` whose pixel lies inside `area`, or `None` when none does.
 #[inline]
 pub(crate) fn clip_steps(line: &Line, area: &Rectangle) -> Option<(i64, i64)> {
-    let r = PixelRect::from_rectangle(area);
+    clip_steps_in(line, &PixelRect::from_rectangle(area))
+}
+
+/// [`clip_steps`] for a pixel rectangle, which may reach past the `i32` range (an area grown
+/// around a clip area at the limits).
+#[inline]
+pub(crate) fn clip_steps_in(line: &Line, r: &PixelRect) -> Option<(i64, i64)> {
+    let r = *r;
     if r.is_empty() {
         return None;
     }
@@ -120,6 +127,11 @@ impl Line {
     /// The step range of the clipped walk: the first and last step inside `area`.
     pub(crate) fn clipped_steps(&self, area: &Rectangle) -> Option<(i64, i64)> {
         clip_steps(self, area)
+    }
+
+    /// [`Line::clipped_steps`] for a pixel rectangle, which may reach past the `i32` range.
+    pub(crate) fn clipped_steps_in(&self, area: &PixelRect) -> Option<(i64, i64)> {
+        clip_steps_in(self, area)
     }
 }
 

@@ -4,13 +4,13 @@
 //! [`BinaryColor`] rows). Spans become `slice::fill` or a tight loop; line walks step a buffer index
 //! instead of recomputing `y * width + x` per pixel.
 
-use super::{DepthSpan, Surface};
+use super::{BlendError, DepthSpan, Surface};
+use crate::color::{blend, blend_channel, Channels};
 use crate::geom::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
-use embedded_graphics_core::prelude::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
@@ -65,7 +65,10 @@ impl core::error::Error for FramebufferError {}
 /// (three bytes per pixel, red first), [`Gray8`] (one byte per pixel) and [`BinaryColor`] (one bit
 /// per pixel, each row padded to whole bytes, the leftmost pixel in the most significant bit, as
 /// monochrome OLED and e-paper firmware stores it).
-pub trait Storage: PixelColor {
+///
+/// Every stored format can be read back, so [`Channels`] is required: it is how a
+/// [`Framebuffer`] blends ([`Surface::blend_span_in_clip`]).
+pub trait Storage: Channels {
     /// The element type of the slice.
     type Word: Copy + core::fmt::Debug;
     /// Words one row of `width` pixels takes.
@@ -113,6 +116,15 @@ pub trait Storage: PixelColor {
         color: Self,
     ) {
         Self::fill(&mut buf[y * stride..(y + 1) * stride], x, len, color);
+    }
+    /// Blends `color` with opacity `alpha` over pixels `x .. x + len` of a row
+    /// ([`crate::color::blend`]).
+    #[inline]
+    fn blend(row: &mut [Self::Word], x: usize, len: usize, color: Self, alpha: u8) {
+        for i in x..x + len {
+            let dst = Self::get(row, i);
+            Self::set(row, i, blend(color, dst, alpha));
+        }
     }
     /// Walks a line through the whole buffer (`stride` words per row); every point is in bounds.
     fn walk(buf: &mut [Self::Word], stride: usize, points: LinePoints, color: Self) {
@@ -238,6 +250,19 @@ impl Storage for Rgb565 {
     #[inline]
     fn walk(buf: &mut [u16], stride: usize, points: LinePoints, color: Self) {
         walk_words(buf, stride, points, RawU16::from(color).into_inner());
+    }
+    #[inline]
+    fn blend(row: &mut [u16], x: usize, len: usize, color: Self, alpha: u8) {
+        // On the packed word: each field shifted out, blended and shifted back, with the same
+        // arithmetic as `blend` (a test checks they agree for every pair of fields).
+        let (r, g, b) = (color.r(), color.g(), color.b());
+        for w in &mut row[x..x + len] {
+            let d = *w;
+            let dr = blend_channel(r, (d >> 11) as u8, alpha);
+            let dg = blend_channel(g, ((d >> 5) & 0x3F) as u8, alpha);
+            let db = blend_channel(b, (d & 0x1F) as u8, alpha);
+            *w = (u16::from(dr) << 11) | (u16::from(dg) << 5) | u16::from(db);
+        }
     }
 }
 
@@ -624,6 +649,26 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         }
         Ok(())
     }
+    const READ_BACK: bool = true;
+
+    #[inline(always)]
+    fn blend_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: C,
+        alpha: u8,
+    ) -> Result<(), BlendError<Self::Error>> {
+        C::blend(
+            self.row_mut(y as usize),
+            x as usize,
+            len as usize,
+            color,
+            alpha,
+        );
+        Ok(())
+    }
 }
 
 /// One horizontal strip of a screen rendered into a small buffer: a [`Framebuffer`] of `rows`
@@ -757,5 +802,19 @@ impl<C: Storage> Surface for Band<'_, C> {
     fn draw_line_points(&mut self, points: LinePoints, color: C) -> Result<(), Self::Error> {
         // A line walk carries screen rows; shift each point (lines are not the band fast path).
         self.draw_iter(points.map(|p| Pixel(p, color)))
+    }
+    const READ_BACK: bool = true;
+
+    #[inline(always)]
+    fn blend_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: C,
+        alpha: u8,
+    ) -> Result<(), BlendError<Self::Error>> {
+        self.fb
+            .blend_span_in_clip(x, y - self.y0, len, color, alpha)
     }
 }

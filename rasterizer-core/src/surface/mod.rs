@@ -5,10 +5,41 @@
 //! horizontal spans (and, for lines, one walk along the line). The provided methods turn those into
 //! `fill_solid`, `fill_contiguous` and `draw_iter` calls, so any `DrawTarget` works; [`Framebuffer`]
 //! overrides them with direct slice writes, which is where the speed comes from.
+//!
+//! Blending (opacity, anti-aliasing) needs the colour already stored, which a plain `DrawTarget`
+//! cannot give back: a surface says whether it can with [`Surface::READ_BACK`], and the blending
+//! rasterizers refuse one that cannot with [`BlendError::CannotReadBack`] before writing anything.
 
 mod framebuffer;
 
 pub use framebuffer::{Band, Framebuffer, FramebufferError, Storage, MAX_DIMENSION};
+
+/// Why a blended primitive (a translucent fill, an anti-aliased line) was not drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BlendError<E> {
+    /// The surface cannot read back the pixels it holds ([`Surface::READ_BACK`] is false), so a
+    /// blend would have to guess the colour underneath: nothing was drawn.
+    CannotReadBack,
+    /// The surface reported an error while drawing.
+    Target(E),
+}
+
+impl<E> From<E> for BlendError<E> {
+    fn from(e: E) -> Self {
+        Self::Target(e)
+    }
+}
+
+impl<E: core::fmt::Display> core::fmt::Display for BlendError<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::CannotReadBack => write!(f, "the target cannot read back pixels to blend into"),
+            Self::Target(e) => write!(f, "the target failed: {e}"),
+        }
+    }
+}
+
+impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for BlendError<E> {}
 
 use crate::geom::line::LinePoints;
 use crate::geom::PixelRect;
@@ -130,6 +161,34 @@ pub trait Surface: DrawTarget {
         color: Self::Color,
     ) -> Result<(), Self::Error> {
         self.draw_iter(points.map(|p| Pixel(p, color)))
+    }
+
+    /// True when the surface implements [`Surface::blend_span_in_clip`] by reading back what it
+    /// holds. The blending rasterizers check it before they write anything, so a surface that
+    /// cannot (the default, and [`AnyTarget`]) gets [`BlendError::CannotReadBack`], never a
+    /// half-drawn picture. A constant, so the check costs nothing.
+    const READ_BACK: bool = false;
+
+    /// Blends `color` with opacity `alpha` (0 ..= 255) over `len` pixels of row `y` from column
+    /// `x` on, each channel at its native depth ([`crate::color::blend`]). The span lies inside
+    /// [`Surface::clip_area`]; each pixel is blended once per call.
+    ///
+    /// # Errors
+    /// The default, for surfaces that cannot read back, returns [`BlendError::CannotReadBack`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn blend_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: Self::Color,
+        alpha: u8,
+    ) -> Result<(), BlendError<Self::Error>> {
+        let _ = (x, y, len, color, alpha);
+        Err(BlendError::CannotReadBack)
     }
 }
 
@@ -317,5 +376,19 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
         color: Self::Color,
     ) -> Result<(), Self::Error> {
         self.inner.draw_line_points_in_clip(points, color)
+    }
+
+    const READ_BACK: bool = T::READ_BACK;
+
+    #[inline(always)]
+    fn blend_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: Self::Color,
+        alpha: u8,
+    ) -> Result<(), BlendError<Self::Error>> {
+        self.inner.blend_span_in_clip(x, y, len, color, alpha)
     }
 }

@@ -1,9 +1,14 @@
 //! Lines with integer Bresenham, in every octant, both endpoints included: [`crate::geom::line`]
 //! defines which pixels a line lights, [`crate::clip::line`] which of them a clip area keeps, and
-//! this module draws them.
+//! this module draws them: opaque, translucent ([`draw_line_alpha`]) or anti-aliased
+//! ([`draw_line_aa`]).
 
+mod aa;
+mod alpha;
 mod gradient;
 
+pub use aa::draw_line_aa;
+pub use alpha::draw_line_alpha;
 pub use gradient::draw_line_gradient;
 
 use crate::geom::line::Line;

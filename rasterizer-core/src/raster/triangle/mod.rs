@@ -14,7 +14,7 @@ pub(crate) mod setup;
 
 use crate::color::Channels;
 use crate::geom::{PixelRect, SubPoint};
-use crate::surface::Surface;
+use crate::surface::{BlendError, Surface};
 use crate::{geom::line::Line, raster::line::draw_line};
 use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
@@ -58,6 +58,62 @@ impl<S: Surface> SpanSink for Flat<'_, S> {
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         self.surface
             .fill_span_in_clip(x0, row, (x1 - x0) as u32, self.color)
+    }
+}
+
+/// Blends a triangle in one colour with opacity `alpha` (0 transparent ..= 255 opaque) over what
+/// the surface holds: the pixels of [`fill_triangle`], each blended once
+/// ([`crate::color::blend`]), so two translucent triangles that share an edge leave no seam.
+///
+/// ```
+/// use rasterizer_core::prelude::*;
+/// use rasterizer_core::raster::triangle::fill_triangle_alpha;
+///
+/// let mut buf = [0u16; 16 * 16];
+/// let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 16, 16).unwrap();
+/// fb.clear(Rgb565::BLUE).unwrap();
+/// let px = |x, y| SubPoint::<4>::new(x * 16, y * 16);
+/// fill_triangle_alpha(&mut fb, [px(0, 0), px(16, 0), px(0, 16)], Rgb565::RED, 128).unwrap();
+/// assert_eq!(fb.pixel(Point::new(0, 0)), Some(Rgb565::new(16, 0, 15)));
+/// ```
+///
+/// # Errors
+/// [`BlendError::CannotReadBack`] (before anything is drawn) for a surface that cannot read back
+/// its pixels, such as [`crate::surface::AnyTarget`]; [`BlendError::Target`] for the surface's own.
+pub fn fill_triangle_alpha<S: Surface, const BITS: u32>(
+    surface: &mut S,
+    vertices: [SubPoint<BITS>; 3],
+    color: S::Color,
+    alpha: u8,
+) -> Result<(), BlendError<S::Error>> {
+    if !S::READ_BACK {
+        return Err(BlendError::CannotReadBack);
+    }
+    let Some(t) = Sorted::new(&vertices) else {
+        return Ok(());
+    };
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    let mut sink = Translucent {
+        surface,
+        color,
+        alpha,
+    };
+    walk_spans(&t, 1 << BITS, &clip, &mut sink)
+}
+
+/// Spans blended in one colour.
+struct Translucent<'a, S: Surface> {
+    surface: &'a mut S,
+    color: S::Color,
+    alpha: u8,
+}
+
+impl<S: Surface> SpanSink for Translucent<'_, S> {
+    type Error = BlendError<S::Error>;
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), Self::Error> {
+        self.surface
+            .blend_span_in_clip(x0, row, (x1 - x0) as u32, self.color, self.alpha)
     }
 }
 
