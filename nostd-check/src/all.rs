@@ -5,11 +5,13 @@ use core::hint::black_box;
 use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use rasterizer_core::geom::SubPoint;
-use rasterizer_core::raster::line::{draw_line, draw_line_gradient};
+use rasterizer_core::raster::line::{draw_line, draw_line_aa, draw_line_alpha, draw_line_gradient};
 use rasterizer_core::raster::point::draw_point;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
-use rasterizer_core::raster::triangle::{draw_triangle, fill_triangle, fill_triangle_gouraud};
-use rasterizer_core::surface::{AnyTarget, Framebuffer, Surface};
+use rasterizer_core::raster::triangle::{
+    draw_triangle, fill_triangle, fill_triangle_alpha, fill_triangle_gouraud,
+};
+use rasterizer_core::surface::{AnyTarget, Band, Framebuffer, Surface};
 
 static mut RGB565: [u16; 64 * 48] = [0; 64 * 48];
 
@@ -36,6 +38,15 @@ where
         poly.fill(s, FillRule::NonZero, c)?;
         poly.fill(s, FillRule::EvenOdd, a)?;
     }
+    // Blending: drawn where the surface reads back, `CannotReadBack` through `AnyTarget`.
+    let _ = fill_triangle_alpha(
+        s,
+        [sp(10, 10), sp(900, 100), sp(300, 700)],
+        b,
+        black_box(100),
+    );
+    let _ = draw_line_alpha(s, p(-5, 40), p(70, 2), c, black_box(160));
+    let _ = draw_line_aa(s, p(-5, 7), p(70, 30), a);
     Ok(())
 }
 
@@ -155,6 +166,17 @@ pub extern "C" fn main() -> i32 {
         let _ = draw_all(&mut fb, BinaryColor::On, BinaryColor::Off, BinaryColor::On);
     }
     black_box((&rgb, &gray, &mono));
+    // A band blends in screen coordinates.
+    let mut strip = [0u16; 64 * 8];
+    if let Ok(fb) = Framebuffer::<Rgb565>::new(&mut strip, 64, 8) {
+        let _ = draw_all(
+            &mut Band::new(fb, 16),
+            Rgb565::RED,
+            Rgb565::GREEN,
+            Rgb565::BLUE,
+        );
+    }
+    black_box(&strip);
     let mut small = [0u16; 64 * 48];
     black_box(draw_3d(&mut small));
     0
