@@ -215,6 +215,15 @@ for scene in "${SCENES_2D[@]}"; do
     if [ -n "${INSTR2D[$scene.eg]:-}" ]; then
         emit_count "$scene" ours/eg ratio "$(div "${INSTR2D[$scene.ours]}" "${INSTR2D[$scene.eg]}" 4)"
     fi
+    if [ "$scene" = L1 ] && [ "$QUICK" = 0 ]; then
+        # The same lines anti-aliased (draw_line_aa, width 1) against embedded-graphics' line of
+        # the same width; no pixel figures (a counting target cannot read back).
+        n="$(count2d_frame L1 ours-aa frame_ours_aa_lines)"
+        prims="$(field "$OUT/L1-ours-aa.stdout" primitives)"
+        emit_count L1 ours-aa instructions "$n"
+        emit_count L1 ours-aa per_primitive "$(div "$n" "$prims" 1)"
+        emit_count L1 ours-aa/eg ratio "$(div "$n" "${INSTR2D[L1.eg]}" 4)"
+    fi
 done
 if wanted LIMIT; then
     emit_count LIMIT limit instructions "$LIMIT_INSTR"
