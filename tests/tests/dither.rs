@@ -182,3 +182,45 @@ proptest! {
         prop_assert!(e8 <= 1.0 / 64.0, "Bayer8 grey {v}: {e8}");
     }
 }
+
+/// Gray8 gets fractions from lighting: Suzanne Gouraud-lit (M1 scene, 160 x 120) dithered stays
+/// within one step of the rounded picture everywhere, changes some pixels, and keeps the mean.
+#[test]
+fn gray8_gouraud_dithers_within_one_step() {
+    fn draw<N: Numerics>() -> Vec<u8> {
+        let (w, h) = (160u32, 120u32);
+        let loaded = fixtures::obj::LoadedMesh::load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj"),
+        )
+        .unwrap();
+        let mesh = loaded.mesh();
+        let mut z = vec![u16::MAX; (w * h) as usize];
+        let mut p = Pipeline::new(
+            &fixtures::scenes3d::camera(Mat4::rotation_y(Angle::from_degrees(30)), w, h),
+            Viewport::new(w, h),
+            CullClockwise,
+            DepthBuffer::new(&mut z, w, h, Compare::Less).unwrap(),
+            GouraudLit::<Fx16, Gray8, 1>::new(fixtures::scenes3d::lighting::<1>()),
+        )
+        .with_numerics::<N>();
+        let mut pixels = vec![0u8; (w * h) as usize];
+        let mut fb = Framebuffer::<Gray8>::new(&mut pixels, w, h).unwrap();
+        let mut scratch = vec![VertexSlot::EMPTY; loaded.positions.len()];
+        p.draw(&mut fb, &mesh, &mut scratch).unwrap();
+        pixels
+    }
+    let (rounded, dithered) = (draw::<Standard>(), draw::<Bayer4>());
+    assert!(rounded
+        .iter()
+        .zip(&dithered)
+        .all(|(a, b)| a.abs_diff(*b) <= 1));
+    let changed = rounded
+        .iter()
+        .zip(&dithered)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(changed > 100, "only {changed} pixels dithered");
+    let sum = |v: &[u8]| v.iter().map(|&x| i64::from(x)).sum::<i64>();
+    // Rounding and dithering both keep the mean within half a step per pixel.
+    assert!((sum(&rounded) - sum(&dithered)).abs() < rounded.len() as i64 / 2);
+}
