@@ -735,3 +735,23 @@ where
         }
     };
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`AsColor`] relies on every output colour surviving the trip through `Rgb888`.
+    #[test]
+    fn output_colours_round_trip_through_rgb888() {
+        for raw in 0..=u16::MAX {
+            let c = Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(raw));
+            assert_eq!(Rgb565::from(Rgb888::from(c)), c);
+        }
+        for v in 0..=255 {
+            assert_eq!(Gray8::from(Rgb888::from(Gray8::new(v))), Gray8::new(v));
+        }
+        for b in [BinaryColor::Off, BinaryColor::On] {
+            assert_eq!(BinaryColor::from(Rgb888::from(b)), b);
+        }
+    }
+}
