@@ -9,10 +9,10 @@ fn main() {
     println!("cargo::rustc-check-cfg=cfg(three_d)");
     println!("cargo::rustc-check-cfg=cfg(two_d)");
     let shading = ["unlit", "flat", "gouraud", "phong"];
-    let stages = ["depth", "cull", "banded", "noscratch"];
+    let stages = ["depth", "cull", "banded", "noscratch", "dither"];
     match shading.into_iter().filter(|f| on(f)).count() {
         0 if stages.into_iter().any(on) => {
-            panic!("depth, cull, banded and noscratch need a shading feature: {shading:?}")
+            panic!("depth, cull, banded, noscratch and dither need a shading feature: {shading:?}")
         }
         0 => {}
         1 => println!("cargo::rustc-cfg=three_d"),

@@ -17,6 +17,7 @@ use embedded_graphics::text::{Baseline, Text};
 use embedded_graphics::Drawable;
 use fixtures::obj::LoadedMesh;
 use fixtures::scenes3d::{lighting, transforms};
+use rasterizer_core::numerics::{Dither, Numerics, Standard};
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 use std::path::Path;
@@ -63,7 +64,7 @@ pub struct Scene3d {
 }
 
 /// Every 3D picture, in the order they are written.
-pub const SCENES: [Scene3d; 6] = [
+pub const SCENES: [Scene3d; 7] = [
     Scene3d {
         file: "suzanne_wireframe.png",
         draw: suzanne_wireframe,
@@ -79,6 +80,10 @@ pub const SCENES: [Scene3d; 6] = [
     Scene3d {
         file: "suzanne_phong.png",
         draw: suzanne_phong,
+    },
+    Scene3d {
+        file: "suzanne_dither.png",
+        draw: suzanne_dither,
     },
     Scene3d {
         file: "cube_inside.png",
@@ -172,9 +177,19 @@ fn suzanne_filled<Sh>(models: &Models, display: &mut Display, shading: Sh) -> Sc
 where
     Sh: Shading<Fx16, Color = Rgb565>,
 {
+    suzanne_filled_with::<Sh, Standard>(models, display, shading)
+}
+
+/// [`suzanne_filled`] with numerics `N`.
+fn suzanne_filled_with<Sh, N>(models: &Models, display: &mut Display, shading: Sh) -> SceneResult
+where
+    Sh: Shading<Fx16, Color = Rgb565>,
+    N: Numerics,
+{
     via_framebuffer(display, |fb, depth| {
         let viewport = Viewport::new(WIDTH, HEIGHT);
-        let mut p = Pipeline::new(&transforms(), viewport, CullClockwise, depth, shading);
+        let mut p = Pipeline::new(&transforms(), viewport, CullClockwise, depth, shading)
+            .with_numerics::<N>();
         let mesh = models.suzanne.mesh();
         let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
         let stats = p.draw(fb, &mesh, &mut scratch).map_err(|e| e.to_string())?;
@@ -198,6 +213,36 @@ fn suzanne_gouraud(models: &Models, display: &mut Display) -> SceneResult {
         display,
         GouraudLit::<_, Rgb565, 2>::new(lighting::<2>()),
     )
+}
+
+/// Numerics with 4 x 4 ordered dithering.
+struct Bayer4;
+
+impl Numerics for Bayer4 {
+    const DITHER: Dither = Dither::Bayer4;
+}
+
+/// Suzanne Gouraud-lit into Rgb565, split down the middle: on the left each pixel rounded to the
+/// nearest 5- or 6-bit step (bands show across the smooth shading), on the right dithered with
+/// the 4 x 4 Bayer matrix (the bands dissolve into a fine pattern of the two nearest steps).
+fn suzanne_dither(models: &Models, display: &mut Display) -> SceneResult {
+    let gouraud = || GouraudLit::<_, Rgb565, 2>::new(lighting::<2>());
+    suzanne_filled(models, display, gouraud())?;
+    let mut dithered = Display::new(Size::new(WIDTH, HEIGHT));
+    let Ok(()) = dithered.clear(BACKGROUND);
+    suzanne_filled_with::<_, Bayer4>(models, &mut dithered, gouraud())?;
+    let half = WIDTH as i32 / 2;
+    let right =
+        (0..HEIGHT as i32).flat_map(|y| (half..WIDTH as i32).map(move |x| Point::new(x, y)));
+    let Ok(()) = display.draw_iter(right.map(|p| Pixel(p, dithered.get_pixel(p))));
+    let line = Rgb888::new(14, 16, 26);
+    let Ok(()) = display.draw_iter((0..HEIGHT as i32).map(|y| Pixel(Point::new(half, y), line)));
+    let style = MonoTextStyle::new(&FONT_6X10, Rgb888::WHITE);
+    for (x, label) in [(3, "rounded"), (half + 4, "Bayer 4x4 dither")] {
+        let text = Text::with_baseline(label, Point::new(x, 2), style, Baseline::Top);
+        let Ok(_) = text.draw(display);
+    }
+    Ok(())
 }
 
 /// Suzanne lit per pixel with interpolated normals.

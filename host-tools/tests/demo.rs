@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 /// The PNG files the demo promises (README.md links to them): the 2D ones, then the 3D ones.
-const FILES: [&str; 13] = [
+const FILES: [&str; 14] = [
     "lines_octants.png",
     "lines_gradient.png",
     "triangle_outlines.png",
@@ -17,6 +17,7 @@ const FILES: [&str; 13] = [
     "suzanne_flat.png",
     "suzanne_gouraud.png",
     "suzanne_phong.png",
+    "suzanne_dither.png",
     "cube_inside.png",
     "near_plane_crossing.png",
 ];

@@ -320,3 +320,38 @@ fn scene_help_names_the_format_and_the_ranges() {
         }
     }
 }
+
+/// `dither` under `[render]` (or per mesh) dithers Gouraud colour at the output's depth: the
+/// Rgb565 picture changes, each pixel by at most one step of each channel, and a value that is
+/// not a matrix is refused.
+#[test]
+fn dither_key_dithers_at_the_output_depth() {
+    use host_tools::scenefile::{load, render_image};
+    let dir = scratch("dither");
+    let suzanne = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
+    let scene = |dither: &str| {
+        format!(
+            "[output]\nwidth = 160\nheight = 120\nformat = \"rgb565\"\n\n\
+             [render]\ndither = \"{dither}\"\n\n\
+             [[lights]]\nkind = \"directional\"\ndirection = [1.0, 1.0, 1.0]\n\n\
+             [[meshes]]\npath = {suzanne:?}\n"
+        )
+    };
+    let render = |dither: &str| {
+        let path = dir.join(format!("{dither}.toml"));
+        std::fs::write(&path, scene(dither)).unwrap();
+        let s = load(&path).unwrap();
+        let image = render_image(&s, Default::default(), 1).unwrap();
+        image.as_image_buffer().into_raw().to_vec()
+    };
+    let (plain, dithered) = (render("none"), render("bayer4"));
+    assert_eq!(plain.len(), dithered.len());
+    let changed = plain.iter().zip(&dithered).filter(|(a, b)| a != b).count();
+    assert!(changed > 100, "only {changed} channel values changed");
+    // One Rgb565 step is at most 9 in 8 bits (5-bit channels: 255 / 31).
+    assert!(plain
+        .iter()
+        .zip(&dithered)
+        .all(|(a, b)| a.abs_diff(*b) <= 9));
+    expect_failure(&dir, "bad_dither", &scene("bayer3"), &["dither"]);
+}

@@ -6,7 +6,8 @@
 //! 3D: one shading feature (`unlit`, `flat`, `gouraud`, `phong`), optionally `depth` (a 16-bit
 //! depth buffer, `Compare::Less`), `cull` (`CullClockwise`) and the draw call (`draw` by default,
 //! `banded` for `draw_banded` in 16-row bands), each with a vertex scratch of one slot per mesh
-//! vertex, or with an empty one with `noscratch`. The scene is M1: the packed Suzanne, 320 x 240
+//! vertex, or with an empty one with `noscratch`, and `dither` for 4 x 4 ordered dithering of the
+//! interpolated colour. The scene is M1: the packed Suzanne, 320 x 240
 //! Rgb565, one directional light.
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, each one call into a 320 x 240 Rgb565
 //! framebuffer. No feature at all gives the empty baseline (start-up and panic handler only).
@@ -195,7 +196,18 @@ mod three_d {
         };
         #[cfg(feature = "noscratch")]
         let scratch: &mut [Slot] = &mut [];
-        let mut pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading());
+        let pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading());
+        #[cfg(feature = "dither")]
+        let mut pl = {
+            struct Bayer4;
+            impl rasterizer_core::numerics::Numerics for Bayer4 {
+                const DITHER: rasterizer_core::numerics::Dither =
+                    rasterizer_core::numerics::Dither::Bayer4;
+            }
+            pl.with_numerics::<Bayer4>()
+        };
+        #[cfg(not(feature = "dither"))]
+        let mut pl = pl;
 
         #[cfg(not(feature = "banded"))]
         {

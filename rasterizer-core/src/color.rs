@@ -183,3 +183,15 @@ pub fn blend<C: Channels>(src: C, dst: C, alpha: u8) -> C {
     // A blend of two in-range values lies between them.
     C::from_channels_in_range(c)
 }
+
+/// One bit: each channel is interpolated between 0 and 1 and the pixel is on where
+/// embedded-graphics' conversion from RGB says so (its luma at least one half), so a grey
+/// material gives the classic black-and-white dithering.
+impl ShadeColor for BinaryColor {
+    const MAX: [u8; 3] = [1; 3];
+    #[inline(always)]
+    fn from_shade(c: [u8; 3]) -> Self {
+        let full = |v: u8| if v != 0 { 255 } else { 0 };
+        BinaryColor::from(Rgb888::new(full(c[0]), full(c[1]), full(c[2])))
+    }
+}

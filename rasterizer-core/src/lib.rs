@@ -95,7 +95,7 @@
 //! The modules are layered: each uses only those above it in this list (`tests/layers.rs` checks
 //! it), and the stages appear in the order data flows through them.
 //! - Foundations: [`math`] (fixed point, vectors, matrices, angles), [`numerics`] (accuracy
-//!   knobs), [`color`] (colour channels), [`geom`] (sub-pixel points, pixel lines, varyings).
+//!   knobs, dithering), [`color`] (colour channels), [`geom`] (sub-pixel points, pixel lines, varyings).
 //! - [`surface`]: where pixels go (framebuffers, bands, any `DrawTarget`).
 //! - The 3D stages: [`mesh`] -> [`transform`] -> [`clip`] -> [`cull`] -> [`depth`] and
 //!   [`raster`] -> [`shade`], and [`pipeline`], which runs them.

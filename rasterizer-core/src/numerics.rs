@@ -1,6 +1,7 @@
 //! The accuracy knobs of the 3D path besides the number format ([`crate::math::Scalar`]), the
-//! sub-pixel bits and the trigonometry table size: how the perspective divide divides, and how
-//! precisely colour and depth are interpolated across a triangle.
+//! sub-pixel bits and the trigonometry table size: how the perspective divide divides, how
+//! precisely colour and depth are interpolated across a triangle, and whether the colour is
+//! dithered down to the target's depth.
 //!
 //! They are compile-time choices, carried by a type implementing [`Numerics`] (the last generic
 //! parameter of [`crate::pipeline::Pipeline`]), so a pipeline compiles only the method it uses.
@@ -47,6 +48,64 @@ pub enum SpanStart {
     Wrapping,
 }
 
+/// Whether the interpolated colour is dithered down to the target's channel depth, with an
+/// ordered (Bayer) threshold indexed by screen position.
+///
+/// Without dithering, each channel is rounded to the nearest step of the target (5 bits for red
+/// in [`embedded_graphics_core::pixelcolor::Rgb565`]), which shows as bands across smooth
+/// shading. With it, the pixel at `(x, y)` adds a threshold from the matrix at
+/// `(x mod n, y mod n)` (a fraction of one step, evenly spread over `0 .. 1`) and truncates, so
+/// the mean of every `n x n` tile is the exact colour to within `1 / n^2` of a step. The pattern
+/// depends on the screen position alone, so bands match the whole frame.
+///
+/// Applies to the interpolated colour of the default path ([`SpanStart::Wrapping`], affine):
+/// [`crate::shade::GouraudLit`] and [`crate::shade::VertexColors`]; a single colour per
+/// triangle has no fraction to dither.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dither {
+    /// Round each pixel to the nearest step: the default, and no code for dithering at all.
+    None,
+    /// A 4 x 4 Bayer matrix: 16 levels between two steps.
+    Bayer4,
+    /// An 8 x 8 Bayer matrix: 64 levels between two steps, a finer but larger pattern.
+    Bayer8,
+}
+
+/// The 8 x 8 Bayer matrix; its top-left 4 x 4 quarter divided by 4 is the 4 x 4 matrix.
+const BAYER8: [[u8; 8]; 8] = [
+    [0, 32, 8, 40, 2, 34, 10, 42],
+    [48, 16, 56, 24, 50, 18, 58, 26],
+    [12, 44, 4, 36, 14, 46, 6, 38],
+    [60, 28, 52, 20, 62, 30, 54, 22],
+    [3, 35, 11, 43, 1, 33, 9, 41],
+    [51, 19, 59, 27, 49, 17, 57, 25],
+    [15, 47, 7, 39, 13, 45, 5, 37],
+    [63, 31, 55, 23, 61, 29, 53, 21],
+];
+
+impl Dither {
+    /// The threshold of pixel `(x, y)` in 256ths of a step: the middle of its matrix cell's
+    /// share of the step, `(2 m + 1) / (2 n^2)` for the matrix entry `m`, so the thresholds
+    /// average exactly one half (what rounding to nearest adds). Always below 256.
+    #[inline(always)]
+    pub const fn threshold(self, x: i32, y: i32) -> u32 {
+        match self {
+            // Half a step: rounding to nearest.
+            Dither::None => 128,
+            // The 4 x 4 matrix is the 8 x 8 one's top-left quarter divided by 4 (its entries
+            // there are multiples of 4).
+            Dither::Bayer4 => {
+                let m = BAYER8[(y & 3) as usize][(x & 3) as usize] as u32 >> 2;
+                (2 * m + 1) << 3
+            }
+            Dither::Bayer8 => {
+                let m = BAYER8[(y & 7) as usize][(x & 7) as usize] as u32;
+                (2 * m + 1) << 1
+            }
+        }
+    }
+}
+
 /// The numeric knobs of a pipeline, as associated constants: the last generic parameter of
 /// [`crate::pipeline::Pipeline`]. Every constant has the library's default, so a type sets only
 /// what it changes:
@@ -75,6 +134,9 @@ pub trait Numerics {
     /// pixel, through [`SpanStart::Exact`]); otherwise they are affine in screen space. Depth is
     /// affine in screen space either way, and exact.
     const PERSPECTIVE: bool = false;
+    /// How the interpolated colour is brought down to the target's channel depth: rounded to the
+    /// nearest step, or dithered ([`Dither`]).
+    const DITHER: Dither = Dither::None;
 }
 
 /// The library's default: exact division, wrapping span starts, affine values.
@@ -177,6 +239,23 @@ fn newton_reciprocal(m: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bayer_thresholds_cover_every_level_once() {
+        for (d, n) in [(Dither::Bayer4, 4), (Dither::Bayer8, 8)] {
+            let mut seen = [false; 64];
+            for y in 0..n {
+                for x in 0..n {
+                    let t = d.threshold(x, y);
+                    let m = (t * n as u32 * n as u32 / 256) as usize;
+                    assert!(!seen[m], "{d:?} ({x}, {y})");
+                    seen[m] = true;
+                    // Tiles repeat, also at negative coordinates.
+                    assert_eq!(t, d.threshold(x - 3 * n, y + 5 * n));
+                }
+            }
+        }
+    }
 
     #[test]
     fn newton_matches_division() {

@@ -6,7 +6,7 @@
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use proptest::prelude::*;
 use rasterizer_core::depth::DepthTest;
-use rasterizer_core::numerics::{Divide, Numerics, SpanStart, Standard};
+use rasterizer_core::numerics::{Dither, Divide, Numerics, SpanStart, Standard};
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 use rasterizer_core::{
@@ -239,6 +239,50 @@ fn suzanne_bands_for_every_numerics() {
     check::<Gradient16>(&mesh);
     check::<NewtonGradient8>(&mesh);
     check::<ReciprocalExact12>(&mesh);
+}
+
+/// Dithering takes its threshold from the screen position, not the band's: bands of heights
+/// that are no multiple of the matrix's size match the whole frame, with and without a depth test.
+#[test]
+fn dithered_bands_match_the_whole_frame() {
+    struct Bayer4;
+    impl Numerics for Bayer4 {
+        const DITHER: Dither = Dither::Bayer4;
+    }
+    struct Bayer8;
+    impl Numerics for Bayer8 {
+        const DITHER: Dither = Dither::Bayer8;
+    }
+    fn check<N: Numerics>(mesh: &Mesh<'_, Fx16, u32>) {
+        let (w, h) = (160u32, 120u32);
+        let xf = transforms(w, h, 30);
+        let vp = Viewport::new(w, h);
+        let shading = || GouraudLit::<Fx16, Rgb565, 1>::new(lighting::<1>());
+        let mut z = vec![u16::MAX; (w * h) as usize];
+        let db = DepthBuffer::new(&mut z, w, h, Compare::Less).unwrap();
+        let p = Pipeline::new(&xf, vp, CullClockwise, db, shading()).with_numerics::<N>();
+        let (whole, _) = whole_frame(mesh, w, h, p);
+        let (flat, _) = whole_frame(
+            mesh,
+            w,
+            h,
+            Pipeline::new(&xf, vp, CullClockwise, NoDepth, shading()).with_numerics::<N>(),
+        );
+        for rows in [1u32, 3, 5, 6, 7, 13, 30] {
+            let mut z = vec![u16::MAX; (w * rows) as usize];
+            let db = DepthBuffer::new(&mut z, w, rows, Compare::Less).unwrap();
+            let p = Pipeline::new(&xf, vp, CullClockwise, db, shading()).with_numerics::<N>();
+            let (out, _) = banded(mesh, w, h, rows, Scratch::Full, p);
+            assert!(out == whole, "{rows} rows differ (depth buffer)");
+            let p = Pipeline::new(&xf, vp, CullClockwise, NoDepth, shading()).with_numerics::<N>();
+            let (out, _) = banded(mesh, w, h, rows, Scratch::Half, p);
+            assert!(out == flat, "{rows} rows differ (no depth)");
+        }
+    }
+    let m = suzanne();
+    let mesh = m.mesh();
+    check::<Bayer4>(&mesh);
+    check::<Bayer8>(&mesh);
 }
 
 #[test]

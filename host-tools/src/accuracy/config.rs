@@ -5,13 +5,13 @@
 //! Adding a configuration is one `entry!` line in [`registry`]; the numerics knobs (divide method,
 //! interpolation bits, span starts) are a `rasterizer_core::numerics` type as the last argument.
 
-use super::metrics::{image_errors, vertex_errors, Errors};
+use super::metrics::{image_errors, rgb565_errors, vertex_errors, Errors};
 use super::scene::{lighting, transforms, vec_s, Prepared, SceneDef};
 use crate::scenefile::F64;
 use fixtures::reference3d::{color_id, id_color, FaceIds};
 use rasterizer_core::cull::Cull;
 use rasterizer_core::math::{Fx24, Fx8, Scalar};
-use rasterizer_core::numerics::{Divide, Numerics, SpanStart};
+use rasterizer_core::numerics::{Dither, Divide, Numerics, SpanStart};
 use rasterizer_core::pipeline::RenderStats;
 use rasterizer_core::prelude::*;
 use std::hint::black_box;
@@ -55,6 +55,8 @@ pub struct Knobs {
     pub frac: u32,
     /// How spans start their interpolated values.
     pub spans: SpanStart,
+    /// How the colour is brought to the target's depth.
+    pub dither: Dither,
 }
 
 impl Knobs {
@@ -64,6 +66,15 @@ impl Knobs {
             Divide::Exact => "exact",
             Divide::Reciprocal => "reciprocal",
             Divide::Newton => "Newton",
+        }
+    }
+
+    /// The dithering's name in the report.
+    pub fn dither_name(&self) -> &'static str {
+        match self.dither {
+            Dither::None => "none",
+            Dither::Bayer4 => "Bayer 4x4",
+            Dither::Bayer8 => "Bayer 8x8",
         }
     }
 
@@ -125,6 +136,7 @@ macro_rules! entry {
                 divide: <$num as Numerics>::DIVIDE,
                 frac: <$num as Numerics>::FRAC,
                 spans: <$num as Numerics>::SPANS,
+                dither: <$num as Numerics>::DITHER,
             },
             control: $control,
             measure: measure::<$s, $bits, $table, $num>,
@@ -145,6 +157,17 @@ impl<const DIV: u8, const FRAC: u32, const SPANS: u8, const P: bool> Numerics
     const SPANS: SpanStart =
         [SpanStart::Exact, SpanStart::Gradient, SpanStart::Wrapping][SPANS as usize];
     const PERSPECTIVE: bool = P;
+}
+
+/// `N` dithered (0 none, 1 Bayer 4x4, 2 Bayer 8x8).
+pub struct Dithered<N, const D: u8>(core::marker::PhantomData<N>);
+
+impl<N: Numerics, const D: u8> Numerics for Dithered<N, D> {
+    const DIVIDE: Divide = N::DIVIDE;
+    const FRAC: u32 = N::FRAC;
+    const SPANS: SpanStart = N::SPANS;
+    const PERSPECTIVE: bool = N::PERSPECTIVE;
+    const DITHER: Dither = [Dither::None, Dither::Bayer4, Dither::Bayer8][D as usize];
 }
 
 /// `N` with affine values.
@@ -193,6 +216,10 @@ pub fn registry() -> Vec<Config> {
         entry!("frac4", "interpolation bits", Fx16, 6, false, 256, 0, 4, 0),
         entry!("gradient", "span starts", Fx16, 6, false, 256, 0, 16, 1),
         entry!("exact-spans", "span starts", Fx16, 6, false, 256, 0, 16, 0),
+        entry!(@ "bayer4", "dithering", Fx16, 6, false, 256,
+            Dithered<Knobbed<0, 16, 2, false>, 1>, false),
+        entry!(@ "bayer8", "dithering", Fx16, 6, false, 256,
+            Dithered<Knobbed<0, 16, 2, false>, 2>, false),
         entry!("cheap", "combination", Fx16, 0, false, 16, 2, 4, 1),
         entry!("cheap-24.8", "combination", Fx8, 0, false, 16, 2, 4, 1),
         entry!("fine", "combination", Fx16, 8, true, 1024),
@@ -342,7 +369,50 @@ fn measure<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(scene: &Pre
         })
         .collect();
     let colors: Vec<[u8; 3]> = rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-    Ok(vertex.merge(&image_errors(reference, &scene.colors, &ids, &colors)))
+    let mut errors = vertex.merge(&image_errors(reference, &scene.colors, &ids, &colors));
+
+    // The same colours into Rgb565, where rounding (or dithering) to 5 and 6 bits shows.
+    let mut c565 = vec![0u16; pixels];
+    {
+        let mut fb = Framebuffer::<Rgb565>::new(&mut c565, w, h).map_err(|e| format!("{e:?}"))?;
+        let mut zbuf = vec![u16::MAX; pixels];
+        let depth =
+            DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
+        let mut p = Pipeline::new(
+            &xf,
+            vp,
+            cull,
+            depth,
+            GouraudLit::<S, Rgb565, 1>::new(lighting::<S>(&def.camera)),
+        )
+        .with_bits::<BITS>()
+        .with_numerics::<Nu>();
+        let mesh = Mesh {
+            positions: &positions,
+            normals: Some(&normals),
+            colors: None,
+            triangles: &def.tris,
+        };
+        let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
+        p.draw(&mut fb, &mesh, &mut scratch)
+            .map_err(|e| e.to_string())?;
+    }
+    let ours565: Vec<[u8; 3]> = c565
+        .iter()
+        .map(|&v| {
+            let c = Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(v));
+            [c.r(), c.g(), c.b()]
+        })
+        .collect();
+    rgb565_errors(
+        &mut errors,
+        reference,
+        &scene.colors,
+        &ids,
+        &ours565,
+        w as usize,
+    );
+    Ok(errors)
 }
 
 /// The M1 frame callgrind counts: the whole draw call of one frame, nothing else. Generic, so each

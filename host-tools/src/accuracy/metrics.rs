@@ -38,6 +38,17 @@ pub struct Errors {
     pub wrong: u64,
     /// Pixels of the screen.
     pub pixels: u64,
+    /// The same pixels drawn into Rgb565 (where dithering acts): each one's error against the
+    /// true colour in steps of the channel (5 or 6 bits), the mean of its three channels' absolute
+    /// errors, summed.
+    pub rgb565_sum: f64,
+    /// Their signed errors summed (the mean is the bias of the rounding).
+    pub rgb565_signed: f64,
+    /// 4 x 4 tiles (aligned to the screen) whose 16 pixels are all compared.
+    pub tiles: u64,
+    /// Each such tile's error of the mean colour (mean of the three channels' absolute errors of
+    /// the tile's mean), in steps, summed: what the eye sees from a distance.
+    pub tile_sum: f64,
 }
 
 impl Errors {
@@ -62,6 +73,19 @@ impl Errors {
         ratio(self.depth_mistakes as f64, self.covered as f64)
     }
 
+    /// Mean error of an Rgb565 pixel, in steps of its channels.
+    pub fn rgb565_mean(&self) -> f64 {
+        ratio(self.rgb565_sum, self.same as f64)
+    }
+    /// Mean signed error of an Rgb565 pixel (the bias), in steps.
+    pub fn rgb565_bias(&self) -> f64 {
+        ratio(self.rgb565_signed, 3.0 * self.same as f64)
+    }
+    /// Mean error of a 4 x 4 tile's mean Rgb565 colour, in steps.
+    pub fn tile_mean(&self) -> f64 {
+        ratio(self.tile_sum, self.tiles as f64)
+    }
+
     /// The errors of two renders together.
     pub fn merge(&self, o: &Errors) -> Errors {
         Errors {
@@ -76,6 +100,10 @@ impl Errors {
             depth_mistakes: self.depth_mistakes + o.depth_mistakes,
             wrong: self.wrong + o.wrong,
             pixels: self.pixels + o.pixels,
+            rgb565_sum: self.rgb565_sum + o.rgb565_sum,
+            rgb565_signed: self.rgb565_signed + o.rgb565_signed,
+            tiles: self.tiles + o.tiles,
+            tile_sum: self.tile_sum + o.tile_sum,
         }
     }
 }
@@ -151,6 +179,47 @@ pub fn image_errors(
     e
 }
 
+/// The largest value of each Rgb565 channel.
+const RGB565_MAX: [f64; 3] = [31.0, 63.0, 31.0];
+
+/// Adds the Rgb565 measures to `e` (whose `same` counts the compared pixels): `ours` our Rgb565
+/// channels per pixel, compared where `ids` matches the reference's triangle, against the true
+/// colour scaled to each channel's steps; `width` the screen's.
+pub fn rgb565_errors(
+    e: &mut Errors,
+    reference: &RefRender,
+    truth: &[Option<[f64; 3]>],
+    ids: &[Option<u32>],
+    ours: &[[u8; 3]],
+    width: usize,
+) {
+    // The signed error per channel of each compared pixel.
+    let err: Vec<Option<[f64; 3]>> = (0..ids.len())
+        .map(|i| {
+            let c = truth.get(i).copied().flatten()?;
+            (reference.id[i].is_some() && reference.id[i] == ids[i])
+                .then(|| [0, 1, 2].map(|k| f64::from(ours[i][k]) - c[k] * RGB565_MAX[k] / 255.0))
+        })
+        .collect();
+    for d in err.iter().flatten() {
+        e.rgb565_sum += d.iter().map(|v| v.abs()).sum::<f64>() / 3.0;
+        e.rgb565_signed += d.iter().sum::<f64>();
+    }
+    let height = ids.len() / width.max(1);
+    for ty in (0..height.saturating_sub(3)).step_by(4) {
+        for tx in (0..width.saturating_sub(3)).step_by(4) {
+            let tile: Option<Vec<[f64; 3]>> = (0..16)
+                .map(|j| err[(ty + j / 4) * width + tx + j % 4])
+                .collect();
+            if let Some(tile) = tile {
+                let mean = [0, 1, 2].map(|k| tile.iter().map(|d| d[k]).sum::<f64>() / 16.0);
+                e.tiles += 1;
+                e.tile_sum += mean.iter().map(|v| v.abs()).sum::<f64>() / 3.0;
+            }
+        }
+    }
+}
+
 /// The indices of the points on the Pareto front of `(cost, error)` (lower is better in both),
 /// ordered by cost: those no other point matches or beats in both with a strict gain in one.
 pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
@@ -205,6 +274,36 @@ mod tests {
         assert_eq!((e.covered, e.same, e.pixels), (2, 2, 3));
         let (n, max, sum) = vertex_errors(&[Some([1.0, 2.0]), None], &[[1.0, 2.0], [9.0, 9.0]]);
         assert_eq!((n, max, sum), (1, 0.0, 0.0));
+    }
+
+    /// A flat grey a quarter of the way between two red steps: rounding is off by a quarter
+    /// everywhere, a dithered tile (four of sixteen pixels a step up) not at all on average.
+    #[test]
+    fn rgb565_tiles_average_dithered_pixels() {
+        let truth = vec![Some([9.25 * 255.0 / 31.0, 0.0, 0.0]); 16];
+        let ids = vec![Some(0); 16];
+        let r = reference(ids.clone(), vec![vec![(0, 1.0)]; 16]);
+        let rounded = [[9u8, 0, 0]; 16];
+        let mut e = Errors {
+            same: 16,
+            ..Errors::default()
+        };
+        rgb565_errors(&mut e, &r, &truth, &ids, &rounded, 4);
+        assert!((e.rgb565_mean() - 0.25 / 3.0).abs() < 1e-9);
+        assert!((e.tile_mean() - 0.25 / 3.0).abs() < 1e-9);
+        let mut dithered = rounded;
+        for i in [4, 6, 12, 14] {
+            dithered[i][0] = 10;
+        }
+        let mut e = Errors {
+            same: 16,
+            ..Errors::default()
+        };
+        rgb565_errors(&mut e, &r, &truth, &ids, &dithered, 4);
+        assert_eq!(e.tiles, 1);
+        assert!(e.tile_mean() < 1e-9);
+        assert!(e.rgb565_bias().abs() < 1e-9);
+        assert!(e.rgb565_mean() > 0.25 / 3.0);
     }
 
     #[test]

@@ -1,14 +1,17 @@
 //! Drawing a loaded scene: the meshes through the 3D pipeline, then the 2D shapes.
 
-use super::format::{CullMode, FillRuleDef, LightDef, PixelFormat, ShadingModel, Shape};
+use super::format::{
+    CullMode, DitherMode, FillRuleDef, LightDef, PixelFormat, ShadingModel, Shape,
+};
 use super::load::{MeshData, OwnedMesh, Scene, SceneMesh};
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
 use embedded_graphics_simulator::{OutputImage, OutputSettingsBuilder, SimulatorDisplay};
 use rasterizer_core::color::Channels;
+use rasterizer_core::color::ShadeColor;
 use rasterizer_core::cull::Cull;
 use rasterizer_core::depth::DepthTest;
-use rasterizer_core::numerics::{Numerics, Perspective, Standard};
+use rasterizer_core::numerics::{Dither, Numerics, Perspective, Standard};
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 use rasterizer_core::surface::ClipTo;
@@ -285,15 +288,23 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> R
             viewport: Viewport::new(w, h),
             lighting,
         };
+        let format = scene.format;
+        let draw = |target: &mut Target<'_>, m: &DynMesh<'_, S>, zbuf: &mut [u16]| {
+            if dithers(mesh) {
+                by_format(target, m, &job, zbuf, format)
+            } else {
+                by_cull(target, m, &job, zbuf)
+            }
+        };
         match &mesh.data {
             MeshData::Packed(bytes) => {
                 let packed = PackedMesh::parse(bytes).map_err(|e| e.to_string())?;
-                triangles += u64::from(by_cull(target, &DynMesh(&packed), &job, &mut zbuf).drawn);
+                triangles += u64::from(draw(target, &DynMesh(&packed), &mut zbuf).drawn);
             }
             MeshData::Owned(owned) => {
                 let data = Converted::<S>::new(owned);
                 let mesh = DynMesh(&data.mesh());
-                triangles += u64::from(by_cull(target, &mesh, &job, &mut zbuf).drawn);
+                triangles += u64::from(draw(target, &mesh, &mut zbuf).drawn);
             }
         }
     }
@@ -328,6 +339,147 @@ impl<S: Real> Converted<S> {
             colors: self.colors.as_deref(),
             triangles: &self.triangles,
         }
+    }
+}
+
+/// Whether a mesh takes the dithered path: it asks for dithering and has an interpolated colour
+/// (filled, Gouraud or vertex colours, affine: what the core dithers).
+fn dithers(m: &SceneMesh) -> bool {
+    m.dither != DitherMode::None
+        && !m.wireframe
+        && !m.perspective_correct
+        && matches!(
+            m.shading,
+            ShadingModel::Gouraud | ShadingModel::VertexColors
+        )
+}
+
+/// The `Rgb888` target seen as a target of the output's colour `C`, so that a dithered pipeline
+/// works at the output's channel depth. Each pixel goes back to `Rgb888` exactly: the output's
+/// conversion from `Rgb888` returns the same `C`.
+struct AsColor<'t, 'f, C>(&'t mut Target<'f>, core::marker::PhantomData<C>);
+
+impl<C> Dimensions for AsColor<'_, '_, C> {
+    fn bounding_box(&self) -> Rectangle {
+        self.0.bounding_box()
+    }
+}
+
+impl<C: PixelColor + Into<Rgb888>> DrawTarget for AsColor<'_, '_, C> {
+    type Color = C;
+    type Error = Infallible;
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        self.0
+            .draw_iter(pixels.into_iter().map(|Pixel(p, c)| Pixel(p, c.into())))
+    }
+}
+
+impl<C: PixelColor + Into<Rgb888>> Surface for AsColor<'_, '_, C> {}
+
+/// Culling chosen at run time, so the dithered path compiles one pipeline per colour, not three.
+#[derive(Debug, Clone, Copy)]
+struct ModeCull(CullMode);
+
+impl Cull for ModeCull {
+    fn keep(&self, area: i64) -> bool {
+        match self.0 {
+            CullMode::None => true,
+            CullMode::Cw => CullClockwise.keep(area),
+            CullMode::Ccw => CullCounterClockwise.keep(area),
+        }
+    }
+}
+
+/// Numerics with dithering `D` (1: Bayer 4x4, 2: Bayer 8x8).
+struct Dithered<const D: u8>;
+
+impl<const D: u8> Numerics for Dithered<D> {
+    const DITHER: Dither = if D == 1 {
+        Dither::Bayer4
+    } else {
+        Dither::Bayer8
+    };
+}
+
+/// A dithered mesh: picks the output's colour.
+fn by_format<S: Real>(
+    target: &mut Target<'_>,
+    mesh: &DynMesh<'_, S>,
+    job: &Job<'_, S>,
+    zbuf: &mut [u16],
+    format: PixelFormat,
+) -> RenderStats {
+    match format {
+        PixelFormat::Rgb565 => dithered::<S, Rgb565>(target, mesh, job, zbuf),
+        PixelFormat::Rgb888 => dithered::<S, Rgb888>(target, mesh, job, zbuf),
+        PixelFormat::Gray8 => dithered::<S, Gray8>(target, mesh, job, zbuf),
+        PixelFormat::Binary => dithered::<S, BinaryColor>(target, mesh, job, zbuf),
+    }
+}
+
+/// A dithered mesh in the output's colour `C`: picks the depth stage, shading and matrix.
+fn dithered<S: Real, C: ShadeColor + Into<Rgb888>>(
+    target: &mut Target<'_>,
+    mesh: &DynMesh<'_, S>,
+    job: &Job<'_, S>,
+    zbuf: &mut [u16],
+) -> RenderStats {
+    let mut target = AsColor::<C>(target, core::marker::PhantomData);
+    let cull = ModeCull(job.mesh.cull);
+    if !job.mesh.depth {
+        return dithered_shading::<S, C, _>(&mut target, mesh, job, cull, NoDepth);
+    }
+    let (w, h) = (job.viewport.width, job.viewport.height);
+    match DepthBuffer::new(zbuf, w, h, Compare::Less) {
+        Ok(depth) => dithered_shading::<S, C, _>(&mut target, mesh, job, cull, depth),
+        Err(_) => RenderStats::default(),
+    }
+}
+
+/// Picks the shading and the matrix of a dithered mesh.
+fn dithered_shading<S: Real, C: ShadeColor + Into<Rgb888>, D: DepthTest>(
+    target: &mut AsColor<'_, '_, C>,
+    mesh: &DynMesh<'_, S>,
+    job: &Job<'_, S>,
+    cull: ModeCull,
+    depth: D,
+) -> RenderStats {
+    fn draw<S: Real, C: ShadeColor + Into<Rgb888>, D: DepthTest, Sh, N: Numerics>(
+        target: &mut AsColor<'_, '_, C>,
+        mesh: &DynMesh<'_, S>,
+        job: &Job<'_, S>,
+        cull: ModeCull,
+        depth: D,
+        shading: Sh,
+    ) -> RenderStats
+    where
+        Sh: Shading<S, Color = C>,
+    {
+        let mut p =
+            Pipeline::new(&job.transforms, job.viewport, cull, depth, shading).with_numerics::<N>();
+        if let Some(n) = job.normal_matrix {
+            p.set_normal_matrix(n);
+        }
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+        p.draw(target, mesh, &mut scratch).unwrap_or_default()
+    }
+    let bayer4 = job.mesh.dither == DitherMode::Bayer4;
+    if job.mesh.shading == ShadingModel::VertexColors {
+        let sh = VertexColors::<C>::new();
+        return if bayer4 {
+            draw::<S, C, D, _, Dithered<1>>(target, mesh, job, cull, depth, sh)
+        } else {
+            draw::<S, C, D, _, Dithered<2>>(target, mesh, job, cull, depth, sh)
+        };
+    }
+    let sh = GouraudLit::<S, C, MAX_LIGHTS>::new(job.lighting.clone());
+    if bayer4 {
+        draw::<S, C, D, _, Dithered<1>>(target, mesh, job, cull, depth, sh)
+    } else {
+        draw::<S, C, D, _, Dithered<2>>(target, mesh, job, cull, depth, sh)
     }
 }
 
@@ -582,4 +734,24 @@ where
             }
         }
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`AsColor`] relies on every output colour surviving the trip through `Rgb888`.
+    #[test]
+    fn output_colours_round_trip_through_rgb888() {
+        for raw in 0..=u16::MAX {
+            let c = Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(raw));
+            assert_eq!(Rgb565::from(Rgb888::from(c)), c);
+        }
+        for v in 0..=255 {
+            assert_eq!(Gray8::from(Rgb888::from(Gray8::new(v))), Gray8::new(v));
+        }
+        for b in [BinaryColor::Off, BinaryColor::On] {
+            assert_eq!(BinaryColor::from(Rgb888::from(b)), b);
+        }
+    }
 }

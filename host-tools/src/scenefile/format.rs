@@ -118,6 +118,9 @@ pub struct RenderOptions {
     /// Interpolate shader values perspective-correctly.
     #[serde(default)]
     pub perspective_correct: bool,
+    /// Ordered dithering of interpolated colour down to the output format.
+    #[serde(default)]
+    pub dither: DitherMode,
     /// The specular term of lit shading.
     #[serde(default)]
     pub specular: SpecularModel,
@@ -134,6 +137,7 @@ impl Default for RenderOptions {
             depth: true,
             cull: CullMode::default(),
             perspective_correct: false,
+            dither: DitherMode::default(),
             specular: SpecularModel::default(),
             ambient: white(),
         }
@@ -155,6 +159,19 @@ pub enum ShadingModel {
     Gouraud,
     /// Lit per pixel (`PhongLit`).
     Phong,
+}
+
+/// Ordered dithering (`Numerics::DITHER`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DitherMode {
+    /// Each pixel rounded to the nearest step.
+    #[default]
+    None,
+    /// The 4 x 4 Bayer matrix.
+    Bayer4,
+    /// The 8 x 8 Bayer matrix.
+    Bayer8,
 }
 
 /// Back-face culling.
@@ -246,6 +263,8 @@ pub struct MeshDef {
     pub cull: Option<CullMode>,
     /// Overrides `render.perspective_correct`.
     pub perspective_correct: Option<bool>,
+    /// Overrides `render.dither`.
+    pub dither: Option<DitherMode>,
 }
 
 /// Where a mesh's normals come from.

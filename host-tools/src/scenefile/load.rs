@@ -1,8 +1,8 @@
 //! Reading a scene file: parsing, checking every value, loading the meshes.
 
 use super::format::{
-    Camera, Color, CullMode, LightDef, MeshDef, NormalsMode, PixelFormat, ScaleDef, SceneFile,
-    ShadingModel, Shape, SpecularModel, VertexColorMode,
+    Camera, Color, CullMode, DitherMode, LightDef, MeshDef, NormalsMode, PixelFormat, ScaleDef,
+    SceneFile, ShadingModel, Shape, SpecularModel, VertexColorMode,
 };
 use super::limits;
 use super::reference::Real;
@@ -81,6 +81,8 @@ pub struct SceneMesh {
     pub cull: CullMode,
     /// Perspective-correct interpolation.
     pub perspective_correct: bool,
+    /// Ordered dithering.
+    pub dither: DitherMode,
 }
 
 /// Vertex data: a packed blob drawn in place, or a mesh in memory.
@@ -407,6 +409,7 @@ fn load_mesh(
         perspective_correct: def
             .perspective_correct
             .unwrap_or(render.perspective_correct),
+        dither: def.dither.unwrap_or(render.dither),
     })
 }
 

@@ -10,7 +10,7 @@ use crate::depth::DepthTest;
 use crate::geom::{SubPoint, MAX_VARYINGS};
 use crate::math::{Scalar, Vec4};
 use crate::mesh::MeshSource;
-use crate::numerics::{Numerics, SpanStart};
+use crate::numerics::{Dither, Numerics, SpanStart};
 use crate::raster::fused::{fill_fused, FusedColor, FusedVertex, Precision};
 use crate::raster::interp::{fill_triangle_interp_with, ScreenVertex};
 use crate::shade::Shading;
@@ -33,13 +33,18 @@ pub(super) enum Front<S, const BITS: u32> {
     },
 }
 
-/// A shader as the fused span loop's colour source.
-struct ShaderColor<'a, S, Sh>(&'a Sh, core::marker::PhantomData<S>);
+/// A shader as the fused span loop's colour source, dithered as `N` says.
+struct ShaderColor<'a, S, Sh, N>(&'a Sh, core::marker::PhantomData<(S, N)>);
 
-impl<S: Scalar, Sh: Shading<S>> FusedColor<Sh::Color> for ShaderColor<'_, S, Sh> {
+impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for ShaderColor<'_, S, Sh, N> {
+    const AT: bool = !matches!(N::DITHER, Dither::None);
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
         self.0.pixel_fused(acc)
+    }
+    #[inline(always)]
+    fn color_at(&self, acc: &[u32; MAX_VARYINGS], x: i32, y: i32) -> Sh::Color {
+        self.0.pixel_fused_dithered(acc, N::DITHER.threshold(x, y))
     }
 }
 
@@ -301,7 +306,7 @@ where
                 frac: Sh::FUSED_FRAC,
                 offset: Sh::FUSED_OFFSET,
             },
-            ShaderColor::<S, Sh>(&self.shading, core::marker::PhantomData),
+            ShaderColor::<S, Sh, N>(&self.shading, core::marker::PhantomData),
         )
     }
 

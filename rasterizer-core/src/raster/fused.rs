@@ -132,8 +132,17 @@ impl Shape {
 /// What the fused loop asks of a shader: the colour of a pixel from its values, each
 /// `value 2^vfrac + voffset` (see [`fill_fused`]).
 pub(crate) trait FusedColor<C> {
+    /// The colour depends on the pixel's screen position too ([`FusedColor::color_at`]): the
+    /// loops then track it; otherwise they compile exactly as without it.
+    const AT: bool = false;
     /// The pixel's colour.
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> C;
+    /// The colour of the pixel at `(x, y)`, when [`FusedColor::AT`] is set.
+    #[inline(always)]
+    fn color_at(&self, acc: &[u32; MAX_VARYINGS], x: i32, y: i32) -> C {
+        let _ = (x, y);
+        self.color(acc)
+    }
 }
 
 /// The pixels of one span with a depth test: each pixel's depth, test and values, stepped
@@ -148,11 +157,10 @@ struct DepthPixels<'p, P, V, const LESS: bool> {
     _v: core::marker::PhantomData<V>,
 }
 
-impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
-    for DepthPixels<'_, P, V, LESS>
-{
+impl<P, V: Varyings, const LESS: bool> DepthPixels<'_, P, V, LESS> {
+    /// The values of pixel `i` if it passes the depth test (which then stores its depth).
     #[inline(always)]
-    fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
+    fn values(&mut self, i: usize, stored: &mut u16) -> Option<[u32; MAX_VARYINGS]> {
         // Only depth steps with every pixel; the values of a pixel that passes are computed from
         // its index (most pixels of a dense mesh fail the test).
         let nz = (self.z >> Z_FRAC) as u16;
@@ -170,6 +178,36 @@ impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
         for (a, step) in acc.iter_mut().zip(&self.step).take(V::LEN) {
             *a = a.wrapping_add(step.wrapping_mul(i as u32));
         }
+        Some(acc)
+    }
+}
+
+/// [`DepthPixels`] for a colour that depends on the screen position ([`FusedColor::AT`]): a
+/// type of its own, so that the usual loop carries no position.
+struct DepthPixelsAt<'p, P, V, const LESS: bool> {
+    pixels: DepthPixels<'p, P, V, LESS>,
+    /// The span's first pixel.
+    x: i32,
+    y: i32,
+}
+
+impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
+    for DepthPixelsAt<'_, P, V, LESS>
+{
+    #[inline(always)]
+    fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
+        let acc = self.pixels.values(i, stored)?;
+        let x = self.x.wrapping_add(i as i32);
+        Some(self.pixels.pixel.color_at(&acc, x, self.y))
+    }
+}
+
+impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
+    for DepthPixels<'_, P, V, LESS>
+{
+    #[inline(always)]
+    fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
+        let acc = self.values(i, stored)?;
         Some(self.pixel.color(&acc))
     }
 }
@@ -212,6 +250,17 @@ where
                     .surface
                     .fill_span_in_clip(x0, row, len, pixel.color(&acc));
             }
+            if P::AT {
+                let mut x = x0;
+                return self.surface.shade_span_in_clip(x0, row, len, || {
+                    let c = pixel.color_at(&acc, x, row);
+                    x = x.wrapping_add(1);
+                    for k in 0..n {
+                        acc[k] = acc[k].wrapping_add(step[k]);
+                    }
+                    c
+                });
+            }
             return self.surface.shade_span_in_clip(x0, row, len, || {
                 let c = pixel.color(&acc);
                 for k in 0..n {
@@ -225,28 +274,33 @@ where
             return Ok(());
         }
         let (z, dz, compare) = (self.z.at(x0, row), self.z.gx, self.compare);
+        macro_rules! depth_span {
+            ($less:literal) => {{
+                let pixels = DepthPixels::<P, V, $less> {
+                    acc,
+                    step,
+                    z,
+                    dz,
+                    compare,
+                    pixel,
+                    _v: core::marker::PhantomData,
+                };
+                if P::AT {
+                    let pixels = DepthPixelsAt {
+                        pixels,
+                        x: x0,
+                        y: row,
+                    };
+                    self.surface.shade_span_depth_in_clip(x0, row, zrow, pixels)
+                } else {
+                    self.surface.shade_span_depth_in_clip(x0, row, zrow, pixels)
+                }
+            }};
+        }
         if self.less {
-            let pixels = DepthPixels::<P, V, true> {
-                acc,
-                step,
-                z,
-                dz,
-                compare,
-                pixel,
-                _v: core::marker::PhantomData,
-            };
-            self.surface.shade_span_depth_in_clip(x0, row, zrow, pixels)
+            depth_span!(true)
         } else {
-            let pixels = DepthPixels::<P, V, false> {
-                acc,
-                step,
-                z,
-                dz,
-                compare,
-                pixel,
-                _v: core::marker::PhantomData,
-            };
-            self.surface.shade_span_depth_in_clip(x0, row, zrow, pixels)
+            depth_span!(false)
         }
     }
 }

@@ -129,6 +129,15 @@ pub trait Shading<S: Scalar> {
         }
         self.pixel(&v)
     }
+    /// [`Shading::pixel_fused`] for a pipeline that dithers ([`crate::numerics::Dither`]):
+    /// `threshold` (below 256) is the pixel's share of one step of the target, in 256ths, to
+    /// add before truncating instead of the half step that rounds. Shaders without an
+    /// interpolated colour ignore it.
+    #[inline(always)]
+    fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> Self::Color {
+        let _ = threshold;
+        self.pixel_fused(acc)
+    }
 }
 
 /// Fractional bits of a channel of largest value `max` as the colour shaders interpolate it: as
@@ -165,6 +174,20 @@ fn from_sums<C: ShadeColor>(sums: [u64; 3]) -> C {
 #[inline(always)]
 fn from_target<C: ShadeColor>(v: [u32; 3], shift: u32) -> C {
     let ch = |c: usize| (v[c] >> (shift + channel_frac(C::MAX[c]))) as u8;
+    C::from_shade([ch(0), ch(1), ch(2)])
+}
+
+/// [`from_target`] with `threshold` 256ths of a step in place of the half step the channels
+/// carry, then truncated: ordered dithering. The channels' bound (`max + 1/2` steps below
+/// `2^(16 + shift)`) keeps the sum below `2^32`, and the threshold is at least half a 256th,
+/// more than the interpolation's error, so it does not wrap below zero either.
+#[inline(always)]
+fn from_target_dithered<C: ShadeColor>(v: [u32; 3], shift: u32, threshold: u32) -> C {
+    let ch = |c: usize| {
+        let s = shift + channel_frac(C::MAX[c]);
+        let t = (threshold << (s - 8)).wrapping_sub(1 << (s - 1));
+        (v[c].wrapping_add(t) >> s) as u8
+    };
     C::from_shade([ch(0), ch(1), ch(2)])
 }
 
@@ -225,6 +248,14 @@ impl<S: Scalar, C: ShadeColor> Shading<S> for VertexColors<C> {
     #[inline(always)]
     fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
         from_target([acc[0], acc[1], acc[2]], <Self as Shading<S>>::FUSED_FRAC)
+    }
+    #[inline(always)]
+    fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> C {
+        from_target_dithered(
+            [acc[0], acc[1], acc[2]],
+            <Self as Shading<S>>::FUSED_FRAC,
+            threshold,
+        )
     }
 }
 
@@ -320,6 +351,14 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
     #[inline(always)]
     fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
         from_target([acc[0], acc[1], acc[2]], <Self as Shading<S>>::FUSED_FRAC)
+    }
+    #[inline(always)]
+    fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> C {
+        from_target_dithered(
+            [acc[0], acc[1], acc[2]],
+            <Self as Shading<S>>::FUSED_FRAC,
+            threshold,
+        )
     }
 }
 
