@@ -1,13 +1,12 @@
 //! Draws one frame of a WORKLOADS.md scene for callgrind to count (`scripts/callgrind.sh`).
 //!
 //! `count2d SCENE RENDERER [--pixels | --stats]`, SCENE one of L1 T1 T2 G1 LIMIT, RENDERER `ours` or `eg`
-//! (LIMIT ignores it), or `ours-aa` for L1: the same lines anti-aliased (`draw_line_aa`, width 1),
-//! against embedded-graphics' line of the same width. The scene is generated and one warm frame
-//! drawn outside the counted function; then exactly one call of a `frame_*` function draws the counted frame:
+//! (LIMIT ignores it). The scene is generated and one warm frame drawn outside the counted
+//! function; then exactly one call of a `frame_*` function draws the counted frame:
 //!
 //! | scene | ours | eg |
 //! |---|---|---|
-//! | L1 | `frame_ours_lines` (`ours-aa`: `frame_ours_aa_lines`) | `frame_eg_lines` |
+//! | L1 | `frame_ours_lines` | `frame_eg_lines` |
 //! | T1, T2 | `frame_ours_triangles` | `frame_eg_triangles` |
 //! | G1 | `frame_ours_gouraud` | - |
 //! | LIMIT | `frame_limit` | `frame_limit` |
@@ -29,15 +28,6 @@ use std::process::ExitCode;
 #[inline(never)]
 fn frame_ours_lines(fb: &mut Framebuffer<Rgb565>, l: &[LineSeg]) {
     let Ok(()) = scenes::draw_lines_ours(fb, l);
-}
-
-/// L1 anti-aliased: each line blended over what the frame holds.
-#[inline(never)]
-fn frame_ours_aa_lines(fb: &mut Framebuffer<Rgb565>, l: &[LineSeg]) {
-    for l in l {
-        // A framebuffer reads back, so this cannot fail.
-        let _ = draw_line_aa(fb, l.a, l.b, l.color);
-    }
 }
 
 #[inline(never)]
@@ -70,15 +60,13 @@ fn frame_limit(buf: &mut [u16; PIXELS], value: u16) {
 #[derive(Clone, Copy, PartialEq)]
 enum Renderer {
     Ours,
-    /// L1 with `draw_line_aa` (a counting target cannot read back, so no `--pixels`/`--stats`).
-    OursAa,
     Eg,
 }
 
 fn usage() -> ExitCode {
     eprintln!(
         "usage: count2d SCENE RENDERER [--pixels | --stats]   SCENE: L1 T1 T2 G1 LIMIT, \
-         RENDERER: ours eg (L1 also ours-aa, without --pixels and --stats)"
+         RENDERER: ours eg"
     );
     ExitCode::from(2)
 }
@@ -95,7 +83,6 @@ fn main() -> ExitCode {
     let renderer = match renderer {
         "ours" => Renderer::Ours,
         "eg" => Renderer::Eg,
-        "ours-aa" if scene == "L1" => Renderer::OursAa,
         _ => return usage(),
     };
     if scene == "G1" && renderer == Renderer::Eg {
@@ -136,10 +123,7 @@ fn main() -> ExitCode {
     let primitives = match (scene, renderer) {
         ("L1", r) => {
             let l = scenes::l1();
-            if r == Renderer::OursAa {
-                frame_ours_aa_lines(&mut fb, &l);
-                frame_ours_aa_lines(&mut fb, black_box(&l));
-            } else if r == Renderer::Ours {
+            if r == Renderer::Ours {
                 let Ok(()) = scenes::draw_lines_ours(&mut fb, &l);
                 frame_ours_lines(&mut fb, black_box(&l));
             } else {
@@ -186,10 +170,10 @@ fn main() -> ExitCode {
         .fold(0u32, |s, &w| s.rotate_left(5) ^ u32::from(w));
     println!(
         "{scene} {} primitives={primitives} checksum={sum:08x}",
-        match renderer {
-            Renderer::Ours => "ours",
-            Renderer::OursAa => "ours-aa",
-            Renderer::Eg => "eg",
+        if renderer == Renderer::Ours {
+            "ours"
+        } else {
+            "eg"
         }
     );
     ExitCode::SUCCESS
