@@ -37,6 +37,7 @@
 use embedded_graphics_core::geometry::OriginDimensions;
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_hal::digital::OutputPin;
+use fixtures::scenes3d;
 use mipidsi::interface::{Interface, InterfacePixelFormat};
 use mipidsi::models::Model;
 use mipidsi::Display;
@@ -127,38 +128,16 @@ pub enum StreamError<E> {
     Display(E),
 }
 
-/// The M1 benchmark scene for a `width` x `height` screen: Suzanne turned 30 degrees about Y,
-/// the camera at (0, 0, 3) looking at the origin, a 60 degree vertical field of view, near 0.1,
-/// far 100, one white directional light from (1, 1, 1).
+/// The M1 benchmark scene for a `width` x `height` screen, as the benchmarks define it
+/// (`fixtures::scenes3d`): Suzanne turned 30 degrees about Y, the camera at (0, 0, 3) looking at
+/// the origin, a 60 degree vertical field of view, near 0.1, far 100, one white directional light
+/// from (1, 1, 1).
 ///
 /// The aspect ratio follows the screen (1:1 on a 240x240 ST7789), as the project's host tools
 /// do for other frame sizes, so that Suzanne is not stretched.
 pub fn m1_scene(width: u32, height: u32) -> (Transforms<Fx16>, Lighting<Fx16, 1>) {
-    let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
-    let transforms = Transforms {
-        model: Mat4::rotation_y(Angle::from_degrees(30)),
-        view: Mat4::look_at(p(0, 0, 3), p(0, 0, 0), p(0, 1, 0)).unwrap_or_default(),
-        projection: Mat4::perspective(
-            Angle::from_degrees(60),
-            Fx16::from_ratio(width.into(), height.into()),
-            Fx16::from_ratio(1, 10),
-            Fx16::from_int(100),
-        )
-        .unwrap_or_default(),
-    };
-    let material = Material {
-        ambient: Rgb888::new(40, 30, 30),
-        diffuse: Rgb888::new(220, 140, 80),
-        specular: Rgb888::WHITE,
-        shininess: 16,
-    };
-    let mut lighting = Lighting::new(material, Rgb888::WHITE, Specular::BlinnPhong, p(0, 0, 3));
-    // One light in room for one: this cannot fail.
-    let _ = lighting.add_light(Light::Directional {
-        direction: p(1, 1, 1),
-        color: Rgb888::WHITE,
-    });
-    (transforms, lighting)
+    let model = Mat4::rotation_y(Angle::from_degrees(scenes3d::ROTATION_Y_DEGREES));
+    (scenes3d::camera(model, width, height), scenes3d::lighting())
 }
 
 /// Sends one finished band to the display: one address window covering the band's rows, one
