@@ -300,30 +300,8 @@ fn measure<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(scene: &Pre
     };
 
     // Colours: Gouraud into Rgb888, the configuration exactly.
-    let mut zbuf = vec![u16::MAX; pixels];
-    let depth = DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
-    let mut p = Pipeline::new(
-        &xf,
-        vp,
-        cull,
-        depth,
-        GouraudLit::<S, Rgb888, 1>::new(lighting::<S>(&def.camera)),
-    )
-    .with_bits::<BITS>()
-    .with_numerics::<Nu>();
     let mut rgb = vec![0u8; pixels * 3];
-    {
-        let mut fb = Framebuffer::<Rgb888>::new(&mut rgb, w, h).map_err(|e| format!("{e:?}"))?;
-        let mesh = Mesh {
-            positions: &positions,
-            normals: Some(&normals),
-            colors: None,
-            triangles: &def.tris,
-        };
-        let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
-        p.draw(&mut fb, &mesh, &mut scratch)
-            .map_err(|e| e.to_string())?;
-    }
+    draw_gouraud::<S, Rgb888, BITS, Nu>(&xf, cull, def, &positions, &normals, &mut rgb)?;
 
     // Triangle ids: each face painted with its id (three unshared corners per triangle). Ids and
     // coverage do not depend on perspective-correct interpolation (depth is affine in screen space
@@ -373,30 +351,7 @@ fn measure<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(scene: &Pre
 
     // The same colours into Rgb565, where rounding (or dithering) to 5 and 6 bits shows.
     let mut c565 = vec![0u16; pixels];
-    {
-        let mut fb = Framebuffer::<Rgb565>::new(&mut c565, w, h).map_err(|e| format!("{e:?}"))?;
-        let mut zbuf = vec![u16::MAX; pixels];
-        let depth =
-            DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
-        let mut p = Pipeline::new(
-            &xf,
-            vp,
-            cull,
-            depth,
-            GouraudLit::<S, Rgb565, 1>::new(lighting::<S>(&def.camera)),
-        )
-        .with_bits::<BITS>()
-        .with_numerics::<Nu>();
-        let mesh = Mesh {
-            positions: &positions,
-            normals: Some(&normals),
-            colors: None,
-            triangles: &def.tris,
-        };
-        let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
-        p.draw(&mut fb, &mesh, &mut scratch)
-            .map_err(|e| e.to_string())?;
-    }
+    draw_gouraud::<S, Rgb565, BITS, Nu>(&xf, cull, def, &positions, &normals, &mut c565)?;
     let ours565: Vec<[u8; 3]> = c565
         .iter()
         .map(|&v| {
@@ -413,6 +368,34 @@ fn measure<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(scene: &Pre
         w as usize,
     );
     Ok(errors)
+}
+
+/// The configuration's Gouraud render of a scene's mesh into a framebuffer of colour `C` over
+/// `buf`, with a depth buffer and the scene's culling.
+fn draw_gouraud<S: Format, C, const BITS: u32, Nu: Numerics>(
+    xf: &Transforms<S>,
+    cull: SceneCull,
+    def: &SceneDef,
+    positions: &[Vec3<S>],
+    normals: &[Vec3<S>],
+    buf: &mut [C::Word],
+) -> Result<(), String>
+where
+    C: rasterizer_core::color::ShadeColor + rasterizer_core::surface::Storage,
+{
+    let (w, h) = (def.width, def.height);
+    let mut fb = Framebuffer::<C>::new(buf, w, h).map_err(|e| format!("{e:?}"))?;
+    let mut zbuf = vec![u16::MAX; w as usize * h as usize];
+    let depth = DepthBuffer::new(&mut zbuf, w, h, Compare::Less).map_err(|e| format!("{e:?}"))?;
+    let shading = GouraudLit::<S, C, 1>::new(lighting::<S>(&def.camera));
+    let mut p = Pipeline::new(xf, Viewport::new(w, h), cull, depth, shading)
+        .with_bits::<BITS>()
+        .with_numerics::<Nu>();
+    let mesh = Mesh::new(positions, &def.tris).with_normals(normals);
+    let mut scratch = vec![VertexSlot::EMPTY; positions.len()];
+    p.draw(&mut fb, &mesh, &mut scratch)
+        .map_err(|e| e.to_string())?;
+    Ok(())
 }
 
 /// The M1 frame callgrind counts: the whole draw call of one frame, nothing else. Generic, so each
