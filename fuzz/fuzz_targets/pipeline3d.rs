@@ -59,6 +59,7 @@ fuzz_target!(|data: &[u8]| {
         positions: &pos,
         normals: None,
         colors: Some(&colors),
+        uvs: None,
         triangles: &tris,
     };
     let xf = Transforms {

@@ -281,6 +281,7 @@ impl ColoredMesh {
             positions: &self.positions,
             normals: None,
             colors: Some(&self.colors),
+            uvs: None,
             triangles: &self.triangles,
         }
     }

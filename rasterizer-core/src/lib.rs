@@ -138,6 +138,7 @@ pub mod prelude;
 pub mod raster;
 pub mod shade;
 pub mod surface;
+pub mod texture;
 pub mod transform;
 
 /// The README's examples, compiled and run as doc tests.

@@ -28,4 +28,5 @@ pub use crate::shade::{
     FlatLit, GouraudLit, Light, Lighting, Material, PhongLit, Specular, Unlit, VertexColors,
 };
 pub use crate::surface::{AnyTarget, BlendError, Framebuffer, Surface};
+pub use crate::texture::{Filter, Texture, Wrap};
 pub use crate::transform::{Transforms, Viewport};

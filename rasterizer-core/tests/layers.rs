@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 /// The layers, lowest first. A module may use modules of lower layers only.
 const LAYERS: &[&[&str]] = &[
     &["math", "numerics", "color"],
-    &["geom"],
+    &["geom", "texture"],
     &["surface"],
     &["mesh", "transform", "clip", "cull", "depth"],
     &["raster", "shade"],

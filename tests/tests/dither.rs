@@ -35,6 +35,7 @@ where
         positions: &positions,
         normals: None,
         colors: Some(&colors),
+        uvs: None,
         triangles: &triangles,
     };
     let t = Transforms {

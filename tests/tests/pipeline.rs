@@ -897,6 +897,7 @@ fn zero_length_normals() {
         positions: &ico.positions,
         normals: Some(&zeros),
         colors: None,
+        uvs: None,
         triangles: &ico.triangles,
     };
     let scene = Scene::camera([0.5, 1.0, 3.0], [0.0; 3], 60, 0.1, 100.0);
@@ -1086,6 +1087,7 @@ fn invalid_indices_are_skipped_and_counted() {
             positions: &positions,
             normals: None,
             colors: Some(&colors),
+            uvs: None,
             triangles: tris,
         };
         let mut scratch = [VertexSlot::EMPTY; 4];
@@ -1181,6 +1183,7 @@ fn draw_extreme<C: Cull + Copy, D: DepthTest>(
         positions,
         normals: Some(normals),
         colors: None,
+        uvs: None,
         triangles: tris,
     };
     let mut p1: Pipeline<Fx16, C, D, _> =

@@ -171,6 +171,7 @@ fn render<Sh: Shading<Fx16, Color = Rgb565>, N: Numerics>(
         positions: &pos,
         normals: normals.then_some(&pos[..]),
         colors: Some(&colors),
+        uvs: None,
         triangles: &tris,
     };
     let mut z = vec![u16::MAX; (w * h) as usize];
@@ -258,6 +259,7 @@ fn scratch_left_from_another_frame_does_not_matter() {
             positions,
             normals: Some(positions),
             colors: None,
+            uvs: None,
             triangles: &tris,
         };
         let mut z = vec![u16::MAX; (w * h) as usize];
@@ -467,6 +469,7 @@ impl RandomScene {
             positions: &self.positions,
             normals: self.normals.as_deref(),
             colors: Some(&self.colors),
+            uvs: None,
             triangles: &self.triangles,
         }
     }

@@ -235,6 +235,7 @@ fn clipped_polygon_near_i32_limits_has_an_exact_area() {
         positions: &pos,
         normals: None,
         colors: Some(&colors),
+        uvs: None,
         triangles: &tris,
     };
     let xf = Transforms {

@@ -333,6 +333,7 @@ fn measure<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(scene: &Pre
             positions: &face_pos,
             normals: None,
             colors: Some(&face_col),
+            uvs: None,
             triangles: &face_tri,
         };
         let mut scratch = vec![VertexSlot::EMPTY; face_pos.len()];
@@ -423,6 +424,7 @@ fn count<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(
         positions: &positions,
         normals: Some(&normals),
         colors: None,
+        uvs: None,
         triangles: &def.tris,
     };
     let pixels = w as usize * h as usize;

@@ -337,6 +337,7 @@ impl<S: Real> Converted<S> {
             positions: &self.positions,
             normals: self.normals.as_deref(),
             colors: self.colors.as_deref(),
+            uvs: None,
             triangles: &self.triangles,
         }
     }

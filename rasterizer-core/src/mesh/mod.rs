@@ -45,6 +45,9 @@ pub struct Mesh<'a, S, I = u16> {
     pub normals: Option<&'a [Vec3<S>]>,
     /// Vertex colours, one per position; white when absent.
     pub colors: Option<&'a [Rgb888]>,
+    /// Texture coordinates, one pair per position, 16.16 in units of the whole texture
+    /// ([`crate::texture`]); `(0, 0)` when absent.
+    pub uvs: Option<&'a [[i32; 2]]>,
     /// Triangles as three vertex indices. A triangle with an index out of range is skipped and
     /// counted in [`crate::pipeline::RenderStats::invalid`].
     pub triangles: &'a [[I; 3]],
@@ -57,6 +60,7 @@ impl<'a, S, I> Mesh<'a, S, I> {
             positions,
             normals: None,
             colors: None,
+            uvs: None,
             triangles,
         }
     }
@@ -65,6 +69,14 @@ impl<'a, S, I> Mesh<'a, S, I> {
     pub const fn with_normals(self, normals: &'a [Vec3<S>]) -> Self {
         Self {
             normals: Some(normals),
+            ..self
+        }
+    }
+
+    /// The mesh with texture coordinates, one pair per position (16.16, [`crate::texture`]).
+    pub const fn with_uvs(self, uvs: &'a [[i32; 2]]) -> Self {
+        Self {
+            uvs: Some(uvs),
             ..self
         }
     }
@@ -96,6 +108,12 @@ pub trait MeshSource<S> {
     fn normal(&self, i: usize) -> Option<Vec3<S>>;
     /// Vertex `i`'s colour, if the mesh has colours.
     fn color(&self, i: usize) -> Option<Rgb888>;
+    /// Vertex `i`'s texture coordinates (16.16, [`crate::texture`]), if the mesh has them.
+    #[inline(always)]
+    fn uv(&self, i: usize) -> Option<[i32; 2]> {
+        let _ = i;
+        None
+    }
 }
 
 impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
@@ -128,5 +146,9 @@ impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
     #[inline(always)]
     fn color(&self, i: usize) -> Option<Rgb888> {
         self.colors.and_then(|c| c.get(i).copied())
+    }
+    #[inline(always)]
+    fn uv(&self, i: usize) -> Option<[i32; 2]> {
+        self.uvs.and_then(|c| c.get(i).copied())
     }
 }
