@@ -138,7 +138,10 @@ impl fmt::Display for MeshError {
             ),
             Self::UnknownFlags(x) => write!(f, "unknown flag bits {x:#06x}"),
             Self::TextureWithoutUvs => {
-                write!(f, "a texture but no texture coordinates (flag bit 4 without bit 3)")
+                write!(
+                    f,
+                    "a texture but no texture coordinates (flag bit 4 without bit 3)"
+                )
             }
             Self::Texture(e) => write!(f, "bad texture: {e}"),
             Self::BadCounts {
