@@ -346,6 +346,7 @@ fn version_2_decodes_uvs_and_texture() {
     );
     let m = PackedMesh::parse(&uv_only).unwrap();
     assert_eq!((m.uv_bits(3), m.texture()), (Some(UVS[3]), None));
+    assert!(m.has_uvs());
     let one = textured(&v, &t, &[0x34, 0x12], 0, 0);
     let m = PackedMesh::parse(&one).unwrap();
     assert_eq!(m.texture().unwrap().texel(5, 9), 0x1234);
@@ -358,6 +359,7 @@ fn version_2_decodes_uvs_and_texture() {
     assert_eq!(v1[4], 1);
     let m = PackedMesh::parse(&v1).unwrap();
     assert_eq!((m.uv_bits(0), m.texture()), (None, None));
+    assert!(!m.has_uvs());
     assert_eq!(MeshSource::<Fx16>::uv(&m, 0), None);
 }
 

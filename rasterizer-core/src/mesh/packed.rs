@@ -416,6 +416,12 @@ impl<'a> PackedMesh<'a> {
         Some([0, 1].map(|k| u32_at(b, 8 * i + 4 * k) as i32))
     }
 
+    /// True when the mesh has texture coordinates.
+    #[inline]
+    pub fn has_uvs(&self) -> bool {
+        self.uvs.is_some()
+    }
+
     /// The texture the blob carries, if any (read in place).
     #[inline]
     pub fn texture(&self) -> Option<Texture<'a>> {
