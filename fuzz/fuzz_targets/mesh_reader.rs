@@ -12,7 +12,12 @@ fuzz_target!(|data: &[u8]| {
             let _ = m.position_bits(i);
             let _ = m.normal_bits(i);
             let _ = m.color_of(i);
+            let _ = m.uv_bits(i);
             let _: Vec3<Fx16> = MeshSource::<Fx16>::position(&m, i);
+        }
+        if let Some(tex) = m.texture() {
+            let _ = tex.texel(tex.width() - 1, tex.height() - 1);
+            let _ = tex.texel(u32::MAX, u32::MAX);
         }
         for t in 0..m.triangles() + 1 {
             if let Some(idx) = m.triangle_indices(t) {

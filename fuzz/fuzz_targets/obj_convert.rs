@@ -22,6 +22,7 @@ fuzz_target!(|data: &[u8]| {
         center_unit_sphere: choice & 8 != 0,
         normals,
         weld: choice & 16 != 0,
+        no_uvs: choice & 32 != 0,
         progress: false,
     };
     let mut warnings = Vec::new();

@@ -12,7 +12,19 @@ pub struct Vert {
     pub c: [u8; 3],
 }
 
-/// Encodes a mesh: `offset` and `scale` per axis as the format defines them.
+/// A texture section: the sides' powers of two and the texel bytes (written as given, so a test
+/// can give a wrong length).
+#[derive(Debug, Clone, Copy)]
+pub struct Tex<'a> {
+    /// The width's power of two.
+    pub width_log2: u8,
+    /// The height's power of two.
+    pub height_log2: u8,
+    /// The texel bytes.
+    pub texels: &'a [u8],
+}
+
+/// Encodes a mesh: `offset` and `scale` per axis as the format defines them (version 1).
 pub fn encode(
     verts: &[Vert],
     tris: &[[u32; 3]],
@@ -22,10 +34,38 @@ pub fn encode(
     colors: bool,
     wide: bool,
 ) -> Vec<u8> {
+    encode_v2(
+        verts, tris, offset, scale, normals, colors, wide, None, None,
+    )
+}
+
+/// Encodes a mesh with texture coordinates (one pair per vertex) and a texture, either optional;
+/// version 2 when either is given, else version 1.
+#[allow(clippy::too_many_arguments)]
+pub fn encode_v2(
+    verts: &[Vert],
+    tris: &[[u32; 3]],
+    offset: [i32; 3],
+    scale: [u32; 3],
+    normals: bool,
+    colors: bool,
+    wide: bool,
+    uvs: Option<&[[i32; 2]]>,
+    texture: Option<Tex<'_>>,
+) -> Vec<u8> {
     let mut b = Vec::new();
     b.extend_from_slice(b"RMSH");
-    b.extend_from_slice(&1u16.to_le_bytes());
-    let flags = u16::from(normals) | u16::from(colors) << 1 | u16::from(wide) << 2;
+    let version: u16 = if uvs.is_some() || texture.is_some() {
+        2
+    } else {
+        1
+    };
+    b.extend_from_slice(&version.to_le_bytes());
+    let flags = u16::from(normals)
+        | u16::from(colors) << 1
+        | u16::from(wide) << 2
+        | u16::from(uvs.is_some()) << 3
+        | u16::from(texture.is_some()) << 4;
     b.extend_from_slice(&flags.to_le_bytes());
     b.extend_from_slice(&(verts.len() as u32).to_le_bytes());
     b.extend_from_slice(&(tris.len() as u32).to_le_bytes());
@@ -60,6 +100,14 @@ pub fn encode(
         }
         pad(&mut b);
     }
+    if let Some(uvs) = uvs {
+        for uv in uvs {
+            for c in uv {
+                b.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        pad(&mut b);
+    }
     for t in tris {
         for i in t {
             if wide {
@@ -70,5 +118,10 @@ pub fn encode(
         }
     }
     pad(&mut b);
+    if let Some(t) = texture {
+        b.extend_from_slice(&[t.width_log2, t.height_log2, 0, 0]);
+        b.extend_from_slice(t.texels);
+        pad(&mut b);
+    }
     b
 }

@@ -9,7 +9,8 @@ use proptest::prelude::*;
 use rasterizer_core::mesh::MeshError;
 use rasterizer_core::mesh::MeshSource;
 use rasterizer_core::prelude::*;
-use tests::packed::{encode, Vert};
+use rasterizer_core::texture::TextureError;
+use tests::packed::{encode, encode_v2, Tex, Vert};
 
 fn cases(default: u32) -> u32 {
     std::env::var("MESH_FUZZ_CASES")
@@ -45,8 +46,17 @@ fn touch_everything(m: &PackedMesh<'_>) {
         let _ = m.position_bits(i);
         let _ = m.normal_bits(i);
         let _ = m.color_of(i);
+        let _ = m.uv_bits(i);
+        let _ = MeshSource::<Fx16>::uv(m, i);
         let _: Vec3<Fx16> = MeshSource::<Fx16>::position(m, i);
         let _: Option<Vec3<Fx16>> = MeshSource::<Fx16>::normal(m, i);
+    }
+    if let Some(t) = m.texture() {
+        assert!(m.uv_bits(0).is_some() || m.vertices() == 0);
+        let (w, h) = (t.width(), t.height());
+        for (x, y) in [(0, 0), (w - 1, h - 1), (w, h), (u32::MAX, 7)] {
+            let _ = t.texel(x, y);
+        }
     }
     for t in 0..m.triangles() + 2 {
         if let Some(idx) = m.triangle_indices(t) {
@@ -108,10 +118,10 @@ fn typed_errors() {
     b[0] = b'X';
     assert_eq!(PackedMesh::parse(&b).unwrap_err(), MeshError::BadMagic);
     let mut b = good.clone();
-    b[4] = 2;
+    b[4] = 3;
     assert_eq!(
         PackedMesh::parse(&b).unwrap_err(),
-        MeshError::UnsupportedVersion(2)
+        MeshError::UnsupportedVersion(3)
     );
     let mut b = good.clone();
     b[6] |= 8;
@@ -267,6 +277,270 @@ proptest! {
         }
         for (k, tri) in t.iter().enumerate() {
             prop_assert_eq!(m.triangle_indices(k), Some(*tri));
+        }
+    }
+}
+
+/// The tetrahedron's texture coordinates: a corner of the texture per vertex, one outside.
+const UVS: [[i32; 2]; 4] = [[0, 0], [65536, 0], [0, 65536], [-98304, 131072]];
+
+/// A 4 x 2 texture whose texel (x, y) is `x + 16 y + 0xab00`, little-endian.
+fn texels_4x2() -> Vec<u8> {
+    (0..8u16)
+        .flat_map(|i| (0xab00 + (i % 4) + 16 * (i / 4)).to_le_bytes())
+        .collect()
+}
+
+fn textured(v: &[Vert], t: &[[u32; 3]], texels: &[u8], w: u8, h: u8) -> Vec<u8> {
+    let tex = Tex {
+        width_log2: w,
+        height_log2: h,
+        texels,
+    };
+    encode_v2(
+        v,
+        t,
+        [0; 3],
+        [131076; 3],
+        true,
+        true,
+        false,
+        Some(&UVS[..v.len()]),
+        Some(tex),
+    )
+}
+
+#[test]
+fn version_2_decodes_uvs_and_texture() {
+    let (v, t) = tetra();
+    let texels = texels_4x2();
+    let blob = textured(&v, &t, &texels, 2, 1);
+    assert_eq!(blob[4], 2, "version 2");
+    let m = PackedMesh::parse(&blob).unwrap();
+    touch_everything(&m);
+    for (i, uv) in UVS.iter().enumerate() {
+        assert_eq!(m.uv_bits(i), Some(*uv));
+        assert_eq!(MeshSource::<Fx16>::uv(&m, i), Some(*uv));
+    }
+    assert_eq!(m.uv_bits(4), None);
+    let tex = m.texture().unwrap();
+    assert_eq!((tex.width(), tex.height()), (4, 2));
+    assert_eq!(tex.texel(3, 1), 0xab13);
+    assert_eq!(tex.texel(1, 0), 0xab01);
+    // Everything else reads as in version 1.
+    assert_eq!(m.triangle_indices(3), Some([1, 2, 3]));
+    assert_eq!(m.color_of(1).map(|c| c.g()), Some(255));
+    assert!(m.normal_bits(0).is_some());
+
+    // Texture coordinates without a texture, 1 x 1 and 1024 x 1024 textures.
+    let uv_only = encode_v2(
+        &v,
+        &t,
+        [0; 3],
+        [131076; 3],
+        false,
+        false,
+        true,
+        Some(&UVS),
+        None,
+    );
+    let m = PackedMesh::parse(&uv_only).unwrap();
+    assert_eq!((m.uv_bits(3), m.texture()), (Some(UVS[3]), None));
+    assert!(m.has_uvs());
+    let one = textured(&v, &t, &[0x34, 0x12], 0, 0);
+    let m = PackedMesh::parse(&one).unwrap();
+    assert_eq!(m.texture().unwrap().texel(5, 9), 0x1234);
+    let big = vec![0u8; 2 << 20];
+    let big = textured(&v, &t, &big, 10, 10);
+    let m = PackedMesh::parse(&big).unwrap();
+    assert_eq!(m.texture().unwrap().width(), 1024);
+    // Version 1 blobs have neither.
+    let v1 = encode(&v, &t, [0; 3], [131076; 3], true, true, false);
+    assert_eq!(v1[4], 1);
+    let m = PackedMesh::parse(&v1).unwrap();
+    assert_eq!((m.uv_bits(0), m.texture()), (None, None));
+    assert!(!m.has_uvs());
+    assert_eq!(MeshSource::<Fx16>::uv(&m, 0), None);
+}
+
+#[test]
+fn version_2_typed_errors() {
+    let (v, t) = tetra();
+    let texels = texels_4x2();
+    let good = textured(&v, &t, &texels, 2, 1);
+    assert!(PackedMesh::parse(&good).is_ok());
+    let flags_at = 6;
+
+    // The new flags in a version 1 blob.
+    for flag in [8u16, 16, 24] {
+        let mut b = encode(&v, &t, [0; 3], [131076; 3], false, false, false);
+        b[flags_at] |= flag as u8;
+        assert_eq!(
+            PackedMesh::parse(&b).unwrap_err(),
+            MeshError::UnknownFlags(flag)
+        );
+    }
+    let mut b = good.clone();
+    b[flags_at] |= 32;
+    assert_eq!(
+        PackedMesh::parse(&b).unwrap_err(),
+        MeshError::UnknownFlags(0b11_1011)
+    );
+    // A texture without texture coordinates.
+    let mut b = good.clone();
+    b[flags_at] &= !8;
+    assert_eq!(
+        PackedMesh::parse(&b).unwrap_err(),
+        MeshError::TextureWithoutUvs
+    );
+
+    // Truncated: anywhere in the texels, in the texture header, before it.
+    let header_at = good.len() - 4 - texels.len();
+    for cut in [good.len() - 1, good.len() - 16, header_at + 2, header_at] {
+        assert!(
+            matches!(
+                PackedMesh::parse(&good[..cut]).unwrap_err(),
+                MeshError::WrongLength { .. }
+            ),
+            "cut at {cut}"
+        );
+    }
+    assert_eq!(
+        PackedMesh::parse(&good[..header_at]).unwrap_err(),
+        MeshError::WrongLength {
+            expected: header_at + 4,
+            actual: header_at
+        }
+    );
+    // Texels for other sides than the header's.
+    for (w, h) in [(1, 1), (2, 2), (3, 1)] {
+        assert_eq!(
+            PackedMesh::parse(&textured(&v, &t, &texels, w, h)).unwrap_err(),
+            MeshError::WrongLength {
+                expected: header_at + 4 + (2 << (w + h)),
+                actual: good.len()
+            },
+            "{w} x {h}"
+        );
+    }
+    let mut long = good.clone();
+    long.extend_from_slice(&[0; 4]);
+    assert!(matches!(
+        PackedMesh::parse(&long).unwrap_err(),
+        MeshError::WrongLength { .. }
+    ));
+    // Larger than 1024 texels a side: refused before the length is looked at.
+    for (w, h) in [(11, 0), (0, 11), (255, 255)] {
+        assert_eq!(
+            PackedMesh::parse(&textured(&v, &t, &texels, w, h)).unwrap_err(),
+            MeshError::Texture(TextureError::TooLarge {
+                width_log2: w,
+                height_log2: h
+            })
+        );
+    }
+    // The texture header's zero bytes, and the padding after odd-length sections.
+    for at in [header_at + 2, header_at + 3] {
+        let mut b = good.clone();
+        b[at] = 1;
+        assert_eq!(
+            PackedMesh::parse(&b).unwrap_err(),
+            MeshError::BadPadding { offset: at }
+        );
+    }
+    let one = textured(&v[..1], &[[0, 0, 0]], &[1, 2], 0, 0);
+    assert!(PackedMesh::parse(&one).is_ok());
+    let mut b = one.clone();
+    let last = b.len() - 1;
+    b[last] = 9;
+    assert_eq!(
+        PackedMesh::parse(&b).unwrap_err(),
+        MeshError::BadPadding { offset: last }
+    );
+    // One triangle of u16 indices: 6 bytes, then 2 of padding before the texture.
+    let mut b = one.clone();
+    let before_texture = b.len() - 4 - 4 - 1;
+    b[before_texture] = 9;
+    assert_eq!(
+        PackedMesh::parse(&b).unwrap_err(),
+        MeshError::BadPadding {
+            offset: before_texture
+        }
+    );
+    assert_eq!(
+        MeshError::Texture(TextureError::TooLarge {
+            width_log2: 11,
+            height_log2: 0
+        })
+        .to_string(),
+        "bad texture: a 2048x1 texture is larger than 1024x1024 texels"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases(4000)))]
+
+    #[test]
+    fn arbitrary_bytes_behind_a_version_2_header_never_panic(
+        flags in 0u16..64, nv in 0u32..6, nt in 0u32..6, sides in any::<[u8; 2]>(),
+        body in proptest::collection::vec(any::<u8>(), 0..160),
+    ) {
+        let mut b = b"RMSH".to_vec();
+        b.extend_from_slice(&2u16.to_le_bytes());
+        b.extend_from_slice(&flags.to_le_bytes());
+        b.extend_from_slice(&nv.to_le_bytes());
+        b.extend_from_slice(&nt.to_le_bytes());
+        b.extend_from_slice(&[0; 12]);
+        b.extend_from_slice(&[1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0]);
+        b.extend_from_slice(&body);
+        // Small sides, so that a texture header falling in the body often fits.
+        let at = b.len().saturating_sub(12).max(40);
+        if at + 2 <= b.len() {
+            b[at] = sides[0] % 3;
+            b[at + 1] = sides[1] % 3;
+        }
+        if let Ok(m) = PackedMesh::parse(&b) {
+            touch_everything(&m);
+        }
+    }
+
+    #[test]
+    fn mutated_textured_blobs_never_panic(
+        flips in proptest::collection::vec((any::<usize>(), any::<u8>()), 1..8),
+        cut in any::<usize>(),
+    ) {
+        let (v, t) = tetra();
+        let mut blob = textured(&v, &t, &texels_4x2(), 2, 1);
+        for (at, byte) in flips {
+            let i = at % blob.len();
+            blob[i] = byte;
+        }
+        let keep = if cut % 3 == 0 { cut % (blob.len() + 1) } else { blob.len() };
+        if let Ok(m) = PackedMesh::parse(&blob[..keep]) {
+            touch_everything(&m);
+        }
+    }
+
+    #[test]
+    fn random_textured_meshes_round_trip(
+        uvs in proptest::collection::vec(any::<[i32; 2]>(), 1..40),
+        sides in (0u8..4, 0u8..4), texel_seed in any::<u16>(),
+    ) {
+        let v: Vec<Vert> = (0..uvs.len()).map(|i| Vert { q: [i as i16; 3], ..Vert::default() }).collect();
+        let t: Vec<[u32; 3]> = (0..uvs.len() as u32).map(|i| [i, 0, 0]).collect();
+        let n = 1usize << (sides.0 + sides.1);
+        let texels: Vec<u8> = (0..n as u16).flat_map(|i| (i ^ texel_seed).to_le_bytes()).collect();
+        let tex = Tex { width_log2: sides.0, height_log2: sides.1, texels: &texels };
+        let blob = encode_v2(&v, &t, [0; 3], [65536; 3], false, false, false, Some(&uvs), Some(tex));
+        let m = PackedMesh::parse(&blob).unwrap();
+        for (i, uv) in uvs.iter().enumerate() {
+            prop_assert_eq!(m.uv_bits(i), Some(*uv));
+        }
+        let tex = m.texture().unwrap();
+        prop_assert_eq!(tex.bytes(), &texels[..]);
+        let w = 1u32 << sides.0;
+        for i in 0..n as u32 {
+            prop_assert_eq!(tex.texel(i % w, i / w), (i as u16) ^ texel_seed);
         }
     }
 }

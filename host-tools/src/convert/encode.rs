@@ -1,12 +1,14 @@
-//! Writing the packed mesh format v1 (specified in `rasterizer_core::mesh`), and the per-axis
-//! quantisation it uses.
+//! Writing the packed mesh format (specified in `rasterizer_core::mesh`): version 1 for a mesh
+//! with neither texture coordinates nor a texture (so such blobs stay byte for byte what they
+//! were), version 2 otherwise; and the per-axis quantisation it uses.
 //!
 //! The writer mirrors the reader: the same section order, 4-byte alignment and zero padding, and
 //! the same decode arithmetic (`offset + (q * scale + 2^15) >> 16`), so the converter can measure
 //! the error of the positions firmware will really see.
 
 use rasterizer_core::mesh::{
-    FLAG_COLORS, FLAG_NORMALS, FLAG_U32_INDICES, HEADER_LEN, MAGIC, QUANTUM_MAX, VERSION,
+    FLAG_COLORS, FLAG_NORMALS, FLAG_TEXTURE, FLAG_U32_INDICES, FLAG_UVS, HEADER_LEN, MAGIC,
+    QUANTUM_MAX, VERSION, VERSION_1,
 };
 
 /// A mesh in the packed format's terms, ready for [`encode`].
@@ -26,8 +28,24 @@ pub struct MeshData {
     pub normals: Option<Vec<[i16; 3]>>,
     /// Vertex colours, one per position.
     pub colors: Option<Vec<[u8; 3]>>,
+    /// Texture coordinates (16.16, `rasterizer_core::texture`), one pair per position.
+    pub uvs: Option<Vec<[i32; 2]>>,
     /// Triangles as three vertex indices.
     pub triangles: Vec<[u32; 3]>,
+    /// A texture (needs texture coordinates).
+    pub texture: Option<TextureData>,
+}
+
+/// A texture in the packed format's terms: power-of-two sides and little-endian Rgb565 texels,
+/// row after row from the top.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct TextureData {
+    /// The width's power of two.
+    pub width_log2: u8,
+    /// The height's power of two.
+    pub height_log2: u8,
+    /// `2 << (width_log2 + height_log2)` bytes.
+    pub texels: Vec<u8>,
 }
 
 impl MeshData {
@@ -48,7 +66,22 @@ impl MeshData {
         if self.wide_indices() {
             f |= FLAG_U32_INDICES;
         }
+        if self.uvs.is_some() {
+            f |= FLAG_UVS;
+        }
+        if self.texture.is_some() {
+            f |= FLAG_TEXTURE;
+        }
         f
+    }
+
+    /// The format version the blob gets: 2 with texture coordinates or a texture, else 1.
+    pub fn version(&self) -> u16 {
+        if self.uvs.is_some() || self.texture.is_some() {
+            VERSION
+        } else {
+            VERSION_1
+        }
     }
 }
 
@@ -59,15 +92,15 @@ fn pad(out: &mut Vec<u8>) {
     }
 }
 
-/// Writes `mesh` in the packed mesh format v1: 16-bit indices up to 65,535 vertices, 32-bit
-/// beyond.
+/// Writes `mesh` in the packed mesh format ([`MeshData::version`]): 16-bit indices up to 65,535
+/// vertices, 32-bit beyond.
 pub fn encode(mesh: &MeshData) -> Vec<u8> {
     let n = mesh.positions.len();
     let t = mesh.triangles.len();
     let wide = mesh.wide_indices();
     let mut out = Vec::with_capacity(HEADER_LEN + 15 * n + 12 * t + 12);
     out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&mesh.version().to_le_bytes());
     out.extend_from_slice(&mesh.flags().to_le_bytes());
     out.extend_from_slice(&(n as u32).to_le_bytes());
     out.extend_from_slice(&(t as u32).to_le_bytes());
@@ -97,6 +130,14 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
         }
         pad(&mut out);
     }
+    if let Some(uvs) = &mesh.uvs {
+        for uv in uvs {
+            for c in uv {
+                out.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        pad(&mut out);
+    }
     for tri in &mesh.triangles {
         for &i in tri {
             if wide {
@@ -108,6 +149,11 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
         }
     }
     pad(&mut out);
+    if let Some(t) = &mesh.texture {
+        out.extend_from_slice(&[t.width_log2, t.height_log2, 0, 0]);
+        out.extend_from_slice(&t.texels);
+        pad(&mut out);
+    }
     out
 }
 
@@ -232,9 +278,11 @@ mod tests {
                 .collect(),
             normals: normals.then(|| vec![[0, 0, 32767]; n]),
             colors: colors.then(|| (0..n).map(|i| [i as u8, 1, 2]).collect()),
+            uvs: None,
             triangles: (0..n.saturating_sub(2))
                 .map(|i| [i as u32, i as u32 + 1, i as u32 + 2])
                 .collect(),
+            texture: None,
         }
     }
 
@@ -261,6 +309,33 @@ mod tests {
     }
 
     use embedded_graphics_core::pixelcolor::RgbColor;
+
+    #[test]
+    fn version_1_without_uvs_version_2_with() {
+        let mut m = sample(5, true, true);
+        let v1 = encode(&m);
+        assert_eq!(u16::from_le_bytes([v1[4], v1[5]]), VERSION_1);
+        m.uvs = Some((0..5).map(|i| [i * 65536, -i]).collect());
+        let with_uvs = encode(&m);
+        assert_eq!(u16::from_le_bytes([with_uvs[4], with_uvs[5]]), VERSION);
+        // The uvs go between the colours and the triangles: everything before is unchanged.
+        let before_uvs = v1.len() - 3 * 6;
+        assert_eq!(with_uvs[8..before_uvs], v1[8..before_uvs]);
+        let p = PackedMesh::parse(&with_uvs).unwrap();
+        assert_eq!(p.uv_bits(4), Some([4 * 65536, -4]));
+        assert!(p.texture().is_none());
+        m.texture = Some(TextureData {
+            width_log2: 1,
+            height_log2: 0,
+            texels: vec![0x1f, 0, 0, 0xf8],
+        });
+        let blob = encode(&m);
+        let p = PackedMesh::parse(&blob).unwrap();
+        let t = p.texture().unwrap();
+        assert_eq!((t.width(), t.height()), (2, 1));
+        assert_eq!((t.texel(0, 0), t.texel(1, 0)), (0x001f, 0xf800));
+        assert_eq!(p.triangle_indices(2), Some([2, 3, 4]));
+    }
 
     #[test]
     fn wide_indices_above_65535_vertices() {

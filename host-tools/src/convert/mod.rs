@@ -7,6 +7,14 @@
 //! Every blob is checked with `PackedMesh::parse` before it is written, and the position error
 //! reported is measured on the decoded blob.
 //!
+//! Texture coordinates are written when every face corner of the file has one (unless
+//! `--no-uvs`), a position used with several becoming several vertices. The texture is the PNG of
+//! `--texture FILE`, or else the `map_Kd` of the OBJ's material (unless `--no-texture`): converted
+//! to Rgb565 (rounded to the nearest step); its sides must be powers of two of at most 1024 texels
+//! unless `--texture-size N` resamples it to N x N (a box filter: each texel the average of the
+//! area it covers; `fixtures::texture_file`). A blob with neither texture coordinates nor a
+//! texture is format version 1, as before; otherwise version 2.
+//!
 //! Exit codes of the command: 0 success, 1 conversion error (bad input, unreadable input,
 //! unwritable output), 2 usage error. Errors are one line on stderr, `error: <file>:<line>:
 //! <message>` (or `error: <file>: <message>` when no single line is to blame), and no output file
@@ -17,7 +25,7 @@
 mod encode;
 mod rust_source;
 
-pub use encode::{decode_normal, encode, quantise_normal, MeshData, Quantiser};
+pub use encode::{decode_normal, encode, quantise_normal, MeshData, Quantiser, TextureData};
 pub use fixtures::obj::{newell_normal, triangulate_polygon, ObjError as ConvertError, Warning};
 pub use rust_source::{bytes_from_rust_source, is_rust_identifier, rust_source, static_name_for};
 
@@ -91,6 +99,19 @@ pub struct ConvertArgs {
     /// The static's name for --rust (default: the output file's stem in upper case).
     #[arg(long, requires = "rust", value_parser = parse_static_name)]
     pub name: Option<String>,
+    /// The texture, a PNG with power-of-two sides of at most 1024 (any sides with
+    /// --texture-size); default: the `map_Kd` of the OBJ's material, if any.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["no_texture", "no_uvs"])]
+    pub texture: Option<PathBuf>,
+    /// Resample the texture to N x N texels (N a power of two, at most 1024) with a box filter.
+    #[arg(long, value_name = "N", conflicts_with_all = ["no_texture", "no_uvs"])]
+    pub texture_size: Option<u32>,
+    /// Write no texture, even if the OBJ's material names one.
+    #[arg(long)]
+    pub no_texture: bool,
+    /// Write no texture coordinates (and so no texture).
+    #[arg(long)]
+    pub no_uvs: bool,
 }
 
 /// What [`convert_obj`] does, apart from the input.
@@ -102,6 +123,8 @@ pub struct Options {
     pub normals: Option<NormalMode>,
     /// Merge vertices with identical positions (and colours, and normals after conversion).
     pub weld: bool,
+    /// Drop the file's texture coordinates.
+    pub no_uvs: bool,
     /// Show a progress bar on stderr.
     pub progress: bool,
 }
@@ -137,6 +160,10 @@ pub struct Report {
     pub max_error_fraction: f64,
     /// Largest difference between a decoded normal component and the unit normal computed.
     pub max_normal_error: Option<f64>,
+    /// Whether texture coordinates were written.
+    pub uvs: bool,
+    /// The texture's width and height, when one was written.
+    pub texture: Option<(u32, u32)>,
     /// Size of the blob in bytes.
     pub bytes: usize,
 }
@@ -150,6 +177,33 @@ pub struct Conversion {
     pub blob: Vec<u8>,
     /// The figures.
     pub report: Report,
+    /// The texture file the OBJ's material names (`map_Kd`), if any; not read by
+    /// [`convert_obj`] (see [`Conversion::with_texture`]).
+    pub material_texture: Option<PathBuf>,
+}
+
+impl Conversion {
+    /// The conversion with `texture` added to the blob (which must have texture coordinates).
+    ///
+    /// # Errors
+    /// A message when the mesh has no texture coordinates, or (an internal error) when the blob
+    /// does not parse.
+    pub fn with_texture(mut self, texture: TextureData) -> Result<Self, String> {
+        if self.mesh.uvs.is_none() {
+            return Err(
+                "a texture needs texture coordinates, and the mesh has none (every face \
+                        corner needs a `vt`)"
+                    .into(),
+            );
+        }
+        self.report.texture = Some((1 << texture.width_log2, 1 << texture.height_log2));
+        self.mesh.texture = Some(texture);
+        self.blob = encode(&self.mesh);
+        PackedMesh::parse(&self.blob)
+            .map_err(|e| format!("internal error: the encoded mesh does not parse: {e}"))?;
+        self.report.bytes = self.blob.len();
+        Ok(self)
+    }
 }
 
 /// A progress bar on stderr, or nothing.
@@ -189,6 +243,17 @@ impl Progress {
             bar.finish_and_clear();
         }
     }
+}
+
+/// Texture coordinate bits packed into a key, tagged so it never equals a small index.
+fn uv_key(uv: [i32; 2]) -> u64 {
+    (1 << 63) | (u64::from(uv[0] as u32 & 0x7fff_ffff) << 32) | u64::from(uv[1] as u32)
+}
+
+/// A texture coordinate (u, v as in the file) in 16.16 bits, v counted from the top.
+fn uv_bits(uv: [f64; 2]) -> [i32; 2] {
+    // In range: the reader refuses texture coordinates beyond 16.16.
+    [uv[0], 1.0 - uv[1]].map(|c| (c * 65536.0).round() as i32)
 }
 
 /// A normal's quanta packed into a key, tagged so it never equals a small index.
@@ -251,6 +316,7 @@ fn convert_inner(
     let keep_possible = obj.normals.is_some();
     let file_normals = obj.normals.as_deref().unwrap_or_default();
     let pos_of = |c: u32| corners[c as usize].v;
+    let file_uvs = obj.uvs.as_deref().filter(|_| !opts.no_uvs);
 
     // Weld: every position id maps to the first identical one (same position and colour).
     let mut canon: Vec<u32> = (0..nv as u32).collect();
@@ -450,11 +516,13 @@ fn convert_inner(
         );
     }
 
-    // Output vertices: one per distinct (position, normal source), in order of first use.
+    // Output vertices: one per distinct (position, texture coordinate, normal source), in order
+    // of first use.
     progress.stage("writing", tris.len() as u64);
-    let mut index: HashMap<(u32, u64), u32> = HashMap::with_capacity(used_positions * 2);
+    let mut index: HashMap<(u32, u64, u64), u32> = HashMap::with_capacity(used_positions * 2);
     let mut out_pos: Vec<u32> = Vec::with_capacity(used_positions);
     let mut out_nrm: Vec<P3> = Vec::new();
+    let mut out_uv: Vec<[i32; 2]> = Vec::new();
     let mut out_tris: Vec<[u32; 3]> = Vec::with_capacity(tris.len());
     for (ti, t) in tris.iter().enumerate() {
         let flat = if mode == NormalMode::Flat {
@@ -465,6 +533,21 @@ fn convert_inner(
         let mut tri = [0u32; 3];
         for (slot, &c) in tri.iter_mut().zip(t) {
             let v = vid(c);
+            let (uv, uv_id) = match file_uvs {
+                None => (None, 0),
+                Some(file) => {
+                    let vt = corners[c as usize].vt;
+                    let uv = uv_bits(file[vt as usize]);
+                    (
+                        Some(uv),
+                        if opts.weld {
+                            uv_key(uv)
+                        } else {
+                            u64::from(vt) + 1
+                        },
+                    )
+                }
+            };
             let (normal, key) = match mode {
                 NormalMode::None => (None, 0),
                 NormalMode::Smooth => (Some(smooth[v as usize]), 0),
@@ -488,10 +571,13 @@ fn convert_inner(
                     (Some(n), key)
                 }
             };
-            *slot = *index.entry((v, key)).or_insert_with(|| {
+            *slot = *index.entry((v, uv_id, key)).or_insert_with(|| {
                 out_pos.push(v);
                 if let Some(n) = normal {
                     out_nrm.push(n);
+                }
+                if let Some(uv) = uv {
+                    out_uv.push(uv);
                 }
                 (out_pos.len() - 1) as u32
             });
@@ -519,7 +605,9 @@ fn convert_inner(
             .colors
             .is_some()
             .then(|| out_pos.iter().map(|&v| col[v as usize]).collect()),
+        uvs: file_uvs.is_some().then_some(out_uv),
         triangles: out_tris,
+        texture: None,
     };
     let blob = encode(&mesh);
     let packed = PackedMesh::parse(&blob).map_err(|e| {
@@ -600,9 +688,16 @@ fn convert_inner(
         max_error,
         max_error_fraction,
         max_normal_error: mesh.normals.is_some().then_some(nerr),
+        uvs: mesh.uvs.is_some(),
+        texture: None,
         bytes: blob.len(),
     };
-    Ok(Conversion { mesh, blob, report })
+    Ok(Conversion {
+        mesh,
+        blob,
+        report,
+        material_texture: obj.texture.clone(),
+    })
 }
 
 impl Report {
@@ -628,6 +723,12 @@ impl Report {
         );
         if let Some(e) = self.max_normal_error {
             s += &format!(", normals {e:.3e}");
+        }
+        if self.uvs {
+            s += "; texture coordinates";
+        }
+        if let Some((w, h)) = self.texture {
+            s += &format!("; a {w}x{h} texture");
         }
         if let Some((c, f)) = self.transform {
             s += &format!(
@@ -656,6 +757,7 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
         center_unit_sphere: args.center_unit_sphere,
         normals: args.normals,
         weld: args.weld,
+        no_uvs: args.no_uvs,
         progress: bytes.len() > (1 << 20) && std::io::stderr().is_terminal(),
     };
     let mut warnings = Vec::new();
@@ -663,7 +765,14 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
     for w in &warnings {
         crate::errln!("warning: {}", w.display(&file));
     }
-    let conv = result?;
+    let mut conv = result?;
+    if let Some(tex) = load_texture(args, &file, conv.material_texture.as_deref())? {
+        conv = conv.with_texture(tex).map_err(|message| ConvertError {
+            file: file.clone(),
+            line: None,
+            message: format!("--texture: {message}"),
+        })?;
+    }
     let out = if args.rust {
         let name = args.name.clone().unwrap_or_else(|| {
             static_name_for(
@@ -680,16 +789,23 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
             .file_name()
             .map(|s| s.to_string_lossy())
             .unwrap_or_default();
+        let texture = r
+            .texture
+            .map(|(w, h)| format!("a {w}x{h} texture, "))
+            .unwrap_or_default();
         let doc =
             format!(
-            "Packed mesh (format v1) converted from `{source_name}` by `host-tools convert`.\n\n\
-             {} triangles, {} vertices, {} normals, {}{}-bit indices; max quantisation error \
+            "Packed mesh (format v{}) converted from `{source_name}` by `host-tools convert`.\n\n\
+             {} triangles, {} vertices, {} normals, {}{}{}{}-bit indices; max quantisation error \
              {:.3e}.\n\
              Read it in place with `rasterizer_core::mesh::PackedMesh::parse(&{name})`.",
+            conv.mesh.version(),
             r.triangles_out,
             r.vertices_out,
             r.normals,
             if conv.mesh.colors.is_some() { "colours, " } else { "" },
+            if r.uvs { "texture coordinates, " } else { "" },
+            texture,
             if conv.mesh.wide_indices() { 32 } else { 16 },
             r.max_error,
         );
@@ -707,6 +823,55 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
         started.elapsed().as_secs_f64()
     )?;
     Ok(())
+}
+
+/// The texture the command writes: `--texture`, else the material's `map_Kd` (unless
+/// `--no-texture` or `--no-uvs`), loaded and converted; `None` without either.
+fn load_texture(
+    args: &ConvertArgs,
+    file: &str,
+    material: Option<&Path>,
+) -> Result<Option<TextureData>, ConvertError> {
+    let (path, origin) = match (&args.texture, material) {
+        (Some(p), _) => (p.as_path(), String::new()),
+        _ if args.no_texture || args.no_uvs => return Ok(None),
+        (None, Some(p)) => (
+            p,
+            format!(" (named by `map_Kd` in {file}'s material; --no-texture converts without it)"),
+        ),
+        (None, None) => {
+            if args.texture_size.is_some() {
+                return Err(ConvertError {
+                    file: file.to_owned(),
+                    line: None,
+                    message: "--texture-size but no texture: give one with --texture FILE".into(),
+                });
+            }
+            return Ok(None);
+        }
+    };
+    let shown = path.display().to_string();
+    let fail = |message: String| ConvertError {
+        file: shown.clone(),
+        line: None,
+        message: format!("{message}{origin}"),
+    };
+    use fixtures::texture_file::{TextureFileError as E, TextureImage, MAX_SIDE};
+    let image = TextureImage::load_png(path, args.texture_size).map_err(|e| match e {
+        E::Read(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            fail("texture file not found".into())
+        }
+        E::NotPowerOfTwo { .. } | E::TooLarge { .. } => fail(format!(
+            "{e}; --texture-size N (a power of two up to {MAX_SIDE}) resamples it"
+        )),
+        E::BadSize(_) => fail(format!("--texture-size: {e}")),
+        e => fail(e.to_string()),
+    })?;
+    Ok(Some(TextureData {
+        width_log2: image.width_log2,
+        height_log2: image.height_log2,
+        texels: image.texels,
+    }))
 }
 
 #[cfg(test)]
@@ -803,7 +968,9 @@ mod tests {
     #[test]
     fn random_text_never_panics() {
         const NUMS: &[&str] = &["0", "1", "-1", "0.5", "2", "1e-9", "3", "-0"];
-        const CORNERS: &[&str] = &["1", "2", "3", "4", "5", "-1", "-2", "1//1", "2//1", "1/1"];
+        const CORNERS: &[&str] = &[
+            "1", "2", "3", "4", "5", "-1", "-2", "1//1", "2//1", "1/1", "2/2", "3/1/1", "1/-1",
+        ];
         const ODD: &[&str] = &["nan", "1e7", "0", "x", "1/", "-9", "40000", "\u{feff}v"];
         const BREAKS: &[&str] = &["\n", "\n", "\r\n", "\r"];
         let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -815,7 +982,8 @@ mod tests {
         };
         let mut converted = 0;
         for _ in 0..2000 {
-            let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nvn 0 0 1\n");
+            let mut text =
+                String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nvn 0 0 1\nvt 0 0\nvt 1 0.5\n");
             for _ in 0..next(12) {
                 let (key, pool, n) = match next(6) {
                     0 => ("v", NUMS, 3),
@@ -840,6 +1008,7 @@ mod tests {
                     normals,
                     weld: next(2) == 0,
                     center_unit_sphere: next(2) == 0,
+                    no_uvs: next(2) == 0,
                     progress: false,
                 };
                 if let Ok(c) = convert(&text, opts).0 {

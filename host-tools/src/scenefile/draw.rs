@@ -171,6 +171,9 @@ impl<S> MeshSource<S> for DynMesh<'_, S> {
     fn color(&self, i: usize) -> Option<Rgb888> {
         self.0.color(i)
     }
+    fn uv(&self, i: usize) -> Option<[i32; 2]> {
+        self.0.uv(i)
+    }
 }
 
 /// The target every pipeline draws into.
@@ -316,6 +319,7 @@ struct Converted<S> {
     positions: Vec<Vec3<S>>,
     normals: Option<Vec<Vec3<S>>>,
     colors: Option<Vec<Rgb888>>,
+    uvs: Option<Vec<[i32; 2]>>,
     triangles: Vec<[u32; 3]>,
 }
 
@@ -328,6 +332,7 @@ impl<S: Real> Converted<S> {
                 .as_ref()
                 .map(|n| n.iter().map(|&v| v3(v)).collect()),
             colors: m.colors.clone(),
+            uvs: m.uvs.clone(),
             triangles: m.triangles.clone(),
         }
     }
@@ -337,7 +342,7 @@ impl<S: Real> Converted<S> {
             positions: &self.positions,
             normals: self.normals.as_deref(),
             colors: self.colors.as_deref(),
-            uvs: None,
+            uvs: self.uvs.as_deref(),
             triangles: &self.triangles,
         }
     }

@@ -265,6 +265,35 @@ pub struct MeshDef {
     pub perspective_correct: Option<bool>,
     /// Overrides `render.dither`.
     pub dither: Option<DitherMode>,
+    /// A PNG texture (power-of-two sides, at most 1024), relative to the scene file; the mesh
+    /// needs texture coordinates.
+    pub texture: Option<String>,
+    /// How texels are picked (needs `texture`).
+    pub texture_filter: Option<TextureFilterDef>,
+    /// How coordinates outside the texture address it (needs `texture`).
+    pub texture_wrap: Option<TextureWrapDef>,
+}
+
+/// The `texture_filter` key.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TextureFilterDef {
+    /// The texel the point falls in.
+    #[default]
+    Nearest,
+    /// The four nearest texels, weighted.
+    Bilinear,
+}
+
+/// The `texture_wrap` key.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TextureWrapDef {
+    /// The texture tiles.
+    #[default]
+    Repeat,
+    /// The edge texels continue outwards.
+    Clamp,
 }
 
 /// Where a mesh's normals come from.

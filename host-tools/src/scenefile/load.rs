@@ -2,15 +2,18 @@
 
 use super::format::{
     Camera, Color, CullMode, DitherMode, LightDef, MeshDef, NormalsMode, PixelFormat, ScaleDef,
-    SceneFile, ShadingModel, Shape, SpecularModel, VertexColorMode,
+    SceneFile, ShadingModel, Shape, SpecularModel, TextureFilterDef, TextureWrapDef,
+    VertexColorMode,
 };
 use super::limits;
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
 use fixtures::obj::RawMesh;
+use fixtures::texture_file::{TextureFileError, TextureImage, MAX_SIDE};
 use fixtures::vec64::{cross, norm, sub as sub3};
 use rasterizer_core::mesh::MAGIC;
 use rasterizer_core::prelude::*;
+use rasterizer_core::texture::{Filter, Wrap};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -44,10 +47,16 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// The files the scene reads: the scene file and its meshes (an output must be none of them).
+    /// The files the scene reads: the scene file, its meshes and their textures (an output must
+    /// be none of them).
     pub fn inputs(&self) -> Vec<&Path> {
         std::iter::once(self.path.as_path())
             .chain(self.meshes.iter().map(|m| m.file.as_path()))
+            .chain(
+                self.meshes
+                    .iter()
+                    .filter_map(|m| m.texture.as_ref()?.file.as_deref()),
+            )
             .collect()
     }
 }
@@ -83,6 +92,21 @@ pub struct SceneMesh {
     pub perspective_correct: bool,
     /// Ordered dithering.
     pub dither: DitherMode,
+    /// The texture, for a mesh with texture coordinates.
+    pub texture: Option<SceneTexture>,
+}
+
+/// A mesh's texture, loaded and converted to Rgb565.
+#[derive(Debug, Clone)]
+pub struct SceneTexture {
+    /// The PNG it was read from (`None`: the packed mesh's own texture).
+    pub file: Option<PathBuf>,
+    /// The texels.
+    pub image: TextureImage,
+    /// How texels are picked.
+    pub filter: Filter,
+    /// How coordinates outside `0 ..= 1` address the texture.
+    pub wrap: Wrap,
 }
 
 /// Vertex data: a packed blob drawn in place, or a mesh in memory.
@@ -103,6 +127,8 @@ pub struct OwnedMesh {
     pub normals: Option<Vec<[f64; 3]>>,
     /// One colour per position, if any.
     pub colors: Option<Vec<Rgb888>>,
+    /// One pair of texture coordinates per position (16.16 bits), if any.
+    pub uvs: Option<Vec<[i32; 2]>>,
     /// Triangles.
     pub triangles: Vec<[u32; 3]>,
 }
@@ -356,6 +382,15 @@ fn load_mesh(
     let needs_edit = def.fit_unit_sphere
         || matches!(def.normals, NormalsMode::Smooth | NormalsMode::Face)
         || def.vertex_colors != VertexColorMode::File;
+    // A packed mesh's own texture, kept whether the mesh is drawn in place or edited.
+    let own_texture = PackedMesh::parse(&bytes)
+        .ok()
+        .and_then(|p| p.texture())
+        .map(|t| TextureImage {
+            width_log2: t.width_log2(),
+            height_log2: t.height_log2(),
+            texels: t.bytes().to_vec(),
+        });
     let data = if bytes.starts_with(&MAGIC) {
         let packed =
             PackedMesh::parse(&bytes).map_err(|e| format!("mesh {}: {e}", file.display()))?;
@@ -381,6 +416,7 @@ fn load_mesh(
         }
         MeshData::Owned(edit(from_raw(raw), &def))
     };
+    let texture = load_texture(dir, &def, own_texture, &data)?;
     let c = def.color.0;
     let m = def.material.as_ref();
     let material = Material {
@@ -410,7 +446,71 @@ fn load_mesh(
             .perspective_correct
             .unwrap_or(render.perspective_correct),
         dither: def.dither.unwrap_or(render.dither),
+        texture,
     })
+}
+
+/// The mesh's texture: the `texture` key's PNG, else a packed mesh's own texture (`own`);
+/// checked against the mesh's texture coordinates.
+fn load_texture(
+    dir: &Path,
+    def: &MeshDef,
+    own: Option<TextureImage>,
+    data: &MeshData,
+) -> Result<Option<SceneTexture>, String> {
+    let name = &def.path;
+    let filter = match def.texture_filter {
+        None | Some(TextureFilterDef::Nearest) => Filter::Nearest,
+        Some(TextureFilterDef::Bilinear) => Filter::Bilinear,
+    };
+    let wrap = match def.texture_wrap {
+        None | Some(TextureWrapDef::Repeat) => Wrap::Repeat,
+        Some(TextureWrapDef::Clamp) => Wrap::Clamp,
+    };
+    let has_uvs = match data {
+        MeshData::Owned(o) => o.uvs.is_some(),
+        MeshData::Packed(bytes) => PackedMesh::parse(bytes).is_ok_and(|p| p.has_uvs()),
+    };
+    let (file, image) = match &def.texture {
+        Some(t) => {
+            let file = dir.join(t);
+            let image = TextureImage::load_png(&file, None).map_err(|e| {
+                let fix = match e {
+                    TextureFileError::NotPowerOfTwo { .. } | TextureFileError::TooLarge { .. } => {
+                        format!(
+                            "; resample it to a power of two up to {MAX_SIDE} (`host-tools \
+                             convert --texture-size N` does, into a packed mesh)"
+                        )
+                    }
+                    _ => String::new(),
+                };
+                format!("mesh {name}: texture {}: {e}{fix}", file.display())
+            })?;
+            (Some(file), image)
+        }
+        None => match own {
+            Some(image) => (None, image),
+            None if def.texture_filter.is_some() || def.texture_wrap.is_some() => {
+                return Err(format!(
+                    "mesh {name}: texture_filter and texture_wrap need a `texture`"
+                ))
+            }
+            None => return Ok(None),
+        },
+    };
+    if !has_uvs {
+        return Err(format!(
+            "mesh {name}: texture = \"{}\" but the mesh has no texture coordinates (every face \
+             corner needs a `vt`)",
+            def.texture.as_deref().unwrap_or_default()
+        ));
+    }
+    Ok(Some(SceneTexture {
+        file,
+        image,
+        filter,
+        wrap,
+    }))
 }
 
 /// `MeshSource::has_normals` without naming a scalar at the call site.
@@ -438,6 +538,7 @@ fn unpack(p: &PackedMesh<'_>) -> OwnedMesh {
         .map(|i| p.normal_bits(i).map(|b| b.map(fx_to_f64)))
         .collect::<Option<Vec<_>>>();
     let colors = (0..n).map(|i| p.color_of(i)).collect::<Option<Vec<_>>>();
+    let uvs = (0..n).map(|i| p.uv_bits(i)).collect::<Option<Vec<_>>>();
     let triangles = (0..p.triangles())
         .filter_map(|t| p.triangle_indices(t))
         .collect();
@@ -445,16 +546,20 @@ fn unpack(p: &PackedMesh<'_>) -> OwnedMesh {
         positions,
         normals,
         colors,
+        uvs,
         triangles,
     }
 }
 
 /// An OBJ mesh in memory.
 fn from_raw(m: RawMesh) -> OwnedMesh {
+    // In range: the reader refuses texture coordinates beyond 16.16.
+    let bits = |c: f64| (c * 65536.0).round() as i32;
     OwnedMesh {
         positions: m.positions,
         normals: m.normals,
         colors: None,
+        uvs: m.uvs.map(|u| u.iter().map(|uv| uv.map(bits)).collect()),
         triangles: m.triangles,
     }
 }

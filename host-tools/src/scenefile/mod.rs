@@ -14,9 +14,9 @@ pub use draw::{render_3d, render_image, render_posed, FrameStats, Pose};
 pub use format::{
     Camera, Color, CullMode, FillRuleDef, LightDef, MaterialDef, MeshDef, NormalsMode, Output,
     PixelFormat, RenderOptions, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel,
-    VertexColorMode,
+    TextureFilterDef, TextureWrapDef, VertexColorMode,
 };
-pub use load::{load, MeshData, OwnedMesh, Scene, SceneMesh};
+pub use load::{load, MeshData, OwnedMesh, Scene, SceneMesh, SceneTexture};
 pub use reference::{Real, F64};
 
 use crate::outln;

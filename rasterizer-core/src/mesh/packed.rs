@@ -7,8 +7,8 @@
 //! | offset | size | field |
 //! |---:|---:|---|
 //! | 0 | 4 | magic `RMSH` |
-//! | 4 | 2 | version, `1` |
-//! | 6 | 2 | flags: bit 0 normals, bit 1 colours, bit 2 32-bit indices (else 16-bit); others 0 |
+//! | 4 | 2 | version, `1` or `2` |
+//! | 6 | 2 | flags: bit 0 normals, bit 1 colours, bit 2 32-bit indices (else 16-bit), bit 3 texture coordinates, bit 4 texture (bits 3 and 4 version 2 only); others 0 |
 //! | 8 | 4 | vertex count `n` (at most 2^24) |
 //! | 12 | 4 | triangle count `t` (at most 2^24) |
 //! | 16 | 12 | offset: the box centre, x y z, 16.16 fixed point (`i32`) |
@@ -16,12 +16,24 @@
 //! | 40 | 6 n | positions: `i16` x y z per vertex, each in `-32767 ..= 32767` |
 //! | | 6 n | normals (flag 0): `i16` x y z per vertex, unit length at 32767 |
 //! | | 3 n | colours (flag 1): r g b bytes per vertex |
+//! | | 8 n | texture coordinates (flag 3): `i32` u v per vertex, 16.16 ([`crate::texture`]) |
 //! | | 6 t or 12 t | triangles: three `u16` (or `u32`, flag 2) vertex indices each |
+//! | | 1 | texture (flag 4): the width's power of two, at most [`MAX_SIDE_LOG2`] |
+//! | | 1 | the height's power of two, at most [`MAX_SIDE_LOG2`] |
+//! | | 2 | zero |
+//! | | 2 w h | the texels, little-endian Rgb565, row after row from the image's top row |
 //!
 //! A position decodes to `offset + q * scale / 2^16` (16.16, rounded half up): with `i16` quanta
 //! across the mesh's bounding box, the quantisation error is at most half a quantum, 1/65534 of the
 //! box's extent in each axis (1.5e-5 for a unit-sphere mesh, one 16.16 step). A normal decodes to
 //! `q / 32767` in 16.16. Meshes of more than 65,535 vertices use 32-bit indices.
+//!
+//! Version 2 adds texture coordinates and a texture; a blob with neither is written as version 1,
+//! which this reader still reads (with bits 3 and 4 unknown flags there). The texture comes last,
+//! after the triangles, since its length depends on its own sides; it needs texture coordinates
+//! (flag 4 without flag 3 is [`MeshError::TextureWithoutUvs`]), while texture coordinates alone are
+//! allowed (for a texture that firmware keeps elsewhere). Texture coordinates take any `i32`: values
+//! outside `0 ..= 1` repeat or clamp as the shader's [`crate::texture::Wrap`] says.
 //!
 //! [`PackedMesh::parse`] checks everything once (magic, version, flags, counts, that the length is
 //! exactly what the counts need, zero padding, scales, quanta and every index), so any byte string
@@ -30,13 +42,16 @@
 
 use super::MeshSource;
 use crate::math::{Scalar, Vec3};
+use crate::texture::{Texture, TextureError, MAX_SIDE_LOG2};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// The magic number at the start of a blob.
 pub const MAGIC: [u8; 4] = *b"RMSH";
-/// The format version this reader understands.
-pub const VERSION: u16 = 1;
+/// The newest format version, the one this reader understands besides [`VERSION_1`].
+pub const VERSION: u16 = 2;
+/// The first format version: no texture coordinates and no texture.
+pub const VERSION_1: u16 = 1;
 /// Header size in bytes.
 pub const HEADER_LEN: usize = 40;
 /// Flag: the mesh has normals.
@@ -45,6 +60,12 @@ pub const FLAG_NORMALS: u16 = 1;
 pub const FLAG_COLORS: u16 = 2;
 /// Flag: indices are 32-bit.
 pub const FLAG_U32_INDICES: u16 = 4;
+/// Flag: the mesh has texture coordinates (version 2).
+pub const FLAG_UVS: u16 = 8;
+/// Flag: the blob ends with a texture (version 2; needs [`FLAG_UVS`]).
+pub const FLAG_TEXTURE: u16 = 16;
+/// Bytes before the texels in the texture section: the two sides' powers of two and two zeros.
+pub const TEXTURE_HEADER_LEN: usize = 4;
 /// The largest vertex or triangle count a blob may declare.
 pub const MAX_COUNT: u32 = 1 << 24;
 /// The largest quantum magnitude.
@@ -64,6 +85,10 @@ pub enum MeshError {
     UnsupportedVersion(u16),
     /// Flag bits this version does not define.
     UnknownFlags(u16),
+    /// The texture flag without the texture coordinates flag.
+    TextureWithoutUvs,
+    /// The texture's sides are not a texture's ([`TextureError`]).
+    Texture(TextureError),
     /// A vertex or triangle count above [`MAX_COUNT`], or triangles with no vertices.
     BadCounts {
         /// Vertices declared.
@@ -109,9 +134,16 @@ impl fmt::Display for MeshError {
             Self::BadMagic => write!(f, "not a packed mesh (magic is not RMSH)"),
             Self::UnsupportedVersion(v) => write!(
                 f,
-                "format version {v} is not supported (expected {VERSION})"
+                "format version {v} is not supported (expected {VERSION_1} or {VERSION})"
             ),
             Self::UnknownFlags(x) => write!(f, "unknown flag bits {x:#06x}"),
+            Self::TextureWithoutUvs => {
+                write!(
+                    f,
+                    "a texture but no texture coordinates (flag bit 4 without bit 3)"
+                )
+            }
+            Self::Texture(e) => write!(f, "bad texture: {e}"),
             Self::BadCounts {
                 vertices,
                 triangles,
@@ -137,7 +169,14 @@ impl fmt::Display for MeshError {
     }
 }
 
-impl core::error::Error for MeshError {}
+impl core::error::Error for MeshError {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            Self::Texture(e) => Some(e),
+            _ => None,
+        }
+    }
+}
 
 /// A validated packed mesh borrowing its bytes.
 #[derive(Debug, Clone, Copy)]
@@ -149,8 +188,10 @@ pub struct PackedMesh<'a> {
     positions: &'a [u8],
     normals: Option<&'a [u8]>,
     colors: Option<&'a [u8]>,
+    uvs: Option<&'a [u8]>,
     indices: &'a [u8],
     wide: bool,
+    texture: Option<Texture<'a>>,
 }
 
 /// `n` rounded up to a multiple of 4.
@@ -158,9 +199,9 @@ const fn pad4(n: usize) -> usize {
     (n + 3) & !3
 }
 
-/// The section layout of a blob: `(start, len)` of positions, normals, colours, indices, and the
-/// total length.
-fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 4], usize) {
+/// The section layout of a blob up to the triangles: `(start, len)` of positions, normals,
+/// colours, texture coordinates and indices, and the length so far (where a texture starts).
+fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 5], usize) {
     let mut at = HEADER_LEN;
     let mut section = |len: usize| {
         let s = (at, len);
@@ -170,12 +211,13 @@ fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 4], usize) {
     let pos = section(6 * n);
     let nrm = section(if flags & FLAG_NORMALS != 0 { 6 * n } else { 0 });
     let col = section(if flags & FLAG_COLORS != 0 { 3 * n } else { 0 });
+    let uv = section(if flags & FLAG_UVS != 0 { 8 * n } else { 0 });
     let idx = section(if flags & FLAG_U32_INDICES != 0 {
         12 * t
     } else {
         6 * t
     });
-    ([pos, nrm, col, idx], at)
+    ([pos, nrm, col, uv, idx], at)
 }
 
 #[inline(always)]
@@ -192,7 +234,7 @@ impl<'a> PackedMesh<'a> {
     /// Validates `bytes` and reads the mesh in place.
     ///
     /// # Errors
-    /// A [`MeshError`] for anything that is not a well-formed version-1 mesh.
+    /// A [`MeshError`] for anything that is not a well-formed version-1 or version-2 mesh.
     pub fn parse(bytes: &'a [u8]) -> Result<Self, MeshError> {
         if bytes.len() < HEADER_LEN {
             return Err(MeshError::TooShort { len: bytes.len() });
@@ -201,12 +243,17 @@ impl<'a> PackedMesh<'a> {
             return Err(MeshError::BadMagic);
         }
         let version = u16_at(bytes, 4);
-        if version != VERSION {
-            return Err(MeshError::UnsupportedVersion(version));
-        }
+        let known = match version {
+            VERSION_1 => FLAG_NORMALS | FLAG_COLORS | FLAG_U32_INDICES,
+            VERSION => FLAG_NORMALS | FLAG_COLORS | FLAG_U32_INDICES | FLAG_UVS | FLAG_TEXTURE,
+            _ => return Err(MeshError::UnsupportedVersion(version)),
+        };
         let flags = u16_at(bytes, 6);
-        if flags & !(FLAG_NORMALS | FLAG_COLORS | FLAG_U32_INDICES) != 0 {
+        if flags & !known != 0 {
             return Err(MeshError::UnknownFlags(flags));
+        }
+        if flags & FLAG_TEXTURE != 0 && flags & FLAG_UVS == 0 {
+            return Err(MeshError::TextureWithoutUvs);
         }
         let (nv, nt) = (u32_at(bytes, 8), u32_at(bytes, 12));
         if nv > MAX_COUNT || nt > MAX_COUNT || (nv == 0 && nt > 0) {
@@ -216,7 +263,27 @@ impl<'a> PackedMesh<'a> {
             });
         }
         let (n, t) = (nv as usize, nt as usize);
-        let ([pos, nrm, col, idx], total) = layout(n, t, flags);
+        let ([pos, nrm, col, uv, idx], mut total) = layout(n, t, flags);
+        // The texture section: its header, then texels as many as its sides say.
+        let (mut sides, mut tex) = ((total, 0), (total, 0));
+        if flags & FLAG_TEXTURE != 0 {
+            let Some(&[w, h, ..]) = bytes.get(total..total + TEXTURE_HEADER_LEN) else {
+                return Err(MeshError::WrongLength {
+                    expected: total + TEXTURE_HEADER_LEN,
+                    actual: bytes.len(),
+                });
+            };
+            if w > MAX_SIDE_LOG2 || h > MAX_SIDE_LOG2 {
+                return Err(MeshError::Texture(TextureError::TooLarge {
+                    width_log2: w,
+                    height_log2: h,
+                }));
+            }
+            // The two zero bytes after the sides are checked as padding below.
+            sides = (total, 2);
+            tex = (total + TEXTURE_HEADER_LEN, 2 << (w + h));
+            total = pad4(tex.0 + tex.1);
+        }
         if bytes.len() != total {
             return Err(MeshError::WrongLength {
                 expected: total,
@@ -225,7 +292,7 @@ impl<'a> PackedMesh<'a> {
         }
         // Padding: every byte not inside the header or a section is zero.
         let mut covered = HEADER_LEN;
-        for (start, len) in [pos, nrm, col, idx] {
+        for (start, len) in [pos, nrm, col, uv, idx, sides, tex] {
             if let Some(o) = (covered..start).find(|&o| bytes[o] != 0) {
                 return Err(MeshError::BadPadding { offset: o });
             }
@@ -256,8 +323,15 @@ impl<'a> PackedMesh<'a> {
             positions: sec(pos),
             normals: (flags & FLAG_NORMALS != 0).then(|| sec(nrm)),
             colors: (flags & FLAG_COLORS != 0).then(|| sec(col)),
+            uvs: (flags & FLAG_UVS != 0).then(|| sec(uv)),
             indices: sec(idx),
             wide: flags & FLAG_U32_INDICES != 0,
+            texture: if flags & FLAG_TEXTURE != 0 {
+                let (w, h) = (bytes[sides.0], bytes[sides.0 + 1]);
+                Some(Texture::new(w, h, sec(tex)).map_err(MeshError::Texture)?)
+            } else {
+                None
+            },
         };
         for v in 0..n {
             let bad = |b: &[u8]| (0..3).any(|k| u16_at(b, 6 * v + 2 * k) == 0x8000);
@@ -334,6 +408,26 @@ impl<'a> PackedMesh<'a> {
         Some(Rgb888::new(b[3 * i], b[3 * i + 1], b[3 * i + 2]))
     }
 
+    /// Vertex `i`'s texture coordinates (16.16, [`crate::texture`]), or `None` without them or
+    /// past the end.
+    #[inline]
+    pub fn uv_bits(&self, i: usize) -> Option<[i32; 2]> {
+        let b = self.uvs.filter(|_| i < self.vertices)?;
+        Some([0, 1].map(|k| u32_at(b, 8 * i + 4 * k) as i32))
+    }
+
+    /// True when the mesh has texture coordinates.
+    #[inline]
+    pub fn has_uvs(&self) -> bool {
+        self.uvs.is_some()
+    }
+
+    /// The texture the blob carries, if any (read in place).
+    #[inline]
+    pub fn texture(&self) -> Option<Texture<'a>> {
+        self.texture
+    }
+
     /// Triangle `t`'s vertex indices, or `None` past the end.
     #[inline]
     pub fn triangle_indices(&self, t: usize) -> Option<[u32; 3]> {
@@ -375,5 +469,9 @@ impl<S: Scalar> MeshSource<S> for PackedMesh<'_> {
     #[inline(always)]
     fn color(&self, i: usize) -> Option<Rgb888> {
         self.color_of(i)
+    }
+    #[inline(always)]
+    fn uv(&self, i: usize) -> Option<[i32; 2]> {
+        self.uv_bits(i)
     }
 }
