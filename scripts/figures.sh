@@ -41,8 +41,11 @@ MESH_SCENES=(
     "M1 $DEFAULT_COMBINATION $PHONG_COMBINATION $BAND16_COMBINATION euc | m1_noscratch m1_nodepth m1_nocull m1_unlit m1_flat m1_unlit_nodepth_nocull m1_wireframe m1_depth_always m1_cull_keepall m1_band8 m1_band16_noscratch m1_band32 m1_band240"
     "M2 $DEFAULT_COMBINATION euc | m1_noscratch m1_unlit m1_flat m1_phong m1_wireframe"
     "M3 $DEFAULT_COMBINATION euc | m1_noscratch m1_unlit m1_flat m1_phong m1_wireframe"
-    # M4, once count3d draws it, is one more line, e.g.: "M4 m4=ours m1=ours-untextured euc | ..."
+    "M4 m4=ours m4_untextured=ours-untextured | m4_bilinear"
 )
+# The counting program of a mesh scene when it is not count3d: M4's frames live in a program of
+# their own so that they do not change how count3d's are compiled.
+declare -A MESH_PROGRAM=([M4]=count3d_tex)
 
 # The RAM and code size of M1 configurations, one line each: RENDERER, the configuration as
 # tests/tests/stack.rs and scripts/memory.sh name it. The lines before the empty entry are the
@@ -235,12 +238,16 @@ fi
 
 # --- Mesh scenes (count3d) ---
 
-need_3d=0
-for line in "${MESH_SCENES[@]}"; do wanted "${line%% *}" && need_3d=1; done
-if [ "$need_3d" = 1 ]; then
-    build_example count3d
-    COUNT3D="$BIN"
-fi
+declare -A MESH_BIN=()
+for line in "${MESH_SCENES[@]}"; do
+    scene="${line%% *}"
+    wanted "$scene" || continue
+    program="${MESH_PROGRAM[$scene]:-count3d}"
+    if [ -z "${MESH_BIN[$program]:-}" ]; then
+        build_example "$program"
+        MESH_BIN[$program]="$BIN"
+    fi
+done
 
 # renderer_of COMBINATION: the renderer name of a count3d combination.
 renderer_of() {
@@ -261,6 +268,7 @@ for line in "${MESH_SCENES[@]}"; do
     extra=""
     [[ "$jobs" == *"|"* ]] && extra="${jobs#*|}"
     [ "$QUICK" = 1 ] && extra=""
+    COUNT3D="${MESH_BIN[${MESH_PROGRAM[$scene]:-count3d}]}"
     declare -A SCENE_INSTR=()
     # shellcheck disable=SC2086 # the job lists are words
     for job in $required $extra; do
@@ -280,6 +288,10 @@ for line in "${MESH_SCENES[@]}"; do
         emit_count "$scene" "$r" per_drawn "$(div "$n" "$drawn" 1)"
         emit_count "$scene" "$r" covered "$(field "$base.stdout" covered)"
     done
+    if [ -n "${SCENE_INSTR[ours]:-}" ] && [ -n "${SCENE_INSTR[ours-untextured]:-}" ]; then
+        emit_count "$scene" ours/ours-untextured ratio \
+            "$(div "${SCENE_INSTR[ours]}" "${SCENE_INSTR[ours-untextured]}" 4)"
+    fi
     if [ -n "${SCENE_INSTR[ours]:-}" ] && [ -n "${SCENE_INSTR[euc]:-}" ]; then
         emit_count "$scene" ours/euc ratio "$(div "${SCENE_INSTR[ours]}" "${SCENE_INSTR[euc]}" 4)"
         if [ "$QUICK" = 0 ]; then
