@@ -15,6 +15,7 @@ pub mod metrics;
 pub mod plot;
 pub mod report;
 pub mod scene;
+pub mod texture;
 
 use config::{Config, Measured};
 use count::Count;
@@ -95,6 +96,11 @@ pub struct Sweep {
     pub breakdown: Vec<breakdown::Breakdown>,
     /// M1's triangle count (for instructions per triangle).
     pub m1_triangles: usize,
+    /// The textured pipeline's coordinates on M4 ([`texture::measure`]), when measured.
+    pub texture: Option<Result<Vec<texture::TextureRow>, String>>,
+    /// M4's instructions per frame from the figures of record (`docs/figures.tsv`): renderer and
+    /// count, for the texture section's cost column.
+    pub texture_costs: Vec<(String, u64)>,
 }
 
 /// Measures every configuration on every group and runs the breakdown sweeps on the first
@@ -152,6 +158,8 @@ pub fn sweep(plan: &Plan, progress: &dyn Fn(&str)) -> Sweep {
         rows,
         breakdown,
         m1_triangles: base.tris.len(),
+        texture: None,
+        texture_costs: Vec::new(),
     }
 }
 
@@ -247,6 +255,9 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Box<dyn std::error::Error>> {
     for (row, c) in result.rows.iter_mut().zip(counts) {
         row.count = c;
     }
+    crate::errln!("texture coordinates on M4");
+    result.texture = Some(texture::measure());
+    result.texture_costs = texture::costs(&args.out.join("figures.tsv"));
     let meta = report::Meta {
         date: report::today(),
         rustc: report::rustc_version(),

@@ -334,6 +334,7 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
     }
 
     dithering(&mut s, sweep);
+    texture_section(&mut s, sweep);
 
     let _ = writeln!(s, "## Where each format breaks down\n");
     let _ = writeln!(
@@ -414,6 +415,91 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
 }
 
 /// The words on the default: a template filled with the numbers.
+/// The textured pipeline's texture coordinates against f64 on M4, and what texturing costs.
+fn texture_section(s: &mut String, sweep: &Sweep) {
+    let Some(measured) = &sweep.texture else {
+        return;
+    };
+    let _ = writeln!(s, "## Texture coordinates (M4)\n");
+    let _ = writeln!(
+        s,
+        "`TexturedLit` on M4 (Spot, the M1 camera, nearest texel): each pixel's texel against \
+         the exact perspective-correct coordinates at its centre, interpolated in f64 from the \
+         triangle's vertices as the pipeline projected them (so this is the texture path's own \
+         error, apart from the geometry's). A 256-texel id texture names the texel each pixel \
+         drew; multiplying the model's coordinates by 4 and 16 makes it address the texture as \
+         one of 1024 texels a side (M4's own) and 4096 would, resolving the error more finely. \
+         Distance: how far the exact coordinates lie from the texel drawn, in texels of that \
+         side, the larger of the two axes (zero when they fall in it). The affine columns are \
+         the same measure had the coordinates been interpolated linearly in screen space (the \
+         per-pixel division is what removes that error; M4's triangles are small, so it is \
+         modest here and grows with a triangle's depth range).\n"
+    );
+    match measured {
+        Ok(rows) => {
+            let _ = writeln!(
+                s,
+                "| texture side | pixels | on another texel | mean distance | max distance | \
+                 affine: mean | affine: max |\n|---:|---:|---:|---:|---:|---:|---:|"
+            );
+            for r in rows {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {:.2e} | {:.2e} | {:.2e} | {:.2e} |",
+                    r.side,
+                    thousands(r.pixels as u64),
+                    r.off,
+                    r.mean,
+                    r.max,
+                    r.affine_mean,
+                    r.affine_max
+                );
+            }
+        }
+        Err(why) => {
+            let _ = writeln!(s, "Not measured: {why}");
+        }
+    }
+    let _ = writeln!(s);
+    let cost = |r: &str| {
+        sweep
+            .texture_costs
+            .iter()
+            .find(|(name, _)| name == r)
+            .map(|(_, n)| *n)
+    };
+    let Some(base) = cost("ours-untextured") else {
+        let _ = writeln!(
+            s,
+            "(No M4 counts in `docs/figures.tsv`: run `scripts/figures.sh` for the cost.)\n"
+        );
+        return;
+    };
+    let _ = writeln!(
+        s,
+        "Cost, instructions per M4 frame from the figures of record (`docs/figures.tsv`, \
+         `scripts/figures.sh`): per pixel, two divisions (one instruction each on x86-64; a \
+         core without a hardware divider pays far more). Texture coordinates are always \
+         interpolated per pixel; a per-span-segment variant is not built.\n\n\
+         | choice | instructions / M4 frame | against untextured |\n|---|---:|---:|"
+    );
+    for (label, r) in [
+        ("untextured (Gouraud only)", "ours-untextured"),
+        ("nearest, per pixel (the default)", "ours"),
+        ("bilinear, per pixel", "ours-m4_bilinear"),
+    ] {
+        if let Some(n) = cost(r) {
+            let _ = writeln!(
+                s,
+                "| {label} | {} | {:.2}x |",
+                thousands(n),
+                n as f64 / base as f64
+            );
+        }
+    }
+    let _ = writeln!(s);
+}
+
 /// The Rgb565 colour of the default and the dithered configurations against the f64 colour.
 fn dithering(s: &mut String, sweep: &Sweep) {
     let rows: Vec<&Row> = sweep
