@@ -260,10 +260,14 @@ where
         > = heapless::Vec::new();
         for v in &poly {
             let (p, z) = self.project(&v.pos);
+            let mut var = v.var;
+            if Sh::NEEDS_W && !N::PERSPECTIVE {
+                self.shading.project(&mut var, v.pos.w);
+            }
             let _ = screen.push(ScreenVertex {
                 p,
                 z,
-                var: v.var,
+                var,
                 q: Self::q(&v.pos),
             });
         }
@@ -297,6 +301,19 @@ where
         if self.area.is_empty() {
             return Ok(());
         }
+        let rescaled;
+        let fv = if Sh::NEEDS_TRIANGLE {
+            let mut values = [fv[0].2, fv[1].2, fv[2].2];
+            self.shading.triangle(&mut values);
+            rescaled = [
+                (fv[0].0, fv[0].1, values[0]),
+                (fv[1].0, fv[1].1, values[1]),
+                (fv[2].0, fv[2].1, values[2]),
+            ];
+            &rescaled
+        } else {
+            fv
+        };
         fill_fused::<_, _, _, _, BITS>(
             target,
             &mut self.depth,
@@ -322,12 +339,20 @@ where
     where
         T: Surface<Color = Sh::Color>,
     {
-        let shading = &self.shading;
         if Self::FUSED {
             let fv = sv.map(|v| (v.p, v.z, v.var));
             self.raster_fused(target, &fv)
         } else {
-            fill_triangle_interp_with::<_, _, _, _, N, BITS>(target, &mut self.depth, *sv, |v| {
+            let mut sv = *sv;
+            if Sh::NEEDS_TRIANGLE {
+                let mut values = [sv[0].var, sv[1].var, sv[2].var];
+                self.shading.triangle(&mut values);
+                for (v, values) in sv.iter_mut().zip(values) {
+                    v.var = values;
+                }
+            }
+            let shading = &self.shading;
+            fill_triangle_interp_with::<_, _, _, _, N, BITS>(target, &mut self.depth, sv, |v| {
                 shading.pixel(v)
             })
         }

@@ -174,11 +174,12 @@ where
             Some(s) if !s.st.is_empty() => s.st.unpack(),
             _ => {
                 let space = Space {
+                    mvp: &self.mvp,
                     model: &self.model,
                     normal_matrix: &self.normal_matrix,
                     model_space: self.model_space,
                 };
-                let packed = shade_vertex(&mut self.shading, &space, mesh, i, None);
+                let packed = shade::<S, Sh, M, N>(&mut self.shading, &space, mesh, i, None);
                 if let Some(s) = scratch.get_mut(i) {
                     s.st = packed;
                 }
@@ -192,6 +193,7 @@ where
     #[inline(always)]
     pub(super) fn vertex_in<M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
         let space = Space {
+            mvp: &self.mvp,
             model: &self.model,
             normal_matrix: &self.normal_matrix,
             model_space: self.model_space,
@@ -229,6 +231,7 @@ where
     ) -> [Sh::Varyings; 3] {
         use crate::shade::Stored;
         let space = Space {
+            mvp: &self.mvp,
             model: &self.model,
             normal_matrix: &self.normal_matrix,
             model_space: self.model_space,
@@ -237,7 +240,7 @@ where
         let normal = (p[1] - p[0]).cross(p[2] - p[0]);
         let mut out = [Sh::Varyings::default(); 3];
         for (&i, o) in idx.iter().zip(&mut out) {
-            *o = shade_vertex(&mut self.shading, &space, mesh, i, Some(normal)).unpack();
+            *o = shade::<S, Sh, M, N>(&mut self.shading, &space, mesh, i, Some(normal)).unpack();
         }
         out
     }
@@ -360,6 +363,8 @@ pub(super) fn viewport_edges<const BITS: u32>(vp: &Viewport) -> [i64; 4] {
 /// Where a shader's vertices are taken from: the model and normal matrices, and whether the
 /// shader lights in model space this frame.
 struct Space<'a, S> {
+    /// The model-view-projection matrix, for the shaders that need a vertex's clip-space `w`.
+    mvp: &'a Mat4<S>,
     model: &'a Mat4<S>,
     normal_matrix: &'a Mat4<S>,
     model_space: bool,
@@ -380,11 +385,17 @@ impl<S: Scalar> Space<'_, S> {
     #[inline(always)]
     fn vertex_in<Sh: Shading<S>, M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
         let color = mesh.color(i).unwrap_or(Rgb888::WHITE);
+        let uv = if Sh::NEEDS_UV {
+            mesh.uv(i).unwrap_or_default()
+        } else {
+            [0; 2]
+        };
         if !Sh::NEEDS_WORLD {
             return VertexIn {
                 position: Vec3::default(),
                 normal: Vec3::default(),
                 color,
+                uv,
             };
         }
         let normal = mesh.normal(i).unwrap_or_default();
@@ -393,12 +404,14 @@ impl<S: Scalar> Space<'_, S> {
                 position: mesh.position(i),
                 normal,
                 color,
+                uv,
             };
         }
         VertexIn {
             position: self.model.transform_point(mesh.position(i)).xyz(),
             normal: self.normal_matrix.transform_dir(normal),
             color,
+            uv,
         }
     }
 }
@@ -422,4 +435,41 @@ fn shade_vertex<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
         vin.normal = n;
     }
     Sh::Stored::pack(&shading.vertex(&vin))
+}
+
+/// [`shade_vertex`], or for a shader whose values depend on the vertex's clip-space `w`
+/// ([`Shading::NEEDS_W`]), [`shade_vertex_w`].
+#[inline(always)]
+fn shade<S: Scalar, Sh: Shading<S>, M: MeshSource<S>, N: Numerics>(
+    shading: &mut Sh,
+    space: &Space<'_, S>,
+    mesh: &M,
+    i: usize,
+    normal: Option<Vec3<S>>,
+) -> Sh::Stored {
+    if Sh::NEEDS_W && !N::PERSPECTIVE {
+        shade_vertex_w(shading, space, mesh, i, normal)
+    } else {
+        shade_vertex(shading, space, mesh, i, normal)
+    }
+}
+
+/// [`shade_vertex`] followed by [`Shading::project`] with the vertex's clip-space `w`.
+#[inline]
+fn shade_vertex_w<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
+    shading: &mut Sh,
+    space: &Space<'_, S>,
+    mesh: &M,
+    i: usize,
+    normal: Option<Vec3<S>>,
+) -> Sh::Stored {
+    use crate::shade::Stored;
+    let mut vin = space.vertex_in::<Sh, M>(mesh, i);
+    if let Some(n) = normal {
+        vin.normal = n;
+    }
+    let mut values = shading.vertex(&vin);
+    let w = space.mvp.transform_point(mesh.position(i)).w;
+    shading.project(&mut values, w);
+    Sh::Stored::pack(&values)
 }

@@ -5,8 +5,10 @@
 
 pub mod light;
 pub mod model;
+pub mod textured;
 
 pub use light::{Light, Lighting, Material, Specular};
 pub use model::{
     FlatLit, GouraudLit, Packed, PhongLit, Shading, Stored, Unlit, VertexColors, VertexIn,
 };
+pub use textured::TexturedLit;

@@ -82,6 +82,9 @@ pub struct VertexIn<S> {
     pub normal: Vec3<S>,
     /// The mesh's vertex colour, white when the mesh has none.
     pub color: Rgb888,
+    /// The mesh's texture coordinates (16.16, [`crate::texture`]); zero unless the shader asks
+    /// for them ([`Shading::NEEDS_UV`]) and the mesh has them.
+    pub uv: [i32; 2],
 }
 
 /// A shading model.
@@ -105,8 +108,31 @@ pub trait Shading<S: Scalar> {
     fn begin_frame(&mut self, _model: Option<&Mat4<S>>) -> bool {
         false
     }
+    /// The shader reads texture coordinates ([`VertexIn::uv`]; zero otherwise).
+    const NEEDS_UV: bool = false;
+    /// The shader's values depend on the vertex's clip-space `w` ([`Shading::project`]).
+    const NEEDS_W: bool = false;
     /// Per vertex: the values to interpolate.
     fn vertex(&mut self, v: &VertexIn<S>) -> Self::Varyings;
+    /// With [`Shading::NEEDS_W`], per vertex after [`Shading::vertex`] and again for every vertex
+    /// the clipper makes (whose other values are interpolated in clip space): sets what depends
+    /// on the vertex's clip-space `w` (`w > 0`), such as `1 / w` for perspective-correct values.
+    /// Not called by pipelines that interpolate every value perspective-correctly
+    /// ([`crate::numerics::Numerics::PERSPECTIVE`]).
+    #[inline(always)]
+    fn project(&self, v: &mut Self::Varyings, w: S) {
+        let _ = (v, w);
+    }
+    /// The shader rescales each triangle's values in [`Shading::triangle`] (the pipeline skips
+    /// the call otherwise).
+    const NEEDS_TRIANGLE: bool = false;
+    /// With [`Shading::NEEDS_TRIANGLE`], once per screen triangle, before its pixels: may rescale its three vertices' values (and
+    /// keep what the pixels need to undo it). The values of a vertex are the same for every
+    /// triangle, so this is where a shader adapts their scale to one triangle.
+    #[inline(always)]
+    fn triangle(&mut self, v: &mut [Self::Varyings; 3]) {
+        let _ = v;
+    }
     /// Once per visible triangle, before its pixels.
     fn face(&mut self, _vertices: &[VertexIn<S>; 3]) {}
     /// Per pixel: the colour from the interpolated values.

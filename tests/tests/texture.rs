@@ -1,0 +1,395 @@
+//! Textured meshes (`TexturedLit`): texel coordinates against the exact perspective-correct f64
+//! ones, filters and wrap modes, bands against the whole frame, and hard input.
+
+use proptest::prelude::*;
+use rasterizer_core::prelude::*;
+use rasterizer_core::shade::{Specular, TexturedLit};
+use rasterizer_core::texture::{Texture, TextureError};
+
+const W: u32 = 96;
+
+fn fx(x: f64) -> Fx16 {
+    Fx16::from_bits((x * 65536.0).round() as i32)
+}
+const H: u32 = 72;
+
+/// A 32x32 texture whose texel (x, y) is Rgb565 (x, 0, y): a drawn pixel names its texel.
+fn id_texture() -> Vec<u8> {
+    let mut t = Vec::with_capacity(32 * 32 * 2);
+    for y in 0..32u16 {
+        for x in 0..32u16 {
+            t.extend_from_slice(&((x << 11) | y).to_le_bytes());
+        }
+    }
+    t
+}
+
+/// Light of 255 in every channel everywhere: the drawn colour is the texel's.
+fn full_light() -> Lighting<Fx16, 0> {
+    let white = Rgb888::new(255, 255, 255);
+    let material = Material {
+        ambient: white,
+        diffuse: white,
+        specular: Rgb888::BLACK,
+        shininess: 0,
+    };
+    Lighting::new(material, white, Specular::None, Vec3::default())
+}
+
+/// A floor quad from z = 1 to z = -9 seen from above its near end, so depth varies by a factor
+/// of several across it; its uv run 0..reps.
+/// Positions, texture coordinates and triangles.
+type Floor = (Vec<Vec3<Fx16>>, Vec<[i32; 2]>, Vec<[u16; 3]>);
+
+fn floor(reps: f64) -> Floor {
+    let p = |x: f64, z: f64| Vec3::new(fx(x), fx(-1.0), fx(z));
+    let positions = vec![p(-2.0, 1.0), p(2.0, 1.0), p(2.0, -9.0), p(-2.0, -9.0)];
+    let r = (reps * 65536.0) as i32;
+    let uvs = vec![[0, r], [r, r], [r, 0], [0, 0]];
+    (positions, uvs, vec![[0, 1, 2], [0, 2, 3]])
+}
+
+fn camera() -> Transforms<Fx16> {
+    let p = |x: f64, y: f64, z: f64| Vec3::new(fx(x), fx(y), fx(z));
+    Transforms::look_at(
+        p(0.3, 0.5, 2.5),
+        p(0.0, -1.0, -3.0),
+        Angle::from_degrees(70),
+        Viewport::new(W, H),
+    )
+    .unwrap()
+}
+
+fn draw(shader: TexturedLit<'_, Fx16, Rgb565, 0>, mesh: &Mesh<'_, Fx16>) -> Vec<u16> {
+    let mut buf = vec![0u16; (W * H) as usize];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
+    let mut p = Pipeline::new(&camera(), Viewport::new(W, H), NoCull, NoDepth, shader);
+    let mut scratch = vec![VertexSlot::<[i32; 6]>::EMPTY; mesh.positions.len()];
+    p.draw(&mut fb, mesh, &mut scratch).unwrap();
+    buf
+}
+
+/// The exact texel coordinates at each pixel centre: the drawn triangles' screen vertices (the
+/// pipeline's own projection) and clip-space `w`, interpolated perspective-correctly in f64.
+fn exact_uv<'m>(
+    mesh: &'m Mesh<'m, Fx16>,
+    size: f64,
+    perspective: bool,
+) -> impl Fn(i32, i32) -> Option<(f64, f64)> + 'm {
+    let cam = camera();
+    let p = Pipeline::new(
+        &cam,
+        Viewport::new(W, H),
+        NoCull,
+        NoDepth,
+        Unlit {
+            color: Rgb565::WHITE,
+        },
+    );
+    let mvp = cam.model.then(&cam.view).then(&cam.projection);
+    let verts: Vec<(f64, f64, f64)> = mesh
+        .positions
+        .iter()
+        .map(|&v| {
+            let clip = mvp.transform_point(v);
+            let (s, _) = p.project(&clip);
+            (
+                f64::from(s.x) / 64.0,
+                f64::from(s.y) / 64.0,
+                f64::from(clip.w.to_bits()) / 65536.0,
+            )
+        })
+        .collect();
+    move |x, y| {
+        let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+        for tri in mesh.triangles {
+            let v = tri.map(|i| verts[i as usize]);
+            let area =
+                (v[1].0 - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (v[1].1 - v[0].1);
+            let l1 = ((cx - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (cy - v[0].1)) / area;
+            let l2 = ((v[1].0 - v[0].0) * (cy - v[0].1) - (cx - v[0].0) * (v[1].1 - v[0].1)) / area;
+            let l = [1.0 - l1 - l2, l1, l2];
+            if l.iter().any(|&b| b < -1e-9) {
+                continue;
+            }
+            let uv = tri.map(|i| mesh.uvs.unwrap()[i as usize]);
+            let q = |k: usize| if perspective { 1.0 / v[k].2 } else { 1.0 };
+            let den: f64 = (0..3).map(|k| l[k] * q(k)).sum();
+            let f = |a: usize| {
+                (0..3)
+                    .map(|k| l[k] * q(k) * f64::from(uv[k][a]) / 65536.0)
+                    .sum::<f64>()
+                    / den
+                    * size
+            };
+            return Some((f(0), f(1)));
+        }
+        None
+    }
+}
+
+/// How far `x` lies outside texel `i`'s interval `[i, i + 1)`, in texels.
+fn outside(x: f64, i: i64) -> f64 {
+    let i = i as f64;
+    (i - x).max(x - (i + 1.0)).max(0.0)
+}
+
+/// Nearest sampling, repeating, over a floor whose texture repeats twice: every pixel shows the
+/// texel the exact coordinates fall in, or one beside it where they lie within 1/100 texel of
+/// its edge.
+#[test]
+fn nearest_texels_match_exact_perspective_coordinates() {
+    let (positions, uvs, triangles) = floor(2.0);
+    let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+    let texels = id_texture();
+    let texture = Texture::new(5, 5, &texels).unwrap();
+    let buf = draw(TexturedLit::new(full_light(), texture), &mesh);
+    let exact = exact_uv(&mesh, 32.0, true);
+    let (mut n, mut worst, mut off) = (0, 0.0f64, 0);
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let c = buf[(y as u32 * W + x as u32) as usize];
+            let Some((u, v)) = exact(x, y) else { continue };
+            n += 1;
+            let (tx, ty) = (i64::from(c >> 11), i64::from(c & 31));
+            // The drawn texel index is taken modulo 32: compare within the repeat.
+            let (u, v) = (u.rem_euclid(32.0), v.rem_euclid(32.0));
+            let e = |x: f64, i: i64| {
+                outside(x, i)
+                    .min(outside(x - 32.0, i))
+                    .min(outside(x + 32.0, i))
+            };
+            let err = e(u, tx).max(e(v, ty));
+            if err > 0.0 {
+                off += 1;
+            }
+            worst = worst.max(err);
+        }
+    }
+    eprintln!("{n} pixels, {off} on a neighbouring texel, worst {worst:.5} texels");
+    assert!(n > 2000, "the floor covers {n} pixels");
+    assert!(worst < 0.01, "worst texel coordinate error {worst}");
+}
+
+/// The same floor against affine (screen-linear) coordinates: the drawn texels are far from
+/// them over much of the floor, so the check above tells perspective-correct from affine.
+#[test]
+fn affine_coordinates_would_fail_the_check() {
+    let (positions, uvs, triangles) = floor(1.0);
+    let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+    let texels = id_texture();
+    let texture = Texture::new(5, 5, &texels).unwrap();
+    let buf = draw(TexturedLit::new(full_light(), texture), &mesh);
+    let exact = exact_uv(&mesh, 32.0, true);
+    let affine = exact_uv(&mesh, 32.0, false);
+    let (mut n, mut far) = (0, 0);
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let (Some((_, ve)), Some((_, va))) = (exact(x, y), affine(x, y)) else {
+                continue;
+            };
+            let ty = i64::from(buf[(y as u32 * W + x as u32) as usize] & 31);
+            assert!(outside(ve, ty) < 0.01);
+            n += 1;
+            if outside(va, ty) > 1.0 {
+                far += 1;
+            }
+        }
+    }
+    assert!(
+        far * 4 > n,
+        "{far} of {n} pixels more than a texel from the affine coordinates"
+    );
+}
+
+/// Colour comes from the texel times the light, rounded once: half light halves each channel.
+#[test]
+fn texel_times_light() {
+    let grey = Rgb888::new(128, 128, 128);
+    let material = Material {
+        ambient: Rgb888::new(255, 255, 255),
+        diffuse: Rgb888::BLACK,
+        specular: Rgb888::BLACK,
+        shininess: 0,
+    };
+    let lighting = Lighting::<Fx16, 0>::new(material, grey, Specular::None, Vec3::default());
+    let texel = Rgb565::new(31, 63, 20);
+    let raw = (31u16 << 11) | (63 << 5) | 20;
+    let bytes: Vec<u8> = (0..4).flat_map(|_| raw.to_le_bytes()).collect();
+    let texture = Texture::new(1, 1, &bytes).unwrap();
+    let (positions, uvs, triangles) = floor(1.0);
+    let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+    let buf = draw(TexturedLit::new(lighting, texture), &mesh);
+    let expect = |c: u8, max: u32| ((u32::from(c) * 128 * 2 + 255) / 510).min(max) as u8;
+    let want = Rgb565::new(
+        expect(texel.r(), 31),
+        expect(texel.g(), 63),
+        expect(texel.b(), 31),
+    );
+    let drawn: std::collections::BTreeSet<u16> = buf.iter().copied().filter(|&c| c != 0).collect();
+    assert_eq!(
+        drawn.into_iter().collect::<Vec<_>>(),
+        [embedded_graphics_core::pixelcolor::raw::RawU16::from(want).into_inner()]
+    );
+}
+
+/// Clamped coordinates continue the edge texels; repeated ones tile.
+#[test]
+fn clamp_and_repeat_differ_beyond_the_texture() {
+    let (positions, uvs, triangles) = floor(3.0);
+    let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+    let texels = id_texture();
+    let texture = Texture::new(5, 5, &texels).unwrap();
+    let repeat = draw(TexturedLit::new(full_light(), texture), &mesh);
+    let clamp = draw(
+        TexturedLit::new(full_light(), texture).with_wrap(Wrap::Clamp),
+        &mesh,
+    );
+    let exact = exact_uv(&mesh, 32.0, true);
+    let mut checked = 0;
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let Some((u, v)) = exact(x, y) else { continue };
+            let i = (y as u32 * W + x as u32) as usize;
+            // Well past the texture in both axes: clamped shows the last texel.
+            if u > 33.0 && v > 33.0 {
+                assert_eq!(clamp[i], (31 << 11) | 31, "({x}, {y})");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 50, "{checked} pixels beyond the texture");
+    assert_ne!(repeat, clamp);
+}
+
+/// Bilinear filtering of a texture of two colours gives the colours between them, and equals
+/// nearest where all four texels agree.
+#[test]
+fn bilinear_blends_neighbouring_texels() {
+    let (positions, uvs, triangles) = floor(1.0);
+    let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+    // Left half black, right half red (31).
+    let mut bytes = Vec::new();
+    for _y in 0..4 {
+        for x in 0..4u16 {
+            bytes.extend_from_slice(&(if x < 2 { 0u16 } else { 31 << 11 }).to_le_bytes());
+        }
+    }
+    let texture = Texture::new(2, 2, &bytes).unwrap();
+    let nearest = draw(TexturedLit::new(full_light(), texture), &mesh);
+    let bilinear = draw(
+        TexturedLit::new(full_light(), texture).with_filter(Filter::Bilinear),
+        &mesh,
+    );
+    let reds = |b: &[u16]| {
+        b.iter()
+            .map(|c| c >> 11)
+            .collect::<std::collections::BTreeSet<_>>()
+    };
+    assert_eq!(reds(&nearest), [0, 31].into_iter().collect());
+    let between = reds(&bilinear)
+        .into_iter()
+        .filter(|&r| r > 0 && r < 31)
+        .count();
+    assert!(
+        between >= 10,
+        "bilinear shows {between} levels between the two colours"
+    );
+}
+
+/// The same frame drawn in bands of every height equals the whole frame.
+#[test]
+fn bands_equal_the_whole_frame() {
+    let (positions, uvs, triangles) = floor(2.0);
+    let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+    let texels = id_texture();
+    let texture = Texture::new(5, 5, &texels).unwrap();
+    for filter in [Filter::Nearest, Filter::Bilinear] {
+        let shader = TexturedLit::new(full_light(), texture).with_filter(filter);
+        let whole = draw(shader.clone(), &mesh);
+        for rows in [1u32, 7, 16, 72] {
+            let mut frame = vec![0u16; (W * H) as usize];
+            let mut band = vec![0u16; (W * rows) as usize];
+            let mut bins = vec![BinEntry::default(); 4];
+            let mut scratch = vec![VertexSlot::<[i32; 6]>::EMPTY; positions.len()];
+            let mut p = Pipeline::new(
+                &camera(),
+                Viewport::new(W, H),
+                NoCull,
+                NoDepth,
+                shader.clone(),
+            );
+            let banding = Banding {
+                width: W,
+                height: H,
+                rows,
+                background: Rgb565::BLACK,
+                clear_depth: u16::MAX,
+            };
+            p.draw_banded(&mesh, &banding, &mut band, &mut bins, &mut scratch, |b| {
+                let y0 = b.y0() as usize * W as usize;
+                let data = b.framebuffer().as_slice();
+                frame[y0..y0 + data.len()].copy_from_slice(data);
+            })
+            .unwrap();
+            assert_eq!(frame, whole, "{filter:?}, bands of {rows}");
+        }
+    }
+}
+
+#[test]
+fn texture_sizes_are_checked() {
+    let bytes = [0u8; 8];
+    assert_eq!(
+        Texture::new(1, 2, &bytes[..6]),
+        Err(TextureError::WrongLength {
+            expected: 16,
+            actual: 6
+        })
+    );
+    assert!(matches!(
+        Texture::new(11, 0, &bytes),
+        Err(TextureError::TooLarge { .. })
+    ));
+    assert!(Texture::new(1, 1, &bytes).is_ok());
+    assert!(!TextureError::TooLarge {
+        width_log2: 200,
+        height_log2: 0
+    }
+    .to_string()
+    .is_empty());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Any texture coordinates (i32 extremes included), any camera turn, a mesh without uvs, a
+    /// near-plane crossing: no panic (debug builds check overflow), and with a 1x1 texture every
+    /// drawn pixel is its colour.
+    #[test]
+    fn any_coordinates_draw_without_panic(
+        uvs in proptest::collection::vec(
+            prop_oneof![any::<i32>(), -200_000..200_000i32, Just(i32::MIN), Just(i32::MAX)], 8),
+        eye_z in -3.0f64..6.0,
+        has_uvs in any::<bool>(),
+    ) {
+        let (positions, _, triangles) = floor(1.0);
+        let uv: Vec<[i32; 2]> = uvs.chunks(2).map(|c| [c[0], c[1]]).collect();
+        let mut mesh = Mesh::new(&positions, &triangles);
+        if has_uvs {
+            mesh = mesh.with_uvs(&uv);
+        }
+        let bytes = 0xf81fu16.to_le_bytes();
+        let texture = Texture::new(0, 0, &bytes).unwrap();
+        let p = |x: f64, y: f64, z: f64| Vec3::new(fx(x), fx(y), fx(z));
+        let cam = Transforms::look_at(p(0.0, 0.5, eye_z), p(0.0, -1.0, eye_z - 3.0),
+            Angle::from_degrees(70), Viewport::new(W, H)).unwrap();
+        let mut buf = vec![0u16; (W * H) as usize];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
+        let mut pl = Pipeline::new(&cam, Viewport::new(W, H), NoCull, NoDepth,
+            TexturedLit::new(full_light(), texture).with_filter(Filter::Bilinear));
+        let mut scratch = vec![VertexSlot::<[i32; 6]>::EMPTY; 4];
+        pl.draw(&mut fb, &mesh, &mut scratch).unwrap();
+        prop_assert!(buf.iter().all(|&c| c == 0 || c == 0xf81f));
+    }
+}
