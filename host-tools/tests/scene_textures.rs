@@ -169,3 +169,79 @@ fn texture_problems_name_the_file_the_line_and_the_fix() {
         }
     }
 }
+
+#[test]
+fn a_texture_needs_gouraud_shading_and_no_dither() {
+    let dir = setup("shading");
+    for (name, extra, needle) in [
+        ("phong", "shading = \"phong\"\n", "not \"phong\""),
+        ("flat", "shading = \"flat\"\n", "not \"flat\""),
+        ("dither", "dither = \"bayer4\"\n", "dither does not apply"),
+    ] {
+        let path = scene(
+            &dir,
+            name,
+            &format!("path = \"quad.obj\"\ntexture = \"t.png\"\n{extra}"),
+        );
+        let e = load(&path).unwrap_err();
+        assert!(e.contains("line 5") && e.contains(needle), "{name}: {e}");
+    }
+}
+
+/// The quad facing the camera, lit by white ambient light alone (the material's ambient white):
+/// each pixel is its texel. The checker's quadrants land where they are in the image, the right
+/// way up.
+#[test]
+fn a_textured_quad_shows_its_texture_the_right_way_up() {
+    let dir = setup("draw");
+    let checker = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/textures/checker.png");
+    std::fs::copy(&checker, dir.join("checker.png")).unwrap();
+    let path = dir.join("quad.toml");
+    std::fs::write(
+        &path,
+        "[output]\nwidth = 64\nheight = 64\n\n[camera]\neye = [0.0, 0.0, 2.0]\nfov = 60.0\n\n\
+         [render]\nambient = [255, 255, 255]\nspecular = \"none\"\nperspective_correct = true\n\n\
+         [[meshes]]\npath = \"quad.obj\"\ntexture = \"checker.png\"\n\
+         material = { ambient = [255, 255, 255], diffuse = [0, 0, 0], specular = [0, 0, 0] }\n",
+    )
+    .unwrap();
+    let s = load(&path).unwrap();
+    let display = host_tools::scenefile::render_3d::<rasterizer_core::math::Fx16>(&s).unwrap();
+    let at = |x: i32, y: i32| {
+        let c = display.get_pixel(embedded_graphics::prelude::Point::new(x, y));
+        [c.r(), c.g(), c.b()]
+    };
+    use embedded_graphics::pixelcolor::RgbColor;
+    // Sample well inside each quadrant, in a check of the full colour (the checks alternate
+    // every 8 texels).
+    let dominant = |c: [u8; 3]| {
+        let max = *c.iter().max().unwrap();
+        c.map(|v| u16::from(v) * 2 > u16::from(max))
+    };
+    // Texel (20, 20) of 64 is in the red quadrant's full-colour check; (44, 20) green;
+    // (20, 44) blue; (44, 44) yellow. The quad (2 units wide, 2 units away, 60 degrees of view)
+    // covers 64 / tan(30 degrees) / 2 = 55.4 pixels about the centre.
+    let px = |t: i32| (32.0 + (f64::from(t) + 0.5 - 32.0) / 64.0 * 55.4) as i32;
+    assert_eq!(
+        dominant(at(px(20), px(20))),
+        [true, false, false],
+        "red top left"
+    );
+    assert_eq!(
+        dominant(at(px(44), px(20))),
+        [false, true, false],
+        "green top right"
+    );
+    assert_eq!(
+        dominant(at(px(20), px(44))),
+        [false, false, true],
+        "blue bottom left"
+    );
+    assert_eq!(
+        dominant(at(px(44), px(44))),
+        [true, true, false],
+        "yellow bottom right"
+    );
+    // The F's top bar, near the top of the red quadrant.
+    assert_eq!(at(px(16), px(7)), [255, 255, 255]);
+}

@@ -352,6 +352,7 @@ impl<S: Real> Converted<S> {
 /// (filled, Gouraud or vertex colours, affine: what the core dithers).
 fn dithers(m: &SceneMesh) -> bool {
     m.dither != DitherMode::None
+        && m.texture.is_none()
         && !m.wireframe
         && !m.perspective_correct
         && matches!(
@@ -554,6 +555,13 @@ where
     M: MeshSource<S>,
 {
     let lighting = job.lighting.clone();
+    // The loader allows a texture only with Gouraud shading.
+    if let Some(t) = &job.mesh.texture {
+        let shading = TexturedLit::<S, Rgb888, MAX_LIGHTS>::new(lighting, t.image.texture())
+            .with_filter(t.filter)
+            .with_wrap(t.wrap);
+        return by_perspective(target, mesh, job, cull, depth, shading);
+    }
     match job.mesh.shading {
         ShadingModel::None => by_perspective(
             target,

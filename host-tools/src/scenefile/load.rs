@@ -417,6 +417,26 @@ fn load_mesh(
         MeshData::Owned(edit(from_raw(raw), &def))
     };
     let texture = load_texture(dir, &def, own_texture, &data)?;
+    let shading = def.shading.unwrap_or(render.shading);
+    if texture.is_some() && shading != ShadingModel::Gouraud {
+        return Err(format!(
+            "mesh {name}: a texture is drawn with shading = \"gouraud\" (the texel times the \
+             light of the vertices), not \"{}\"",
+            match shading {
+                ShadingModel::None => "none",
+                ShadingModel::VertexColors => "vertex_colors",
+                ShadingModel::Flat => "flat",
+                ShadingModel::Gouraud => "gouraud",
+                ShadingModel::Phong => "phong",
+            }
+        ));
+    }
+    let dither = def.dither.unwrap_or(render.dither);
+    if texture.is_some() && dither != DitherMode::None {
+        return Err(format!(
+            "mesh {name}: dither does not apply to a textured mesh; remove it or the texture"
+        ));
+    }
     let c = def.color.0;
     let m = def.material.as_ref();
     let material = Material {

@@ -179,18 +179,21 @@ impl core::error::Error for MeshError {
 }
 
 /// A validated packed mesh borrowing its bytes.
+// In C order with the texture's fields last, so that they do not push the fields every draw
+// reads (offset, scale) beyond short addressing: an untextured draw compiles as without them.
 #[derive(Debug, Clone, Copy)]
+#[repr(C)]
 pub struct PackedMesh<'a> {
+    positions: &'a [u8],
+    indices: &'a [u8],
     vertices: usize,
     triangles: usize,
-    offset: [i32; 3],
-    scale: [u32; 3],
-    positions: &'a [u8],
     normals: Option<&'a [u8]>,
     colors: Option<&'a [u8]>,
-    uvs: Option<&'a [u8]>,
-    indices: &'a [u8],
+    offset: [i32; 3],
+    scale: [u32; 3],
     wide: bool,
+    uvs: Option<&'a [u8]>,
     texture: Option<Texture<'a>>,
 }
 
