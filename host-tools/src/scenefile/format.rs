@@ -265,6 +265,9 @@ pub struct MeshDef {
     pub perspective_correct: Option<bool>,
     /// Overrides `render.dither`.
     pub dither: Option<DitherMode>,
+    /// Opacity 0 ..= 255 (default 255, opaque): below 255 the mesh is blended over what is
+    /// drawn before it and tests depth without writing it.
+    pub opacity: Option<u8>,
 }
 
 /// Where a mesh's normals come from.
@@ -336,6 +339,8 @@ pub enum Shape {
         at: [f64; 2],
         /// Its colour.
         color: Color,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle `[x, y, width, height]`.
         clip: Option<[i32; 4]>,
     },
@@ -350,6 +355,13 @@ pub enum Shape {
         color: Option<Color>,
         /// Start and end colours (give this or `color`).
         colors: Option<[Color; 2]>,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
+        /// Anti-aliased (`draw_line_aa_wide`), one colour only.
+        #[serde(default)]
+        antialias: bool,
+        /// Width in pixels across the line (anti-aliased lines only; default 1).
+        width: Option<u32>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },
@@ -362,6 +374,8 @@ pub enum Shape {
         color: Option<Color>,
         /// One colour per corner (give this or `color`).
         colors: Option<[Color; 3]>,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },
@@ -371,6 +385,8 @@ pub enum Shape {
         vertices: [[f64; 2]; 3],
         /// Its colour.
         color: Color,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },
@@ -383,6 +399,8 @@ pub enum Shape {
         fill_rule: FillRuleDef,
         /// Its colour.
         color: Color,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },
