@@ -229,6 +229,21 @@ for scene in "${SCENES_2D[@]}"; do
         emit_count L1 ours-aa instructions "$n"
         emit_count L1 ours-aa per_primitive "$(div "$n" "$prims" 1)"
         emit_count L1 ours-aa/eg ratio "$(div "$n" "${INSTR2D[L1.eg]}" 4)"
+        # The same lines 3 pixels wide: draw_line_aa_wide against embedded-graphics' stroke of
+        # width 3 (aliased), both in a binary of their own (count2d_aa_wide).
+        build_example count2d_aa_wide
+        declare -A W3=()
+        for r in ours eg; do
+            name="$r-w3"
+            [ "$r" = ours ] && name=ours-aa-w3
+            echo "counting L1 $name..." >&2
+            W3[$r]="$(callgrind_count "$OUT/L1-$name" "*frame_${r}_*w3_lines*" "$BIN" "$r")"
+            prims="$(field "$OUT/L1-$name.stdout" primitives)"
+            emit_count L1 "$name" instructions "${W3[$r]}"
+            emit_count L1 "$name" per_primitive "$(div "${W3[$r]}" "$prims" 1)"
+        done
+        emit_count L1 ours-aa-w3/eg-w3 ratio "$(div "${W3[ours]}" "${W3[eg]}" 4)"
+        unset W3
     fi
 done
 if wanted LIMIT; then
@@ -291,6 +306,27 @@ for line in "${MESH_SCENES[@]}"; do
     if [ -n "${SCENE_INSTR[ours]:-}" ] && [ -n "${SCENE_INSTR[ours-untextured]:-}" ]; then
         emit_count "$scene" ours/ours-untextured ratio \
             "$(div "${SCENE_INSTR[ours]}" "${SCENE_INSTR[ours-untextured]}" 4)"
+    fi
+    if [ "$scene" = M1 ] && [ "$QUICK" = 0 ]; then
+        # M1 drawn through Translucent at opacity 128, in a binary of its own
+        # (count3d_translucent) so count3d stays as it was: with the writing depth buffer (the
+        # pixels of `ours`, each blended) and read-only over a cleared buffer.
+        build_example count3d_translucent
+        for combo in m1_translucent m1_translucent_readonly; do
+            r="ours-$combo"
+            echo "counting M1 $combo ($r)..." >&2
+            base="$OUT/3d-M1-$combo"
+            n="$(callgrind_count "$base" "*::frame_${combo}*" "$BIN" "$combo")"
+            drawn="$(field "$base.stdout" drawn)"
+            emit_count M1 "$r" instructions "$n"
+            emit_count M1 "$r" per_primitive "$(div "$n" "$(field "$base.stdout" triangles)" 1)"
+            emit_count M1 "$r" drawn "$drawn"
+            emit_count M1 "$r" per_drawn "$(div "$n" "$drawn" 1)"
+            emit_count M1 "$r" covered "$(field "$base.stdout" covered)"
+            if [ -n "${SCENE_INSTR[ours]:-}" ]; then
+                emit_count M1 "$r/ours" ratio "$(div "$n" "${SCENE_INSTR[ours]}" 4)"
+            fi
+        done
     fi
     if [ -n "${SCENE_INSTR[ours]:-}" ] && [ -n "${SCENE_INSTR[euc]:-}" ]; then
         emit_count "$scene" ours/euc ratio "$(div "${SCENE_INSTR[ours]}" "${SCENE_INSTR[euc]}" 4)"

@@ -137,8 +137,8 @@ fn bad_scenes_fail_with_file_and_line() {
     expect_failure(
         &dir,
         "unknown_shape_key",
-        &format!("{OUTPUT}\n[[shapes]]\nkind = \"line\"\nfrom = [0, 0]\nto = [5, 5]\ncolor = [1, 2, 3]\nwidth = 2\n"),
-        &["line 5", "unknown field `width`"],
+        &format!("{OUTPUT}\n[[shapes]]\nkind = \"line\"\nfrom = [0, 0]\nto = [5, 5]\ncolor = [1, 2, 3]\nthickness = 2\n"),
+        &["line 5", "unknown field `thickness`"],
     );
     expect_failure(
         &dir,
@@ -354,4 +354,96 @@ fn dither_key_dithers_at_the_output_depth() {
         .zip(&dithered)
         .all(|(a, b)| a.abs_diff(*b) <= 9));
     expect_failure(&dir, "bad_dither", &scene("bayer3"), &["dither"]);
+}
+
+/// Renders a scene written into a scratch file; the image's raw RGB bytes.
+fn render_scene(dir: &Path, name: &str, scene: &str) -> Vec<u8> {
+    use host_tools::scenefile::{load, render_image};
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, scene).unwrap();
+    let s = load(&path).unwrap();
+    let image = render_image(&s, Default::default(), 1).unwrap();
+    image.as_image_buffer().into_raw().to_vec()
+}
+
+#[test]
+fn opacity_key_blends_meshes_and_shapes() {
+    let dir = scratch("opacity");
+    let suzanne = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
+    let mesh = |opacity: &str| {
+        format!(
+            "[output]\nwidth = 80\nheight = 60\nbackground = [0, 0, 200]\n\n\
+             [[lights]]\nkind = \"directional\"\ndirection = [1.0, 1.0, 1.0]\n\n\
+             [[meshes]]\npath = {suzanne:?}\ncolor = [250, 250, 0]\n{opacity}\n"
+        )
+    };
+    let opaque = render_scene(&dir, "opaque", &mesh(""));
+    assert_eq!(render_scene(&dir, "full", &mesh("opacity = 255")), opaque);
+    let none = render_scene(&dir, "none", &mesh("opacity = 0"));
+    assert!(none.chunks(3).all(|p| p == [0, 0, 200]));
+    let half = render_scene(&dir, "half", &mesh("opacity = 128"));
+    // Exactly where the opaque mesh is drawn, the translucent one is blended: neither the
+    // background nor the opaque colour.
+    let mut blended = 0;
+    for (o, h) in opaque.chunks(3).zip(half.chunks(3)) {
+        if o == [0, 0, 200] {
+            assert_eq!(h, o);
+        } else if h != o && h != [0, 0, 200] {
+            blended += 1;
+        }
+    }
+    assert!(blended > 500, "{blended} pixels");
+    // A 2D triangle at opacity 128 over the background: the exact blend per channel.
+    let tri = |opacity: &str| {
+        format!(
+            "[output]\nwidth = 16\nheight = 16\nbackground = [0, 0, 200]\n\n\
+             [[shapes]]\nkind = \"triangle\"\nvertices = [[0.0, 0.0], [16.0, 0.0], [0.0, 16.0]]\n\
+             color = [255, 100, 0]\n{opacity}\n"
+        )
+    };
+    let t = render_scene(&dir, "tri", &tri("opacity = 128"));
+    assert_eq!(&t[3..6], &[128, 50, 100]);
+    assert_eq!(&t[t.len() - 3..], &[0, 0, 200]);
+}
+
+#[test]
+fn antialias_and_width_keys_draw_wide_lines() {
+    let dir = scratch("antialias");
+    let line = |keys: &str| {
+        format!(
+            "[output]\nwidth = 12\nheight = 9\n\n\
+             [[shapes]]\nkind = \"line\"\nfrom = [1.5, 4.5]\nto = [10.5, 4.5]\n\
+             color = [255, 255, 255]\n{keys}\n"
+        )
+    };
+    let px = |img: &[u8], x: usize, y: usize| img[(y * 12 + x) * 3];
+    let aliased = render_scene(&dir, "aliased", &line(""));
+    let aa = render_scene(&dir, "aa", &line("antialias = true"));
+    assert_eq!(
+        aa, aliased,
+        "a horizontal line through pixel centres is the same"
+    );
+    let wide = render_scene(&dir, "wide", &line("antialias = true\nwidth = 2"));
+    assert_eq!(
+        [px(&wide, 5, 3), px(&wide, 5, 4), px(&wide, 5, 5)],
+        [128, 255, 128]
+    );
+    expect_failure(
+        &dir,
+        "width_without_antialias",
+        &line("width = 3"),
+        &["needs `antialias = true`"],
+    );
+    expect_failure(
+        &dir,
+        "antialias_gradient",
+        &format!("{OUTPUT}[[shapes]]\nkind = \"line\"\nfrom = [0.0, 0.0]\nto = [5.0, 5.0]\ncolors = [[1, 2, 3], [4, 5, 6]]\nantialias = true\n"),
+        &["one `color`"],
+    );
+    expect_failure(
+        &dir,
+        "opacity_too_big",
+        &format!("{OUTPUT}[[shapes]]\nkind = \"point\"\nat = [1.0, 1.0]\ncolor = [1, 2, 3]\nopacity = 256\n"),
+        &["opacity"],
+    );
 }

@@ -5,13 +5,15 @@ use core::hint::black_box;
 use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
 use embedded_graphics_core::prelude::*;
 use rasterizer_core::geom::SubPoint;
-use rasterizer_core::raster::line::{draw_line, draw_line_aa, draw_line_alpha, draw_line_gradient};
+use rasterizer_core::raster::line::{
+    draw_line, draw_line_aa, draw_line_aa_wide, draw_line_alpha, draw_line_gradient,
+};
 use rasterizer_core::raster::point::draw_point;
 use rasterizer_core::raster::polygon::{FillRule, Polygon};
 use rasterizer_core::raster::triangle::{
     draw_triangle, fill_triangle, fill_triangle_alpha, fill_triangle_gouraud,
 };
-use rasterizer_core::surface::{AnyTarget, Band, Framebuffer, Surface};
+use rasterizer_core::surface::{AnyTarget, Band, Framebuffer, Surface, Translucent};
 
 static mut RGB565: [u16; 64 * 48] = [0; 64 * 48];
 
@@ -47,6 +49,12 @@ where
     );
     let _ = draw_line_alpha(s, p(-5, 40), p(70, 2), c, black_box(160));
     let _ = draw_line_aa(s, p(-5, 7), p(70, 30), a);
+    let _ = draw_line_aa_wide(s, p(-5, 30), p(70, 7), black_box(3), b);
+    let _ = fill_triangle(
+        &mut Translucent::new(s, black_box(90)),
+        [sp(10, 10), sp(900, 100), sp(300, 700)],
+        c,
+    );
     Ok(())
 }
 
@@ -101,6 +109,21 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
         // Shorter than the mesh: the first 16 vertices are kept, the others processed per triangle.
         let mut scratch = [VertexSlot::EMPTY; 16];
         drawn += pl.draw(&mut fb, &mesh, &mut scratch).map_or(0, |s| s.drawn);
+        // A translucent pass over it: the same buffer read-only.
+        let mut pl = Pipeline::new(
+            &xf,
+            vp,
+            CullClockwise,
+            pl.depth.read_only(),
+            FlatLit::<Fx16, Rgb565, 2>::new(lighting.clone()),
+        );
+        drawn += pl
+            .draw(
+                &mut Translucent::new(&mut fb, black_box(128)),
+                &mesh,
+                &mut [],
+            )
+            .map_or(0, |s| s.drawn);
     }
     let mut pl = Pipeline::new(&xf, vp, NoCull, NoDepth, Unlit { color: Rgb565::RED });
     drawn += pl.draw(&mut fb, &mesh, &mut []).map_or(0, |s| s.drawn);

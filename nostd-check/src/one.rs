@@ -7,9 +7,11 @@
 //! depth buffer, `Compare::Less`), `cull` (`CullClockwise`) and the draw call (`draw` by default,
 //! `banded` for `draw_banded` in 16-row bands), each with a vertex scratch of one slot per mesh
 //! vertex, or with an empty one with `noscratch`, and `dither` for 4 x 4 ordered dithering of the
-//! interpolated colour. The scene is M1: the packed Suzanne, 320 x 240
+//! interpolated colour, `translucent` for the mesh drawn through `Translucent` at opacity 128
+//! (with `depth`, the buffer read-only). The scene is M1: the packed Suzanne, 320 x 240
 //! Rgb565, one directional light.
-//! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, each one call into a 320 x 240 Rgb565
+//! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, `aa2d` (an anti-aliased line 3 pixels
+//! wide), each one call into a 320 x 240 Rgb565
 //! framebuffer. No feature at all gives the empty baseline (start-up and panic handler only).
 //!
 //! The buffers are `static`s, as firmware would place them, so `.bss` shows the frame memory of
@@ -72,6 +74,17 @@ fn draw_2d() {
         let v = [sp(20, 10), sp(300, 120), sp(90, 230)];
         let c = [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE];
         let _ = rasterizer_core::raster::triangle::fill_triangle_gouraud(&mut fb, v, c);
+    }
+    #[cfg(feature = "aa2d")]
+    {
+        let p = |x: i32, y: i32| black_box(Point::new(x, y));
+        let _ = rasterizer_core::raster::line::draw_line_aa_wide(
+            &mut fb,
+            p(-40, 7),
+            p(371, 233),
+            black_box(3),
+            Rgb565::WHITE,
+        );
     }
     #[cfg(feature = "polygon2d")]
     {
@@ -176,6 +189,8 @@ mod three_d {
             let Ok(depth) = DepthBuffer::new(z, W, DEPTH_ROWS, Compare::Less) else {
                 return 0;
             };
+            #[cfg(feature = "translucent")]
+            let depth = depth.read_only();
             depth
         };
         #[cfg(not(feature = "depth"))]
@@ -214,7 +229,16 @@ mod three_d {
             let Some(mut fb) = super::frame() else {
                 return 0;
             };
-            let stats = pl.draw(&mut fb, &mesh, scratch);
+            #[cfg(feature = "translucent")]
+            let stats = pl
+                .draw(
+                    &mut rasterizer_core::surface::Translucent::new(&mut fb, black_box(128)),
+                    &mesh,
+                    scratch,
+                )
+                .ok();
+            #[cfg(not(feature = "translucent"))]
+            let stats = pl.draw(&mut fb, &mesh, scratch).ok();
             black_box(fb.as_slice());
             stats.map_or(0, |s| s.drawn)
         }

@@ -1,6 +1,12 @@
 //! The depth stage: a [`DepthTest`] decides which pixels of a span may be drawn. [`DepthBuffer`]
 //! keeps a 16-bit depth per pixel in a slice the caller owns (0 nearest, 65535 farthest);
-//! [`NoDepth`] compiles the test, its buffer and the depth interpolation away.
+//! [`NoDepth`] compiles the test, its buffer and the depth interpolation away; [`DepthReadOnly`]
+//! tests against a buffer without writing it, for translucent meshes.
+//!
+//! Translucent meshes ([`crate::surface::Translucent`]) are usually drawn in two passes: the
+//! opaque meshes first with a [`DepthBuffer`], then the translucent ones, back to front, with the
+//! same buffer read-only ([`DepthBuffer::read_only`]). They are hidden behind opaque surfaces but
+//! do not hide each other, so what lies behind a translucent surface still shows through it.
 
 use crate::geom::PixelRect;
 use embedded_graphics_core::primitives::Rectangle;
@@ -48,11 +54,15 @@ impl Compare {
 pub trait DepthTest {
     /// The test reads depths: when false the rasterizer computes none.
     const ENABLED: bool = true;
+    /// A pixel that passes stores its depth. False for a test that only reads
+    /// ([`DepthReadOnly`]); a constant, so the store is compiled in or out.
+    const WRITE: bool = true;
     /// Band rendering: the buffer now holds the rows from `y0` on; every entry is reset to
-    /// `clear`. Does nothing for a test without a buffer.
+    /// `clear` (a test that does not write keeps them: they come from an earlier pass). Does
+    /// nothing for a test without a buffer.
     fn start_band(&mut self, _y0: i32, _clear: u16) {}
     /// Calls `run(offset, len)` for each run of pixels of row `y`, columns `x .. x + len`, that
-    /// passes, storing their depths first. The depth of pixel `i` is `(z + i dz) >> 16`, clamped
+    /// passes, storing their depths first (when [`DepthTest::WRITE`]). The depth of pixel `i` is `(z + i dz) >> 16`, clamped
     /// to `0 ..= 65535`.
     fn test_span<E, F>(
         &mut self,
@@ -176,6 +186,13 @@ impl<'a> DepthBuffer<'a> {
     pub fn compare(&self) -> Compare {
         self.compare
     }
+
+    /// The same buffer as a depth test that does not write: pixels are drawn where they pass
+    /// against the stored depths, which stay as they are (translucent meshes; see the module
+    /// documentation).
+    pub fn read_only(self) -> DepthReadOnly<'a> {
+        DepthReadOnly(self)
+    }
 }
 
 impl DepthTest for DepthBuffer<'_> {
@@ -224,31 +241,111 @@ impl DepthTest for DepthBuffer<'_> {
     where
         F: FnMut(u32, u32) -> Result<(), E>,
     {
-        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips).
-        let y = y.wrapping_sub(self.origin_y);
-        if y < 0 || y as u32 >= self.height || x < 0 {
-            return Ok(());
-        }
-        let len = len.min(self.width.saturating_sub(x as u32));
-        let start = y as usize * self.width as usize + x as usize;
-        let Some(row) = self.buf.get_mut(start..start + len as usize) else {
-            return Ok(());
-        };
-        // The usual test gets its own loop, with the comparison known at compile time; the others
-        // share one (a copy per comparison would multiply the shading code inlined into each).
-        if self.compare == Compare::Less {
-            passing_runs(row, z, dz, |new, old| new < old, run)
-        } else {
-            let compare = self.compare;
-            passing_runs(row, z, dz, |new, old| compare.pass(new, old), run)
-        }
+        buffer_runs::<E, F, true>(self, y, x, len, z, dz, run)
+    }
+}
+
+/// [`DepthBuffer::test_span`], storing the depths that pass when `WRITE`.
+#[inline(always)]
+fn buffer_runs<E, F, const WRITE: bool>(
+    buffer: &mut DepthBuffer<'_>,
+    y: i32,
+    x: i32,
+    len: u32,
+    z: i64,
+    dz: i64,
+    run: F,
+) -> Result<(), E>
+where
+    F: FnMut(u32, u32) -> Result<(), E>,
+{
+    // Pixels outside the buffer are never drawn (a buffer smaller than the target clips).
+    let y = y.wrapping_sub(buffer.origin_y);
+    if y < 0 || y as u32 >= buffer.height || x < 0 {
+        return Ok(());
+    }
+    let len = len.min(buffer.width.saturating_sub(x as u32));
+    let start = y as usize * buffer.width as usize + x as usize;
+    let Some(row) = buffer.buf.get_mut(start..start + len as usize) else {
+        return Ok(());
+    };
+    // The usual test gets its own loop, with the comparison known at compile time; the others
+    // share one (a copy per comparison would multiply the shading code inlined into each).
+    if buffer.compare == Compare::Less {
+        passing_runs::<E, _, F, WRITE>(row, z, dz, |new, old| new < old, run)
+    } else {
+        let compare = buffer.compare;
+        passing_runs::<E, _, F, WRITE>(row, z, dz, |new, old| compare.pass(new, old), run)
+    }
+}
+
+/// A [`DepthBuffer`] that tests but does not write ([`DepthBuffer::read_only`]): pixels behind the
+/// stored depths are not drawn, and the stored depths stay as they are. Band rendering moves it
+/// to each band without clearing it ([`DepthTest::start_band`]).
+#[derive(Debug)]
+pub struct DepthReadOnly<'a>(DepthBuffer<'a>);
+
+impl<'a> DepthReadOnly<'a> {
+    /// The buffer, writing again.
+    pub fn into_inner(self) -> DepthBuffer<'a> {
+        self.0
+    }
+
+    /// The stored depths.
+    pub fn as_slice(&self) -> &[u16] {
+        self.0.buf
+    }
+}
+
+impl DepthTest for DepthReadOnly<'_> {
+    const WRITE: bool = false;
+
+    fn start_band(&mut self, y0: i32, _clear: u16) {
+        self.0.origin_y = y0;
+    }
+
+    #[inline(always)]
+    fn depth_row(&mut self, y: i32, x: i32, len: u32) -> &mut [u16] {
+        self.0.depth_row(y, x, len)
+    }
+
+    #[inline(always)]
+    fn comparison(&self) -> Compare {
+        self.0.compare
+    }
+
+    fn covers(&self, area: &Rectangle) -> bool {
+        self.0.covers(area)
+    }
+
+    #[inline(always)]
+    fn test_span<E, F>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i64,
+        dz: i64,
+        run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        buffer_runs::<E, F, false>(&mut self.0, y, x, len, z, dz, run)
     }
 }
 
 /// Calls `run(offset, len)` for each run of pixels of `row` whose depth `(z + i dz) >> 16`
-/// (clamped to `0 ..= 65535`) passes `pass(new, stored)`, storing those depths first.
+/// (clamped to `0 ..= 65535`) passes `pass(new, stored)`, storing those depths first when
+/// `WRITE`.
 #[inline(always)]
-fn passing_runs<E, P, F>(row: &mut [u16], z: i64, dz: i64, pass: P, mut run: F) -> Result<(), E>
+fn passing_runs<E, P, F, const WRITE: bool>(
+    row: &mut [u16],
+    z: i64,
+    dz: i64,
+    pass: P,
+    mut run: F,
+) -> Result<(), E>
 where
     P: Fn(u16, u16) -> bool,
     F: FnMut(u32, u32) -> Result<(), E>,
@@ -262,7 +359,9 @@ where
             if !pass(d, row[i]) {
                 break;
             }
-            row[i] = d;
+            if WRITE {
+                row[i] = d;
+            }
             i += 1;
             z += dz;
         }

@@ -51,6 +51,30 @@
 //! assert_eq!(stats.drawn + stats.culled, 4);
 //! ```
 //!
+//! # A translucent mesh over an opaque one
+//! Draw the opaque meshes first with the depth buffer, then the translucent ones (back to front)
+//! through [`surface::Translucent`] with the buffer read-only, so that they are hidden behind
+//! opaque surfaces but hide nothing. The blend is integer, per channel; a target that cannot read
+//! back its pixels gets [`surface::BlendError::CannotReadBack`] instead of a wrong picture.
+//! ```
+//! use rasterizer_core::prelude::*;
+//! # let p = |x, y, z| Vec3::<Fx16>::from_ints(x, y, z);
+//! # let corners = [p(1, 1, 1), p(-1, -1, 1), p(-1, 1, -1), p(1, -1, -1)];
+//! # let triangles = [[0u16, 1, 3], [0, 2, 1], [0, 3, 2], [1, 2, 3]];
+//! # let mesh = Mesh::new(&corners, &triangles).with_normals(&corners);
+//! # let viewport = Viewport::new(160, 120);
+//! # let camera = Transforms::look_at(p(0, 0, 4), p(0, 0, 0), Angle::from_degrees(60), viewport).unwrap();
+//! # let lighting = Lighting::with_lights(Material::new(Rgb888::new(200, 120, 60)), [Light::directional(p(1, 1, 1))], p(0, 0, 4)).unwrap();
+//! let (mut colors, mut depths) = ([0u16; 160 * 120], [u16::MAX; 160 * 120]);
+//! let mut fb = Framebuffer::<Rgb565>::new(&mut colors, 160, 120).unwrap();
+//! let depth = DepthBuffer::new(&mut depths, 160, 120, Compare::Less).unwrap();
+//! let mut opaque = Pipeline::new(&camera, viewport, CullClockwise, depth, GouraudLit::new(lighting.clone()));
+//! opaque.draw(&mut fb, &mesh, &mut [VertexSlot::EMPTY; 4]).unwrap();
+//! // The same depths, tested but not written; the mesh blended at opacity 128 of 255.
+//! let mut glass = Pipeline::new(&camera, viewport, CullClockwise, opaque.depth.read_only(), GouraudLit::new(lighting));
+//! glass.draw(&mut Translucent::new(&mut fb, 128), &mesh, &mut [VertexSlot::EMPTY; 4]).unwrap();
+//! ```
+//!
 //! # A frame in bands, to a display
 //! For a display whose frame does not fit in RAM: each band is drawn into a small buffer and handed
 //! to a callback, where firmware sends it to the display (one address window, one burst of pixels;

@@ -13,12 +13,14 @@ pub use embedded_graphics_core::prelude::*;
 pub use embedded_graphics_core::primitives::Rectangle;
 
 pub use crate::cull::{CullClockwise, CullCounterClockwise, NoCull};
-pub use crate::depth::{Compare, DepthBuffer, NoDepth};
+pub use crate::depth::{Compare, DepthBuffer, DepthReadOnly, NoDepth};
 pub use crate::geom::SubPoint;
 pub use crate::math::{Angle, Fx16, Mat4, Vec3};
 pub use crate::mesh::{Mesh, PackedMesh};
 pub use crate::pipeline::{Banding, BinEntry, GouraudPipeline, Pipeline, VertexSlot};
-pub use crate::raster::line::{draw_line, draw_line_aa, draw_line_alpha, draw_line_gradient};
+pub use crate::raster::line::{
+    draw_line, draw_line_aa, draw_line_aa_wide, draw_line_alpha, draw_line_gradient,
+};
 pub use crate::raster::point::draw_point;
 pub use crate::raster::polygon::{fill_polygon, FillRule, Polygon};
 pub use crate::raster::triangle::{
@@ -28,6 +30,6 @@ pub use crate::shade::{
     FlatLit, GouraudLit, Light, Lighting, Material, PhongLit, Specular, TexturedLit, Unlit,
     VertexColors,
 };
-pub use crate::surface::{AnyTarget, BlendError, Framebuffer, Surface};
+pub use crate::surface::{AnyTarget, BlendError, Framebuffer, Surface, Translucent};
 pub use crate::texture::{Filter, Texture, Wrap};
 pub use crate::transform::{Transforms, Viewport};

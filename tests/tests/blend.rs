@@ -383,3 +383,217 @@ fn draw_scene<S: Surface<Color = Rgb565, Error = core::convert::Infallible>>(s: 
         .unwrap();
     }
 }
+
+fn aa_wide(w: u32, h: u32, a: (i32, i32), b: (i32, i32), width: u32) -> BlendMock {
+    let mut mock = BlendMock::new(w, h);
+    draw_line_aa_wide(
+        &mut mock,
+        Point::new(a.0, a.1),
+        Point::new(b.0, b.1),
+        width,
+        Gray8::WHITE,
+    )
+    .unwrap();
+    mock
+}
+
+#[test]
+fn wide_aa_line_patterns() {
+    // Horizontal, width 3: three full rows; width 2: one full row and two halves (5 = 128/255).
+    aa_wide(6, 5, (0, 2), (5, 2), 3)
+        .assert_pattern(&["      ", "######", "######", "######", "      "]);
+    aa_wide(6, 5, (0, 2), (5, 2), 2)
+        .assert_pattern(&["      ", "555555", "######", "555555", "      "]);
+    // Width 4: two full rows each side of the centre row's middle, halves beyond.
+    aa_wide(3, 7, (0, 3), (2, 3), 4)
+        .assert_pattern(&["   ", "555", "###", "###", "###", "555", "   "]);
+    // Vertical, drawn backwards.
+    aa_wide(5, 3, (2, 2), (2, 0), 3).assert_pattern(&[" ### ", " ### ", " ### "]);
+    // Diagonal, width 2: the cross-section is 2 sqrt 2 = 2.83 pixels of each column, centred on
+    // the diagonal: the centre pixel full and 0.91 of each neighbour.
+    aa_wide(6, 6, (0, 0), (5, 5), 2)
+        .assert_pattern(&["#9    ", "9#9   ", " 9#9  ", "  9#9 ", "   9#9", "    9#"]);
+    // Slope 1/2, width 3: a cross-section of 3.35 pixels (1.68 each side of the centre) moving
+    // half a pixel per column: 0.18 and 0.68 at its ends.
+    aa_wide(5, 6, (0, 1), (4, 3), 3)
+        .assert_pattern(&["#61  ", "###61", "#####", "16###", "  16#", "    1"]);
+    // Clipped at every edge, never outside.
+    aa_wide(4, 3, (-5, -2), (9, 5), 3).assert_pattern(&["##61", "####", "6###"]);
+    // Width 0 draws nothing.
+    aa_wide(4, 3, (0, 1), (3, 1), 0).assert_pattern(&["    ", "    ", "    "]);
+}
+
+#[test]
+fn wide_aa_line_of_width_1_is_the_wu_line() {
+    for (a, b) in [
+        ((0, 0), (9, 3)),
+        ((1, 7), (4, -2)),
+        ((8, 8), (-3, 2)),
+        ((2, 2), (2, 2)),
+    ] {
+        let mut wu = BlendMock::new(10, 8);
+        draw_line_aa(
+            &mut wu,
+            Point::new(a.0, a.1),
+            Point::new(b.0, b.1),
+            Gray8::WHITE,
+        )
+        .unwrap();
+        assert_eq!(aa_wide(10, 8, a, b, 1).alpha, wu.alpha, "{a:?} {b:?}");
+    }
+}
+
+/// The f64 model of the wide line: per column (a step along the major axis) the ideal line's
+/// cross-section on the minor axis, `width sqrt(A^2 + B^2) / A` long and centred on the line, and
+/// each pixel's share of it.
+fn aa_wide_reference(w: i32, h: i32, a: (i32, i32), b: (i32, i32), width: f64) -> Vec<f64> {
+    let mut out = vec![0.0; (w * h) as usize];
+    let (dx, dy) = (f64::from(b.0 - a.0), f64::from(b.1 - a.1));
+    let major_x = dx.abs() >= dy.abs();
+    let (m0, m1, n0, dm, dn) = if major_x {
+        (a.0, b.0, f64::from(a.1), dx, dy)
+    } else {
+        (a.1, b.1, f64::from(a.0), dy, dx)
+    };
+    let half = if dm == 0.0 {
+        width / 2.0
+    } else {
+        width * (dm * dm + dn * dn).sqrt() / (2.0 * dm.abs())
+    };
+    for m in m0.min(m1)..=m0.max(m1) {
+        let c = if dm == 0.0 {
+            n0
+        } else {
+            n0 + f64::from(m - m0) / dm * dn
+        };
+        for n in (c - half - 1.0).floor() as i32..=(c + half + 1.0).ceil() as i32 {
+            let cover = ((f64::from(n) + 0.5).min(c + half) - (f64::from(n) - 0.5).max(c - half))
+                .clamp(0.0, 1.0);
+            let (x, y) = if major_x { (m, n) } else { (n, m) };
+            if (0..w).contains(&x) && (0..h).contains(&y) {
+                out[(y * w + x) as usize] += cover;
+            }
+        }
+    }
+    out
+}
+
+proptest! {
+    #[test]
+    fn wide_aa_line_coverage_is_within_half_a_step_of_f64(
+        ax in -20..60i32, ay in -20..50i32, bx in -20..60i32, by in -20..50i32, width in 2..9u32,
+    ) {
+        let (w, h) = (40, 30);
+        let mut buf = vec![0u8; (w * h) as usize];
+        let mut fb = Framebuffer::<Gray8>::new(&mut buf, w as u32, h as u32).unwrap();
+        let (a, b) = (Point::new(ax, ay), Point::new(bx, by));
+        draw_line_aa_wide(&mut fb, a, b, width, Gray8::WHITE).unwrap();
+        let want = aa_wide_reference(w, h, (ax, ay), (bx, by), f64::from(width));
+        for (i, (&got, &f)) in buf.iter().zip(&want).enumerate() {
+            // Half a step of rounding, and the 16-bit fractions of the centre and half-width.
+            prop_assert!((f64::from(got) - 255.0 * f).abs() <= 0.52,
+                "pixel {} {}: {} vs {}", i as i32 % w, i as i32 / w, got, 255.0 * f);
+        }
+        // Symmetric.
+        let mut rev = vec![0u8; (w * h) as usize];
+        let mut fb = Framebuffer::<Gray8>::new(&mut rev, w as u32, h as u32).unwrap();
+        draw_line_aa_wide(&mut fb, b, a, width, Gray8::WHITE).unwrap();
+        prop_assert_eq!(rev, buf);
+    }
+
+    #[test]
+    fn wide_aa_line_clips_exactly(
+        ax in -30..70i32, ay in -30..60i32, bx in -30..70i32, by in -30..60i32, width in 2..12u32,
+        cx in 0..40i32, cy in 0..30i32, cw in 0..40u32, ch in 0..30u32,
+    ) {
+        let (w, h) = (40u32, 30u32);
+        let (a, b) = (Point::new(ax, ay), Point::new(bx, by));
+        let mut whole = vec![0u8; (w * h) as usize];
+        let mut fb = Framebuffer::<Gray8>::new(&mut whole, w, h).unwrap();
+        draw_line_aa_wide(&mut fb, a, b, width, Gray8::WHITE).unwrap();
+        let mut part = vec![0u8; (w * h) as usize];
+        let mut fb = Framebuffer::<Gray8>::new(&mut part, w, h).unwrap();
+        let area = Rectangle::new(Point::new(cx, cy), Size::new(cw, ch));
+        draw_line_aa_wide(&mut ClipTo::new(&mut fb, area), a, b, width, Gray8::WHITE).unwrap();
+        for y in 0..h as i32 {
+            for x in 0..w as i32 {
+                let i = (y * w as i32 + x) as usize;
+                let inside = (cx..cx + cw as i32).contains(&x) && (cy..cy + ch as i32).contains(&y);
+                prop_assert_eq!(part[i], if inside { whole[i] } else { 0 });
+            }
+        }
+    }
+
+    #[test]
+    fn wide_aa_line_at_the_limits_stays_inside(
+        ax in any::<i32>(), ay in any::<i32>(), bx in any::<i32>(), by in any::<i32>(),
+        near in any::<bool>(), width in prop_oneof![2..40u32, any::<u32>()],
+    ) {
+        let a = if near { Point::new(ax.rem_euclid(16), ay.rem_euclid(12)) } else { Point::new(ax, ay) };
+        let mut mock = BlendMock::new(16, 12);
+        draw_line_aa_wide(&mut mock, a, Point::new(bx, by), width, Gray8::WHITE).unwrap();
+    }
+}
+
+#[test]
+fn wide_aa_line_without_read_back_is_refused() {
+    let mut mock = StrictMock::<Rgb565>::new(8, 8);
+    let mut t = AnyTarget::new(&mut mock);
+    for width in [0, 1, 3] {
+        assert_eq!(
+            draw_line_aa_wide(
+                &mut t,
+                Point::new(0, 0),
+                Point::new(7, 3),
+                width,
+                Rgb565::RED
+            ),
+            Err(BlendError::CannotReadBack)
+        );
+    }
+    assert_eq!(mock.calls.pixels, 0);
+}
+
+#[test]
+fn wide_aa_line_bands_equal_the_whole_frame() {
+    let (w, h) = (64u32, 48u32);
+    let scene = |s: &mut dyn FnMut(Point, Point, u32)| {
+        for i in 0..10 {
+            s(
+                Point::new(2 + i * 6, -3),
+                Point::new(60 - i * 4, 50),
+                2 + i as u32 % 4,
+            );
+            s(
+                Point::new(-4, i * 5),
+                Point::new(70, 47 - i * 3),
+                3 + i as u32 % 3,
+            );
+        }
+    };
+    let mut whole = vec![0u16; (w * h) as usize];
+    {
+        let mut fb = Framebuffer::<Rgb565>::new(&mut whole, w, h).unwrap();
+        scene(&mut |a, b, width| draw_line_aa_wide(&mut fb, a, b, width, Rgb565::GREEN).unwrap());
+    }
+    for rows in [1u32, 5, 16] {
+        let mut band_buf = vec![0u16; (w * rows) as usize];
+        let mut y0 = 0;
+        while y0 < h as i32 {
+            let n = rows.min(h - y0 as u32);
+            let fb = Framebuffer::<Rgb565>::new(&mut band_buf[..(w * n) as usize], w, n).unwrap();
+            let mut band = Band::new(fb, y0);
+            band.clear(Rgb565::BLACK).unwrap();
+            scene(&mut |a, b, width| {
+                draw_line_aa_wide(&mut band, a, b, width, Rgb565::GREEN).unwrap()
+            });
+            let start = (y0 as u32 * w) as usize;
+            assert_eq!(
+                band.framebuffer().as_slice(),
+                &whole[start..start + (w * n) as usize],
+                "{rows}-row band at {y0}"
+            );
+            y0 += n as i32;
+        }
+    }
+}

@@ -4,10 +4,12 @@
 //! counts its instructions per M1 frame with callgrind, finds where each format breaks down, and
 //! writes `docs/ACCURACY.md` and `docs/images/accuracy.svg`.
 //!
-//! Files: [`config`] (the registry of pipeline types), [`scene`] (the scenes on both sides),
+//! Files: [`config`] (the registry of pipeline types), [`blending`] (blending and
+//! anti-aliased lines), [`scene`] (the scenes on both sides),
 //! [`metrics`] (the error measures and the Pareto front), [`count`] (callgrind), [`breakdown`]
 //! (the limit sweeps), [`plot`] and [`report`] (the output).
 
+pub mod blending;
 pub mod breakdown;
 pub mod config;
 pub mod count;

@@ -3,7 +3,7 @@
 
 use rasterizer_core::geom::line::LinePoints;
 use rasterizer_core::prelude::*;
-use rasterizer_core::surface::DepthSpan;
+use rasterizer_core::surface::{BlendError, DepthSpan};
 
 /// `inner`, counting the pixels written (a pixel written twice counts twice).
 #[derive(Debug)]
@@ -131,6 +131,20 @@ impl<T: Surface> Surface for Counting<T> {
     ) -> Result<(), Self::Error> {
         self.pixels += points.remaining();
         self.inner.draw_line_points_in_clip(points, color)
+    }
+
+    const READ_BACK: bool = T::READ_BACK;
+
+    fn blend_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: Self::Color,
+        alpha: u8,
+    ) -> Result<(), BlendError<Self::Error>> {
+        self.pixels += u64::from(len);
+        self.inner.blend_span_in_clip(x, y, len, color, alpha)
     }
 }
 

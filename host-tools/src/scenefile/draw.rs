@@ -14,7 +14,7 @@ use rasterizer_core::depth::DepthTest;
 use rasterizer_core::numerics::{Dither, Numerics, Perspective, Standard};
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
-use rasterizer_core::surface::ClipTo;
+use rasterizer_core::surface::{BlendError, ClipTo};
 use rasterizer_core::{mesh::MeshSource, pipeline::RenderStats};
 use std::convert::Infallible;
 
@@ -293,7 +293,9 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> R
         };
         let format = scene.format;
         let draw = |target: &mut Target<'_>, m: &DynMesh<'_, S>, zbuf: &mut [u16]| {
-            if dithers(mesh) {
+            if mesh.opacity < u8::MAX {
+                translucent(target, m, &job, zbuf)
+            } else if dithers(mesh) {
                 by_format(target, m, &job, zbuf, format)
             } else {
                 by_cull(target, m, &job, zbuf)
@@ -490,6 +492,41 @@ fn dithered_shading<S: Real, C: ShadeColor + Into<Rgb888>, D: DepthTest>(
     }
 }
 
+/// A translucent mesh (`opacity` below 255): drawn through `Translucent`, testing depth without
+/// writing it; culling chosen at run time, so this compiles one pipeline per shading model.
+fn translucent<S: Real>(
+    target: &mut Target<'_>,
+    mesh: &DynMesh<'_, S>,
+    job: &Job<'_, S>,
+    zbuf: &mut [u16],
+) -> RenderStats {
+    let mut target = Translucent::new(target, job.mesh.opacity);
+    let cull = ModeCull(job.mesh.cull);
+    if job.mesh.wireframe {
+        let color = job.mesh.color;
+        let mut p = Pipeline::new(
+            &job.transforms,
+            job.viewport,
+            cull,
+            NoDepth,
+            Unlit { color },
+        );
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+        // The framebuffer reads back, so this cannot fail.
+        return p
+            .draw_wireframe(&mut target, mesh, &mut scratch, color)
+            .unwrap_or_default();
+    }
+    if !job.mesh.depth {
+        return by_shading(&mut target, mesh, job, cull, NoDepth);
+    }
+    let (w, h) = (job.viewport.width, job.viewport.height);
+    match DepthBuffer::new(zbuf, w, h, Compare::Less) {
+        Ok(depth) => by_shading(&mut target, mesh, job, cull, depth.read_only()),
+        Err(_) => RenderStats::default(),
+    }
+}
+
 /// Picks the culling stage.
 fn by_cull<S: Real, M>(
     target: &mut Target<'_>,
@@ -544,8 +581,8 @@ where
 }
 
 /// Picks the shading stage.
-fn by_shading<S: Real, M, C: Cull, D: DepthTest>(
-    target: &mut Target<'_>,
+fn by_shading<S: Real, T: Surface<Color = Rgb888>, M, C: Cull, D: DepthTest>(
+    target: &mut T,
     mesh: &M,
     job: &Job<'_, S>,
     cull: C,
@@ -609,27 +646,8 @@ where
 }
 
 /// Picks affine or perspective-correct interpolation.
-fn by_perspective<S: Real, M, C: Cull, D: DepthTest, Sh: Shading<S, Color = Rgb888>>(
-    target: &mut Target<'_>,
-    mesh: &M,
-    job: &Job<'_, S>,
-    cull: C,
-    depth: D,
-    shading: Sh,
-) -> RenderStats
-where
-    M: MeshSource<S>,
-{
-    if job.mesh.perspective_correct {
-        draw_with::<S, M, C, D, Sh, Perspective>(target, mesh, job, cull, depth, shading)
-    } else {
-        draw_with::<S, M, C, D, Sh, Standard>(target, mesh, job, cull, depth, shading)
-    }
-}
-
-/// The draw call of one monomorphised pipeline.
-fn draw_with<S, M, C, D, Sh, N>(
-    target: &mut Target<'_>,
+fn by_perspective<S, T, M, C, D, Sh>(
+    target: &mut T,
     mesh: &M,
     job: &Job<'_, S>,
     cull: C,
@@ -638,6 +656,31 @@ fn draw_with<S, M, C, D, Sh, N>(
 ) -> RenderStats
 where
     S: Real,
+    T: Surface<Color = Rgb888>,
+    M: MeshSource<S>,
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<S, Color = Rgb888>,
+{
+    if job.mesh.perspective_correct {
+        draw_with::<S, T, M, C, D, Sh, Perspective>(target, mesh, job, cull, depth, shading)
+    } else {
+        draw_with::<S, T, M, C, D, Sh, Standard>(target, mesh, job, cull, depth, shading)
+    }
+}
+
+/// The draw call of one monomorphised pipeline.
+fn draw_with<S, T, M, C, D, Sh, N>(
+    target: &mut T,
+    mesh: &M,
+    job: &Job<'_, S>,
+    cull: C,
+    depth: D,
+    shading: Sh,
+) -> RenderStats
+where
+    S: Real,
+    T: Surface<Color = Rgb888>,
     M: MeshSource<S>,
     C: Cull,
     D: DepthTest,
@@ -671,47 +714,113 @@ fn sub(p: [f64; 2]) -> SubPoint {
     SubPoint::new((p[0] * one).round() as i32, (p[1] * one).round() as i32)
 }
 
-/// The 2D shapes, in order, straight onto the display through `AnyTarget`.
+/// The simulator display as a surface that reads back, so that translucent and anti-aliased
+/// shapes can blend into it; everything else goes through the `DrawTarget` methods, as through
+/// `AnyTarget`.
+struct ReadBack<'a, C: PixelColor>(&'a mut SimulatorDisplay<C>);
+
+impl<C: PixelColor> Dimensions for ReadBack<'_, C> {
+    fn bounding_box(&self) -> Rectangle {
+        self.0.bounding_box()
+    }
+}
+
+impl<C: PixelColor> DrawTarget for ReadBack<'_, C> {
+    type Color = C;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        self.0.draw_iter(pixels)
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        self.0.fill_contiguous(area, colors)
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
+        self.0.fill_solid(area, color)
+    }
+}
+
+impl<C: PixelColor + Channels> Surface for ReadBack<'_, C> {
+    const READ_BACK: bool = true;
+
+    fn blend_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: C,
+        alpha: u8,
+    ) -> Result<(), BlendError<Infallible>> {
+        for x in x..x.saturating_add(len as i32) {
+            let p = Point::new(x, y);
+            let under = self.0.get_pixel(p);
+            let Ok(()) = self
+                .0
+                .draw_iter([Pixel(p, rasterizer_core::color::blend(color, under, alpha))]);
+        }
+        Ok(())
+    }
+}
+
+/// The 2D shapes, in order, straight onto the display (through [`ReadBack`]).
 fn draw_shapes<C>(scene: &Scene, display: &mut SimulatorDisplay<C>)
 where
     C: PixelColor + From<Rgb888> + Channels,
 {
-    let mut any = AnyTarget::new(display);
+    let mut any = ReadBack(display);
     for shape in &scene.shapes {
-        let clip = match shape {
-            Shape::Point { clip, .. }
-            | Shape::Line { clip, .. }
-            | Shape::Triangle { clip, .. }
-            | Shape::Outline { clip, .. }
-            | Shape::Polygon { clip, .. } => *clip,
+        let (clip, opacity) = match shape {
+            Shape::Point { clip, opacity, .. }
+            | Shape::Line { clip, opacity, .. }
+            | Shape::Triangle { clip, opacity, .. }
+            | Shape::Outline { clip, opacity, .. }
+            | Shape::Polygon { clip, opacity, .. } => (*clip, *opacity),
         };
         let area = match clip {
             Some([x, y, w, h]) => Rectangle::new(Point::new(x, y), Size::new(w as u32, h as u32)),
             None => any.clip_area(),
         };
-        draw_shape(&mut ClipTo::new(&mut any, area), shape);
+        let mut target = ClipTo::new(&mut any, area);
+        match opacity {
+            Some(a) => draw_shape(&mut Translucent::new(&mut target, a), shape),
+            None => draw_shape(&mut target, shape),
+        }
     }
 }
 
-/// One shape (already checked by the loader).
+/// One shape (already checked by the loader). The target reads back, so no draw fails.
 fn draw_shape<T>(t: &mut T, shape: &Shape)
 where
-    T: Surface<Error = Infallible>,
+    T: Surface,
     T::Color: From<Rgb888> + Channels,
 {
-    let Ok(()) = match shape {
-        Shape::Point { at, color: c, .. } => draw_point(t, pixel(*at), color(*c)),
+    let _ = match shape {
+        Shape::Point { at, color: c, .. } => draw_point(t, pixel(*at), color(*c)).map_err(drop),
         Shape::Line {
             from,
             to,
             color: c,
             colors,
+            antialias,
+            width,
             ..
         } => match (c, colors) {
             (_, Some([a, b])) => {
-                draw_line_gradient(t, pixel(*from), pixel(*to), color(*a), color(*b))
+                draw_line_gradient(t, pixel(*from), pixel(*to), color(*a), color(*b)).map_err(drop)
             }
-            (Some(c), None) => draw_line(t, pixel(*from), pixel(*to), color(*c)),
+            (Some(c), None) if *antialias => {
+                let (a, b) = (pixel(*from), pixel(*to));
+                draw_line_aa_wide(t, a, b, width.unwrap_or(1), color(*c)).map_err(drop)
+            }
+            (Some(c), None) => draw_line(t, pixel(*from), pixel(*to), color(*c)).map_err(drop),
             (None, None) => Ok(()),
         },
         Shape::Triangle {
@@ -722,14 +831,14 @@ where
         } => {
             let v = vertices.map(sub);
             match (c, colors) {
-                (_, Some(cs)) => fill_triangle_gouraud(t, v, cs.map(color)),
-                (Some(c), None) => fill_triangle(t, v, color(*c)),
+                (_, Some(cs)) => fill_triangle_gouraud(t, v, cs.map(color)).map_err(drop),
+                (Some(c), None) => fill_triangle(t, v, color(*c)).map_err(drop),
                 (None, None) => Ok(()),
             }
         }
         Shape::Outline {
             vertices, color: c, ..
-        } => draw_triangle(t, vertices.map(pixel), color(*c)),
+        } => draw_triangle(t, vertices.map(pixel), color(*c)).map_err(drop),
         Shape::Polygon {
             vertices,
             fill_rule,
@@ -742,7 +851,7 @@ where
                 FillRuleDef::NonZero => FillRule::NonZero,
             };
             match Polygon::<MAX_POLYGON, 4>::new(&pts) {
-                Ok(poly) => poly.fill(t, rule, color(*c)),
+                Ok(poly) => poly.fill(t, rule, color(*c)).map_err(drop),
                 // The loader checked the vertex count.
                 Err(_) => Ok(()),
             }

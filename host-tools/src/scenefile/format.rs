@@ -272,6 +272,9 @@ pub struct MeshDef {
     pub texture_filter: Option<TextureFilterDef>,
     /// How coordinates outside the texture address it (needs `texture`).
     pub texture_wrap: Option<TextureWrapDef>,
+    /// Opacity 0 ..= 255 (default 255, opaque): below 255 the mesh is blended over what is
+    /// drawn before it and tests depth without writing it.
+    pub opacity: Option<u8>,
 }
 
 /// The `texture_filter` key.
@@ -365,6 +368,8 @@ pub enum Shape {
         at: [f64; 2],
         /// Its colour.
         color: Color,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle `[x, y, width, height]`.
         clip: Option<[i32; 4]>,
     },
@@ -379,6 +384,13 @@ pub enum Shape {
         color: Option<Color>,
         /// Start and end colours (give this or `color`).
         colors: Option<[Color; 2]>,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
+        /// Anti-aliased (`draw_line_aa_wide`), one colour only.
+        #[serde(default)]
+        antialias: bool,
+        /// Width in pixels across the line (anti-aliased lines only; default 1).
+        width: Option<u32>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },
@@ -391,6 +403,8 @@ pub enum Shape {
         color: Option<Color>,
         /// One colour per corner (give this or `color`).
         colors: Option<[Color; 3]>,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },
@@ -400,6 +414,8 @@ pub enum Shape {
         vertices: [[f64; 2]; 3],
         /// Its colour.
         color: Color,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },
@@ -412,6 +428,8 @@ pub enum Shape {
         fill_rule: FillRuleDef,
         /// Its colour.
         color: Color,
+        /// Opacity 0 ..= 255 (default opaque).
+        opacity: Option<u8>,
         /// Optional clip rectangle.
         clip: Option<[i32; 4]>,
     },

@@ -14,6 +14,7 @@ use fixtures::vec64::{cross, norm, sub as sub3};
 use rasterizer_core::mesh::MAGIC;
 use rasterizer_core::prelude::*;
 use rasterizer_core::texture::{Filter, Wrap};
+use rasterizer_core::raster::line::MAX_LINE_WIDTH;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -94,6 +95,8 @@ pub struct SceneMesh {
     pub dither: DitherMode,
     /// The texture, for a mesh with texture coordinates.
     pub texture: Option<SceneTexture>,
+    /// Opacity: below 255, blended through `Translucent` with a read-only depth test.
+    pub opacity: u8,
 }
 
 /// A mesh's texture, loaded and converted to Rgb565.
@@ -314,10 +317,22 @@ fn check_shape(shape: &Shape) -> Result<(), String> {
             to,
             color,
             colors,
+            antialias,
+            width,
             clip,
+            ..
         } => {
             if color.is_some() == colors.is_some() {
                 return Err("a line needs exactly one of `color` and `colors`".into());
+            }
+            if *antialias && colors.is_some() {
+                return Err("an anti-aliased line takes one `color`, not `colors`".into());
+            }
+            if !*antialias && width.is_some_and(|w| w != 1) {
+                return Err("`width` above 1 needs `antialias = true`".into());
+            }
+            if width.is_some_and(|w| w == 0 || w > MAX_LINE_WIDTH) {
+                return Err(format!("a line's `width` is 1 ..= {MAX_LINE_WIDTH}"));
             }
             (vec![*from, *to], clip)
         }
@@ -326,6 +341,7 @@ fn check_shape(shape: &Shape) -> Result<(), String> {
             color,
             colors,
             clip,
+            ..
         } => {
             if color.is_some() == colors.is_some() {
                 return Err("a triangle needs exactly one of `color` and `colors`".into());
@@ -467,6 +483,7 @@ fn load_mesh(
             .unwrap_or(render.perspective_correct),
         dither: def.dither.unwrap_or(render.dither),
         texture,
+        opacity: def.opacity.unwrap_or(u8::MAX),
     })
 }
 

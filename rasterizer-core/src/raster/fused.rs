@@ -146,18 +146,19 @@ pub(crate) trait FusedColor<C> {
 }
 
 /// The pixels of one span with a depth test: each pixel's depth, test and values, stepped
-/// across the span. `LESS` is the usual test, known at compile time.
-struct DepthPixels<'p, P, V, const LESS: bool> {
+/// across the span. `LESS` is the usual test, known at compile time; `D` the depth stage, for
+/// whether a passing pixel stores its depth ([`DepthTest::WRITE`]).
+struct DepthPixels<'p, P, V, D, const LESS: bool> {
     acc: [u32; MAX_VARYINGS],
     step: [u32; MAX_VARYINGS],
     z: u32,
     dz: u32,
     compare: Compare,
     pixel: &'p P,
-    _v: core::marker::PhantomData<V>,
+    _v: core::marker::PhantomData<(V, D)>,
 }
 
-impl<P, V: Varyings, const LESS: bool> DepthPixels<'_, P, V, LESS> {
+impl<P, V: Varyings, D: DepthTest, const LESS: bool> DepthPixels<'_, P, V, D, LESS> {
     /// The values of pixel `i` if it passes the depth test (which then stores its depth).
     #[inline(always)]
     fn values(&mut self, i: usize, stored: &mut u16) -> Option<[u32; MAX_VARYINGS]> {
@@ -173,7 +174,9 @@ impl<P, V: Varyings, const LESS: bool> DepthPixels<'_, P, V, LESS> {
         if !pass {
             return None;
         }
-        *stored = nz;
+        if D::WRITE {
+            *stored = nz;
+        }
         let mut acc = self.acc;
         for (a, step) in acc.iter_mut().zip(&self.step).take(V::LEN) {
             *a = a.wrapping_add(step.wrapping_mul(i as u32));
@@ -184,15 +187,15 @@ impl<P, V: Varyings, const LESS: bool> DepthPixels<'_, P, V, LESS> {
 
 /// [`DepthPixels`] for a colour that depends on the screen position ([`FusedColor::AT`]): a
 /// type of its own, so that the usual loop carries no position.
-struct DepthPixelsAt<'p, P, V, const LESS: bool> {
-    pixels: DepthPixels<'p, P, V, LESS>,
+struct DepthPixelsAt<'p, P, V, D, const LESS: bool> {
+    pixels: DepthPixels<'p, P, V, D, LESS>,
     /// The span's first pixel.
     x: i32,
     y: i32,
 }
 
-impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
-    for DepthPixelsAt<'_, P, V, LESS>
+impl<C, P: FusedColor<C>, V: Varyings, D: DepthTest, const LESS: bool> DepthSpan<C>
+    for DepthPixelsAt<'_, P, V, D, LESS>
 {
     #[inline(always)]
     fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
@@ -202,8 +205,8 @@ impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
     }
 }
 
-impl<C, P: FusedColor<C>, V: Varyings, const LESS: bool> DepthSpan<C>
-    for DepthPixels<'_, P, V, LESS>
+impl<C, P: FusedColor<C>, V: Varyings, D: DepthTest, const LESS: bool> DepthSpan<C>
+    for DepthPixels<'_, P, V, D, LESS>
 {
     #[inline(always)]
     fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
@@ -276,7 +279,7 @@ where
         let (z, dz, compare) = (self.z.at(x0, row), self.z.gx, self.compare);
         macro_rules! depth_span {
             ($less:literal) => {{
-                let pixels = DepthPixels::<P, V, $less> {
+                let pixels = DepthPixels::<P, V, D, $less> {
                     acc,
                     step,
                     z,

@@ -9,10 +9,14 @@
 //! Blending (opacity, anti-aliasing) needs the colour already stored, which a plain `DrawTarget`
 //! cannot give back: a surface says whether it can with [`Surface::READ_BACK`], and the blending
 //! rasterizers refuse one that cannot with [`BlendError::CannotReadBack`] before writing anything.
+//! [`Translucent`] wraps a surface so that whatever is drawn through it, a whole mesh included, is
+//! blended with one opacity.
 
 mod framebuffer;
+mod translucent;
 
 pub use framebuffer::{Band, Framebuffer, FramebufferError, Storage, MAX_DIMENSION};
+pub use translucent::Translucent;
 
 /// Why a blended primitive (a translucent fill, an anti-aliased line) was not drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

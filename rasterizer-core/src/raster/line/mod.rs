@@ -1,15 +1,17 @@
 //! Lines with integer Bresenham, in every octant, both endpoints included: [`crate::geom::line`]
 //! defines which pixels a line lights, [`crate::clip::line`] which of them a clip area keeps, and
 //! this module draws them: opaque, translucent ([`draw_line_alpha`]) or anti-aliased
-//! ([`draw_line_aa`]).
+//! ([`draw_line_aa`], and any width with [`draw_line_aa_wide`]).
 
 mod aa;
 mod alpha;
 mod gradient;
+mod wide;
 
 pub use aa::draw_line_aa;
 pub use alpha::draw_line_alpha;
 pub use gradient::draw_line_gradient;
+pub use wide::{draw_line_aa_wide, MAX_LINE_WIDTH};
 
 use crate::geom::line::Line;
 use crate::surface::Surface;
