@@ -8,7 +8,7 @@ fn on(feature: &str) -> bool {
 fn main() {
     println!("cargo::rustc-check-cfg=cfg(three_d)");
     println!("cargo::rustc-check-cfg=cfg(two_d)");
-    let shading = ["unlit", "flat", "gouraud", "phong"];
+    let shading = ["unlit", "flat", "gouraud", "phong", "textured"];
     let stages = [
         "depth",
         "cull",

@@ -9,7 +9,8 @@
 //! vertex, or with an empty one with `noscratch`, and `dither` for 4 x 4 ordered dithering of the
 //! interpolated colour, `translucent` for the mesh drawn through `Translucent` at opacity 128
 //! (with `depth`, the buffer read-only). The scene is M1: the packed Suzanne, 320 x 240
-//! Rgb565, one directional light.
+//! Rgb565, one directional light; the shading feature `textured` draws the textured cube
+//! (`TexturedLit`, the packed mesh's own texture) through M1's camera instead.
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, `aa2d` (an anti-aliased line 3 pixels
 //! wide), each one call into a 320 x 240 Rgb565
 //! framebuffer. No feature at all gives the empty baseline (start-up and panic handler only).
@@ -113,12 +114,21 @@ mod three_d {
     use rasterizer_core::mesh::PackedMesh;
     use rasterizer_core::{pipeline::Pipeline, transform::Viewport};
 
-    /// Suzanne's vertices: the length of the vertex scratch.
-    #[cfg(not(feature = "noscratch"))]
+    /// The mesh: Suzanne, or with `textured` the textured cube (its 64 x 64 texture inside).
+    #[cfg(not(feature = "textured"))]
+    use crate::m1::MESH;
+    #[cfg(feature = "textured")]
+    const MESH: &[u8] = include_bytes!("../../assets/meshes/cube_textured.rmsh");
+    /// The mesh's vertices: the length of the vertex scratch.
+    #[cfg(all(not(feature = "noscratch"), not(feature = "textured")))]
     const VERTICES: usize = 507;
-    /// Suzanne's triangles: bins for the worst case, every triangle visible.
-    #[cfg(feature = "banded")]
+    #[cfg(all(not(feature = "noscratch"), feature = "textured"))]
+    const VERTICES: usize = 24;
+    /// The mesh's triangles: bins for the worst case, every triangle visible.
+    #[cfg(all(feature = "banded", not(feature = "textured")))]
     const TRIANGLES: usize = 968;
+    #[cfg(all(feature = "banded", feature = "textured"))]
+    const TRIANGLES: usize = 12;
     /// Rows per band.
     #[cfg(feature = "banded")]
     const ROWS: u32 = 16;
@@ -136,6 +146,8 @@ mod three_d {
     type Sh = rasterizer_core::shade::GouraudLit<Fx16, Rgb565, 1>;
     #[cfg(feature = "phong")]
     type Sh = rasterizer_core::shade::PhongLit<Fx16, Rgb565, 1>;
+    #[cfg(feature = "textured")]
+    type Sh = rasterizer_core::shade::TexturedLit<'static, Fx16, Rgb565, 1>;
 
     /// A vertex scratch slot of the chosen shading.
     type Slot = rasterizer_core::pipeline::VertexSlot<
@@ -156,22 +168,35 @@ mod three_d {
     static mut SCRATCH: core::mem::MaybeUninit<[Slot; VERTICES]> = core::mem::MaybeUninit::uninit();
 
     #[cfg(feature = "unlit")]
-    fn shading() -> Sh {
-        rasterizer_core::shade::Unlit {
+    fn shading(_: &PackedMesh<'static>) -> Option<Sh> {
+        Some(rasterizer_core::shade::Unlit {
             color: black_box(Rgb565::new(27, 35, 10)),
-        }
+        })
     }
 
-    #[cfg(not(feature = "unlit"))]
-    fn shading() -> Sh {
+    #[cfg(not(any(feature = "unlit", feature = "textured")))]
+    fn shading(_: &PackedMesh<'static>) -> Option<Sh> {
         use fixtures::scenes3d::{light_direction, lighting_with};
         // The light's direction is opaque, so that its normalisation is not folded away.
-        Sh::new(lighting_with::<1>(black_box(light_direction())))
+        Some(Sh::new(lighting_with::<1>(black_box(light_direction()))))
+    }
+
+    /// The texture is the packed mesh's own.
+    #[cfg(feature = "textured")]
+    fn shading(mesh: &PackedMesh<'static>) -> Option<Sh> {
+        use fixtures::scenes3d::{light_direction, lighting_with};
+        Some(Sh::new(
+            lighting_with::<1>(black_box(light_direction())),
+            mesh.texture()?,
+        ))
     }
 
     /// The M1 frame; returns the number of triangles drawn.
     pub fn draw() -> u32 {
-        let Ok(mesh) = PackedMesh::parse(black_box(crate::m1::MESH)) else {
+        let Ok(mesh) = PackedMesh::parse(black_box(MESH)) else {
+            return 0;
+        };
+        let Some(shading) = shading(&mesh) else {
             return 0;
         };
         let xf = crate::m1::transforms();
@@ -211,7 +236,7 @@ mod three_d {
         };
         #[cfg(feature = "noscratch")]
         let scratch: &mut [Slot] = &mut [];
-        let pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading());
+        let pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading);
         #[cfg(feature = "dither")]
         let mut pl = {
             struct Bayer4;
