@@ -50,9 +50,14 @@ fn floor(reps: f64) -> Floor {
 }
 
 fn camera() -> Transforms<Fx16> {
+    camera_at(0.3, 0.5, 2.5)
+}
+
+/// A camera above the floor's near end at `(x, y, z)`, looking down it.
+fn camera_at(x: f64, y: f64, z: f64) -> Transforms<Fx16> {
     let p = |x: f64, y: f64, z: f64| Vec3::new(fx(x), fx(y), fx(z));
     Transforms::look_at(
-        p(0.3, 0.5, 2.5),
+        p(x, y, z),
         p(0.0, -1.0, -3.0),
         Angle::from_degrees(70),
         Viewport::new(W, H),
@@ -61,9 +66,17 @@ fn camera() -> Transforms<Fx16> {
 }
 
 fn draw(shader: TexturedLit<'_, Fx16, Rgb565, 0>, mesh: &Mesh<'_, Fx16>) -> Vec<u16> {
+    draw_from(&camera(), shader, mesh)
+}
+
+fn draw_from(
+    cam: &Transforms<Fx16>,
+    shader: TexturedLit<'_, Fx16, Rgb565, 0>,
+    mesh: &Mesh<'_, Fx16>,
+) -> Vec<u16> {
     let mut buf = vec![0u16; (W * H) as usize];
     let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
-    let mut p = Pipeline::new(&camera(), Viewport::new(W, H), NoCull, NoDepth, shader);
+    let mut p = Pipeline::new(cam, Viewport::new(W, H), NoCull, NoDepth, shader);
     let mut scratch = vec![VertexSlot::<[i32; 6]>::EMPTY; mesh.positions.len()];
     p.draw(&mut fb, mesh, &mut scratch).unwrap();
     buf
@@ -76,7 +89,15 @@ fn exact_uv<'m>(
     size: f64,
     perspective: bool,
 ) -> impl Fn(i32, i32) -> Option<(f64, f64)> + 'm {
-    let cam = camera();
+    exact_uv_from(camera(), mesh, size, perspective)
+}
+
+fn exact_uv_from<'m>(
+    cam: Transforms<Fx16>,
+    mesh: &'m Mesh<'m, Fx16>,
+    size: f64,
+    perspective: bool,
+) -> impl Fn(i32, i32) -> Option<(f64, f64)> + 'm {
     let p = Pipeline::new(
         &cam,
         Viewport::new(W, H),
@@ -134,17 +155,16 @@ fn outside(x: f64, i: i64) -> f64 {
     (i - x).max(x - (i + 1.0)).max(0.0)
 }
 
-/// Nearest sampling, repeating, over a floor whose texture repeats twice: every pixel shows the
-/// texel the exact coordinates fall in, or one beside it where they lie within 1/100 texel of
-/// its edge.
-#[test]
-fn nearest_texels_match_exact_perspective_coordinates() {
-    let (positions, uvs, triangles) = floor(2.0);
+/// Draws the floor (texture repeated `reps` times) from `cam` with the 32x32 id texture and
+/// returns the pixels compared, those on a neighbouring texel, and the worst distance (texels)
+/// from the exact coordinates to the texel drawn.
+fn id_texture_error(cam: &Transforms<Fx16>, reps: f64) -> (usize, usize, f64) {
+    let (positions, uvs, triangles) = floor(reps);
     let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
     let texels = id_texture();
     let texture = Texture::new(5, 5, &texels).unwrap();
-    let buf = draw(TexturedLit::new(full_light(), texture), &mesh);
-    let exact = exact_uv(&mesh, 32.0, true);
+    let buf = draw_from(cam, TexturedLit::new(full_light(), texture), &mesh);
+    let exact = exact_uv_from(cam.clone(), &mesh, 32.0, true);
     let (mut n, mut worst, mut off) = (0, 0.0f64, 0);
     for y in 0..H as i32 {
         for x in 0..W as i32 {
@@ -154,11 +174,7 @@ fn nearest_texels_match_exact_perspective_coordinates() {
             let (tx, ty) = (i64::from(c >> 11), i64::from(c & 31));
             // The drawn texel index is taken modulo 32: compare within the repeat.
             let (u, v) = (u.rem_euclid(32.0), v.rem_euclid(32.0));
-            let e = |x: f64, i: i64| {
-                outside(x, i)
-                    .min(outside(x - 32.0, i))
-                    .min(outside(x + 32.0, i))
-            };
+            let e = |x: f64, i: i64| outside(x, i).min(outside(x - 32.0, i)).min(outside(x + 32.0, i));
             let err = e(u, tx).max(e(v, ty));
             if err > 0.0 {
                 off += 1;
@@ -166,9 +182,53 @@ fn nearest_texels_match_exact_perspective_coordinates() {
             worst = worst.max(err);
         }
     }
+    (n, off, worst)
+}
+
+/// Nearest sampling, repeating, over a floor whose texture repeats twice: every pixel shows the
+/// texel the exact coordinates fall in, or one beside it where they lie within 1/100 texel of
+/// its edge.
+#[test]
+fn nearest_texels_match_exact_perspective_coordinates() {
+    let (n, off, worst) = id_texture_error(&camera(), 2.0);
     eprintln!("{n} pixels, {off} on a neighbouring texel, worst {worst:.5} texels");
     assert!(n > 2000, "the floor covers {n} pixels");
     assert!(worst < 0.01, "worst texel coordinate error {worst}");
+}
+
+/// The textured floor drawn into an embedded-graphics target (a mock that fails on any pixel
+/// written twice or out of bounds) writes exactly the framebuffer's pixels, with its colours.
+#[test]
+fn mock_target_gets_each_pixel_once() {
+    let (positions, uvs, triangles) = floor(2.0);
+    let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+    let texels = id_texture();
+    let texture = Texture::new(5, 5, &texels).unwrap();
+    let shader = TexturedLit::new(full_light(), texture).with_filter(Filter::Bilinear);
+    let whole = draw(shader.clone(), &mesh);
+    let mut mock = tests::StrictMock::<Rgb565>::new(W, H);
+    let mut p = Pipeline::new(&camera(), Viewport::new(W, H), NoCull, NoDepth, shader);
+    let mut scratch = vec![VertexSlot::<[i32; 6]>::EMPTY; positions.len()];
+    p.draw(&mut AnyTarget::new(&mut mock), &mesh, &mut scratch)
+        .unwrap();
+    let mut written = 0;
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let want = whole[(y as u32 * W + x as u32) as usize];
+            match mock.get(x, y) {
+                Some(c) => {
+                    written += 1;
+                    assert_eq!(
+                        embedded_graphics_core::pixelcolor::raw::RawU16::from(c).into_inner(),
+                        want,
+                        "({x}, {y})"
+                    );
+                }
+                None => assert_eq!(want, 0, "({x}, {y}) not written"),
+            }
+        }
+    }
+    assert!(written > 2000);
 }
 
 /// The same floor against affine (screen-linear) coordinates: the drawn texels are far from
@@ -362,6 +422,20 @@ fn texture_sizes_are_checked() {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// From random eye positions and texture repeats, every pixel's texel is within 1/100 texel
+    /// of the exact f64 perspective-correct coordinates.
+    #[test]
+    fn texels_match_f64_from_any_eye(
+        x in -1.5f64..1.5,
+        y in -0.6f64..3.0,
+        z in 1.5f64..5.0,
+        reps in 0.25f64..8.0,
+    ) {
+        let (n, _, worst) = id_texture_error(&camera_at(x, y, z), reps);
+        prop_assume!(n > 100);
+        prop_assert!(worst < 0.01, "worst {worst} over {n} pixels");
+    }
 
     /// Any texture coordinates (i32 extremes included), any camera turn, a mesh without uvs, a
     /// near-plane crossing: no panic (debug builds check overflow), and with a 1x1 texture every
