@@ -9,14 +9,18 @@ fn main() {
     println!("cargo::rustc-check-cfg=cfg(three_d)");
     println!("cargo::rustc-check-cfg=cfg(two_d)");
     let shading = ["unlit", "flat", "gouraud", "phong"];
-    let stages = ["depth", "cull", "banded", "noscratch", "dither"];
+    let stages = ["depth", "cull", "banded", "noscratch", "dither", "fog"];
     match shading.into_iter().filter(|f| on(f)).count() {
         0 if stages.into_iter().any(on) => {
-            panic!("depth, cull, banded, noscratch and dither need a shading feature: {shading:?}")
+            panic!("{stages:?} need a shading feature: {shading:?}")
         }
         0 => {}
         1 => println!("cargo::rustc-cfg=three_d"),
         _ => panic!("choose at most one shading feature: {shading:?}"),
+    }
+    // Fog mixes a colour per vertex or per triangle, which unlit and Phong shading do not have.
+    if on("fog") && !(on("flat") || on("gouraud")) {
+        panic!("fog needs flat or gouraud shading");
     }
     if ["line2d", "triangle2d", "gouraud2d", "polygon2d"]
         .into_iter()
