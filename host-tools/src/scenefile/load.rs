@@ -1,8 +1,8 @@
 //! Reading a scene file: parsing, checking every value, loading the meshes.
 
 use super::format::{
-    Camera, Color, CullMode, DitherMode, LightDef, MeshDef, NormalsMode, PixelFormat, ScaleDef,
-    SceneFile, ShadingModel, Shape, SpecularModel, VertexColorMode,
+    Camera, Color, CullMode, DitherMode, FogDef, FogMode, LightDef, MeshDef, NormalsMode,
+    PixelFormat, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel, VertexColorMode,
 };
 use super::limits;
 use super::reference::Real;
@@ -11,6 +11,7 @@ use fixtures::obj::RawMesh;
 use fixtures::vec64::{cross, norm, sub as sub3};
 use rasterizer_core::mesh::MAGIC;
 use rasterizer_core::prelude::*;
+use rasterizer_core::shade::{FogCurve, FOG_MAX_DENSITY};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -83,6 +84,46 @@ pub struct SceneMesh {
     pub perspective_correct: bool,
     /// Ordered dithering.
     pub dither: DitherMode,
+    /// Fog, when the mesh or `[render]` asks for it.
+    pub fog: Option<SceneFog>,
+}
+
+/// A checked `fog` table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneFog {
+    /// The fog's colour.
+    pub color: Rgb888,
+    /// Where it starts, in world units in front of the camera.
+    pub start: f64,
+    /// Where it ends.
+    pub end: f64,
+    /// Its curve.
+    pub curve: FogCurve,
+}
+
+/// Checks a `fog` table: `start` and `end` within 16.16's comfortable range, the density within
+/// what the exponential table covers.
+fn scene_fog(f: &FogDef) -> Result<SceneFog, String> {
+    limits::within("fog.start", &[f.start], limits::MAX_COORD)?;
+    limits::within("fog.end", &[f.end], limits::MAX_COORD)?;
+    let max = f64::from(FOG_MAX_DENSITY) / 16.0;
+    if !(0.0..=max).contains(&f.density) {
+        return Err(format!(
+            "fog.density = {} is out of range: 0 ..= {}",
+            limits::num(f.density),
+            limits::num(max)
+        ));
+    }
+    Ok(SceneFog {
+        color: rgb(f.color),
+        start: f.start,
+        end: f.end,
+        curve: match f.mode {
+            FogMode::Linear => FogCurve::Linear,
+            // In sixteenths, as the core takes it.
+            FogMode::Exponential => FogCurve::exponential((f.density * 16.0).round() as u16),
+        },
+    })
 }
 
 /// Vertex data: a packed blob drawn in place, or a mesh in memory.
@@ -381,6 +422,13 @@ fn load_mesh(
         }
         MeshData::Owned(edit(from_raw(raw), &def))
     };
+    // A mesh's table replaces [render]'s as a whole.
+    let fog = def
+        .fog
+        .or(render.fog)
+        .map(|f| scene_fog(&f))
+        .transpose()
+        .map_err(|e| format!("mesh {name}: {e}"))?;
     let c = def.color.0;
     let m = def.material.as_ref();
     let material = Material {
@@ -410,6 +458,7 @@ fn load_mesh(
             .perspective_correct
             .unwrap_or(render.perspective_correct),
         dither: def.dither.unwrap_or(render.dither),
+        fog,
     })
 }
 

@@ -8,7 +8,9 @@ pub mod fog;
 pub mod light;
 pub mod model;
 
-pub use fog::{Fog, FogColor, FogCurve, FogSettings, Foggable, FOG_ONE, FOG_TABLE_LEN};
+pub use fog::{
+    Fog, FogColor, FogCurve, FogSettings, Foggable, FOG_MAX_DENSITY, FOG_ONE, FOG_TABLE_LEN,
+};
 
 pub use light::{Light, Lighting, Material, Specular};
 pub use model::{
