@@ -3,6 +3,7 @@
 //! target; in model space and world space alike, and with the exponential table within its stated
 //! bound of the curve.
 
+use embedded_graphics_core::pixelcolor::raw::RawU16;
 use proptest::prelude::*;
 use rasterizer_core::color::ShadeColor;
 use rasterizer_core::mesh::Mesh;
@@ -220,9 +221,9 @@ fn draw_suzanne<Sh: Shading<Fx16, Color = Rgb565>>(
 }
 
 /// Gouraud lighting in model space (the default for a rotation) and in world space (forced by a
-/// normal matrix other than the model matrix) fogs alike: the depths agree to within a few steps of 16.16, so at most
-/// a handful of pixels differ, by one step. With fog beyond the whole mesh, the picture is the
-/// unfogged one bit for bit; with fog before it, one flat colour.
+/// normal matrix other than the model matrix) fogs alike: the depths agree to within a few steps
+/// of 16.16, so at most a handful of pixels differ, by one step. With fog beyond the whole mesh,
+/// the picture is the unfogged one bit for bit; with fog before it, one flat colour.
 #[test]
 fn gouraud_fog_in_model_and_world_space_agree() {
     let model = Mat4::rotation_y(Angle::from_degrees(30));
@@ -264,8 +265,6 @@ fn gouraud_fog_in_model_and_world_space_agree() {
     let covered = plain.iter().filter(|&&p| p != 0).count();
     assert_eq!(before.iter().filter(|&&p| p == raw).count(), covered);
 }
-
-use embedded_graphics_core::pixelcolor::raw::RawU16;
 
 /// Flat shading fogs each triangle by its centroid: beyond `end` every triangle is the fog colour,
 /// nearer than `start` the picture is the unfogged one, in between it darkens with depth.
@@ -446,4 +445,24 @@ proptest! {
         check::<Rgb888>(d, color, settings, a, share_error, |c| [c.r(), c.g(), c.b()])?;
         check::<Rgb565>(d, color, settings, a, share_error, |c| [c.r(), c.g(), c.b()])?;
     }
+}
+
+/// `share_at` is the share of fog at a point, and `set_settings` changes it and the colour.
+#[test]
+fn settings_can_change_between_frames() {
+    let mut sh = Fog::new(
+        VertexColors::<Rgb888>::new(),
+        linear(Rgb888::BLACK, -1.0, 1.0),
+        &Mat4::identity(),
+    );
+    let at = |z: f64| Vec3::new(Fx16::ZERO, Fx16::ZERO, fx(z));
+    assert_eq!(sh.share_at(at(0.0)), FOG_ONE / 2);
+    assert_eq!(sh.share_at(at(-2.0)), FOG_ONE);
+    assert_eq!(sh.share_at(at(2.0)), 0);
+    let red = Rgb888::RED;
+    sh.set_settings(linear(red, -2.0, -1.0));
+    assert_eq!(sh.share_at(at(0.0)), FOG_ONE);
+    assert_eq!(sh.settings().color, red);
+    let m = draw_strips(&[fx(0.0)], Rgb888::WHITE, sh);
+    assert_eq!(m.get(2, 2), Some(red));
 }

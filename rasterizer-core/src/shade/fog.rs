@@ -27,10 +27,10 @@
 //! (times the model matrix when the inner model shades in model space), rounded once in the
 //! geometry's [`Scalar`]; `t` is one exactly rounded ratio in 0.15 fixed point. The exponential
 //! curve is a table of 33 amounts in 0.15 ([`FogCurve::exponential`], computed with integers
-//! only), interpolated linearly between its entries: within `k² / 8192` of the curve, plus half a
-//! step of 0.15. The colour channels are mixed at the target's depth in the inner model's own
-//! fixed point, rounded once, so a share of 0 leaves them untouched and a share of 1 gives the fog
-//! colour exactly.
+//! only), interpolated linearly between its entries: within `k² / (8192 (1 - e^-k))` of the
+//! curve (below 0.008 for the largest density, 8), plus half a step of 0.15. The colour channels
+//! are mixed at the target's depth in the inner model's own fixed point, rounded once, so a share
+//! of 0 leaves them untouched and a share of 1 gives the fog colour exactly.
 //!
 //! [`Mat4::look_at`]: crate::math::Mat4::look_at
 
@@ -304,6 +304,13 @@ where
         &self.settings
     }
 
+    /// Changes the settings (between frames: a draw call already under way keeps the values it
+    /// has shaded).
+    pub fn set_settings(&mut self, settings: FogSettings<S>) {
+        self.settings = settings;
+        self.color = FogColor::new::<Sh::Color>(settings.color);
+    }
+
     /// The share of fog (0.15) at a point of this frame's space.
     #[inline]
     pub fn share_at(&self, p: Vec3<S>) -> u32 {
@@ -339,7 +346,8 @@ where
         let model_space = self.inner.begin_frame(model) || (!Sh::NEEDS_WORLD && model.is_some());
         self.plane = match model {
             Some(m) if model_space => {
-                // The view plane carried back through the model matrix: plane · (M p) = (plane M) · p.
+                // The view plane carried back through the model matrix:
+                // plane · (M p) = (plane M) · p.
                 let col = |j: usize| [m.m[0][j], m.m[1][j], m.m[2][j], m.m[3][j]];
                 [0, 1, 2, 3].map(|j| S::dot4(self.view_plane, col(j)))
             }
