@@ -16,6 +16,7 @@ fn main() {
         "noscratch",
         "dither",
         "translucent",
+        "fog",
     ];
     if on("translucent") && on("banded") {
         panic!("translucent draws a whole frame: not with banded");
@@ -27,6 +28,10 @@ fn main() {
         0 => {}
         1 => println!("cargo::rustc-cfg=three_d"),
         _ => panic!("choose at most one shading feature: {shading:?}"),
+    }
+    // Fog mixes a colour per vertex or per triangle, which unlit and Phong shading do not have.
+    if on("fog") && !(on("flat") || on("gouraud")) {
+        panic!("fog needs flat or gouraud shading");
     }
     if ["line2d", "triangle2d", "gouraud2d", "polygon2d", "aa2d"]
         .into_iter()

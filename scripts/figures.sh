@@ -345,6 +345,16 @@ for line in "${MESH_SCENES[@]}"; do
     fi
     unset SCENE_INSTR
 done
+if wanted M1 && [ "$QUICK" = 0 ]; then
+    # M1 with linear fog around the default pipeline's shading, counted by a binary of its own
+    # (count3d_fog) so count3d stays as it was.
+    build_example count3d_fog
+    echo "counting M1 ours-fog..." >&2
+    n="$(callgrind_count "$OUT/3d-M1-fog" "*frame_m1_fog*" "$BIN")"
+    emit_count M1 ours-fog instructions "$n"
+    emit_count M1 ours-fog per_primitive "$(div "$n" "$(field "$OUT/3d-M1-fog.stdout" triangles)" 1)"
+    emit_count M1 ours-fog covered "$(field "$OUT/3d-M1-fog.stdout" covered)"
+fi
 
 # --- RAM and code size of M1 (stack test, nostd-check) ---
 

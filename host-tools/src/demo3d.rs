@@ -64,7 +64,7 @@ pub struct Scene3d {
 }
 
 /// Every 3D picture, in the order they are written.
-pub const SCENES: [Scene3d; 7] = [
+pub const SCENES: [Scene3d; 8] = [
     Scene3d {
         file: "suzanne_wireframe.png",
         draw: suzanne_wireframe,
@@ -84,6 +84,10 @@ pub const SCENES: [Scene3d; 7] = [
     Scene3d {
         file: "suzanne_dither.png",
         draw: suzanne_dither,
+    },
+    Scene3d {
+        file: "suzanne_fog.png",
+        draw: suzanne_fog,
     },
     Scene3d {
         file: "cube_inside.png",
@@ -242,6 +246,70 @@ fn suzanne_dither(models: &Models, display: &mut Display) -> SceneResult {
         let text = Text::with_baseline(label, Point::new(x, 2), style, Baseline::Top);
         let Ok(_) = text.draw(display);
     }
+    Ok(())
+}
+
+/// Six Suzannes receding from 3.6 to 15 units (about 1.33 times further each, spaced evenly
+/// across the screen), Gouraud-lit into Rgb565 and fogged per vertex (`shade::Fog`, linear from
+/// depth 4 to 16) toward the colour the frame is cleared to, so the far ones fade into it.
+fn suzanne_fog(models: &Models, display: &mut Display) -> SceneResult {
+    use rasterizer_core::shade::{Fog, FogCurve, FogSettings};
+    // Where each one stands and its turn towards the camera, in degrees.
+    const PLACES: [(f64, f64, f64, i32); 6] = [
+        (-2.0, -0.3, -0.6, 29),
+        (-1.45, -0.25, -1.8, 20),
+        (-0.35, -0.1, -3.4, 5),
+        (1.65, 0.15, -5.45, -17),
+        (5.05, 0.6, -8.25, -31),
+        (10.45, 1.3, -12.0, -35),
+    ];
+    let fog = Rgb888::new(150, 166, 186);
+    let eye = v3(0.0, 0.0, 3.0);
+    let view = Mat4::look_at(eye, v3(0.0, 0.0, 0.0), v3(0.0, 1.0, 0.0)).ok_or("view")?;
+    let projection = perspective(60, Fx16::from_ratio(1, 10), Fx16::from_int(100));
+    let settings = FogSettings {
+        color: fog,
+        start: Fx16::from_int(4),
+        end: Fx16::from_int(16),
+        curve: FogCurve::Linear,
+    };
+    let mut words = vec![0u16; PIXELS];
+    let mut fb =
+        Framebuffer::<Rgb565>::new(&mut words, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
+    let Ok(()) = fb.clear(Rgb565::from(fog));
+    let mut zbuf = vec![u16::MAX; PIXELS];
+    let mesh = models.suzanne.mesh();
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+    for (x, y, z, turn) in PLACES {
+        let model =
+            Mat4::rotation_y(Angle::from_degrees(turn)).then(&Mat4::translation(v3(x, y, z)));
+        let t = Transforms {
+            model,
+            view,
+            projection,
+        };
+        let mut lighting = Lighting::new(
+            fixtures::scenes3d::material(),
+            Rgb888::WHITE,
+            Specular::BlinnPhong,
+            eye,
+        );
+        lighting
+            .add_light(Light::directional(v3(1.0, 1.0, 1.0)))
+            .map_err(|_| "light")?;
+        let shading = Fog::new(GouraudLit::<_, Rgb565, 1>::new(lighting), settings, &view);
+        let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less)
+            .map_err(|e| format!("depth buffer: {e:?}"))?;
+        let viewport = Viewport::new(WIDTH, HEIGHT);
+        let mut p = Pipeline::new(&t, viewport, CullClockwise, depth, shading);
+        let stats = p
+            .draw(&mut fb, &mesh, &mut scratch)
+            .map_err(|e| e.to_string())?;
+        check_drawn("fogged suzanne", stats.drawn)?;
+    }
+    let pixels = (0..HEIGHT as i32).flat_map(|y| (0..WIDTH as i32).map(move |x| Point::new(x, y)));
+    let Ok(()) =
+        display.draw_iter(pixels.filter_map(|p| fb.pixel(p).map(|c| Pixel(p, Rgb888::from(c)))));
     Ok(())
 }
 

@@ -447,3 +447,88 @@ fn antialias_and_width_keys_draw_wide_lines() {
         &["opacity"],
     );
 }
+
+/// `fog` under `[render]` or per mesh: fog beyond the mesh changes nothing (dithered or not),
+/// fog before it leaves only the fog colour where the mesh is, a mesh's own table replaces
+/// `[render]`'s, and bad values are refused.
+#[test]
+fn fog_key_fogs_by_depth() {
+    use host_tools::scenefile::{load, render_image};
+    let dir = scratch("fog");
+    let suzanne = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
+    let scene = |render: &str, mesh: &str| {
+        format!(
+            "[output]\nwidth = 160\nheight = 120\nformat = \"rgb565\"\n\n\
+             [render]\n{render}\n\n\
+             [[lights]]\nkind = \"directional\"\ndirection = [1.0, 1.0, 1.0]\n\n\
+             [[meshes]]\npath = {suzanne:?}\n{mesh}\n"
+        )
+    };
+    let render = |name: &str, render: &str, mesh: &str| {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, scene(render, mesh)).unwrap();
+        let s = load(&path).unwrap();
+        let image = render_image(&s, Default::default(), 1).unwrap();
+        image.as_image_buffer().into_raw().to_vec()
+    };
+    let beyond = "fog = { color = \"#ff0000\", start = 10.0, end = 20.0 }";
+    let before = "fog = { color = \"#00ff00\", start = -2.0, end = 0.0, mode = \"exponential\" }";
+    for shading in ["gouraud", "flat", "vertex_colors"] {
+        let plain = render("plain", &format!("shading = \"{shading}\""), "");
+        let far = render("far", &format!("shading = \"{shading}\"\n{beyond}"), "");
+        assert!(
+            plain == far,
+            "{shading}: fog beyond the mesh changed the picture"
+        );
+        let near = render("near", &format!("shading = \"{shading}\"\n{before}"), "");
+        // Black background, green where the mesh is: no red or blue anywhere.
+        assert!(near.chunks(3).all(|p| p[0] == 0 && p[2] == 0), "{shading}");
+        let green = near.chunks(3).filter(|p| p[1] == 255).count();
+        let covered = plain.chunks(3).filter(|p| p != &[0, 0, 0]).count();
+        assert_eq!(green, covered, "{shading}");
+        // The mesh's table replaces [render]'s.
+        let own = render("own", &format!("shading = \"{shading}\"\n{before}"), beyond);
+        assert!(
+            plain == own,
+            "{shading}: the mesh's fog did not replace [render]'s"
+        );
+    }
+    let dithered = render("dithered", "dither = \"bayer4\"", "");
+    let dithered_far = render(
+        "dithered_far",
+        &format!("dither = \"bayer4\"\n{beyond}"),
+        "",
+    );
+    assert!(
+        dithered == dithered_far,
+        "dithered: fog beyond the mesh changed the picture"
+    );
+    let dithered_near = render(
+        "dithered_near",
+        &format!("dither = \"bayer4\"\n{before}"),
+        "",
+    );
+    assert!(dithered_near
+        .chunks(3)
+        .all(|p| p == [0, 0, 0] || p == [0, 255, 0]));
+    let fog = |f: &str| scene(&format!("fog = {{ color = \"#808080\", {f} }}"), "");
+    expect_failure(
+        &dir,
+        "bad_density",
+        &fog("start = 1.0, end = 2.0, density = 9.0"),
+        &["density"],
+    );
+    expect_failure(
+        &dir,
+        "bad_start",
+        &fog("start = 1e9, end = 2.0"),
+        &["fog.start"],
+    );
+    expect_failure(
+        &dir,
+        "bad_mode",
+        &fog("start = 1.0, end = 2.0, mode = \"exp2\""),
+        &["mode"],
+    );
+    expect_failure(&dir, "no_end", &fog("start = 1.0"), &["end"]);
+}

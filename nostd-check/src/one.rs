@@ -6,11 +6,12 @@
 //! 3D: one shading feature (`unlit`, `flat`, `gouraud`, `phong`), optionally `depth` (a 16-bit
 //! depth buffer, `Compare::Less`), `cull` (`CullClockwise`) and the draw call (`draw` by default,
 //! `banded` for `draw_banded` in 16-row bands), each with a vertex scratch of one slot per mesh
-//! vertex, or with an empty one with `noscratch`, and `dither` for 4 x 4 ordered dithering of the
-//! interpolated colour, `translucent` for the mesh drawn through `Translucent` at opacity 128
-//! (with `depth`, the buffer read-only). The scene is M1: the packed Suzanne, 320 x 240
-//! Rgb565, one directional light; the shading feature `textured` draws the textured cube
-//! (`TexturedLit`, the packed mesh's own texture) through M1's camera instead.
+//! vertex, or with an empty one with `noscratch`, `dither` for 4 x 4 ordered dithering of the
+//! interpolated colour, `fog` for linear fog (`shade::Fog`, with `flat` or `gouraud`), and
+//! `translucent` for the mesh drawn through `Translucent` at opacity 128 (with `depth`, the buffer
+//! read-only). The scene is M1: the packed Suzanne, 320 x 240 Rgb565, one directional light; the
+//! shading feature `textured` draws the textured cube (`TexturedLit`, the packed mesh's own
+//! texture) through M1's camera instead.
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, `aa2d` (an anti-aliased line 3 pixels
 //! wide), each one call into a 320 x 240 Rgb565
 //! framebuffer. No feature at all gives the empty baseline (start-up and panic handler only).
@@ -149,9 +150,15 @@ mod three_d {
     #[cfg(feature = "textured")]
     type Sh = rasterizer_core::shade::TexturedLit<'static, Fx16, Rgb565, 1>;
 
+    /// The shading stage: the chosen model, fogged with `fog`.
+    #[cfg(feature = "fog")]
+    type Stage = rasterizer_core::shade::Fog<Fx16, Sh>;
+    #[cfg(not(feature = "fog"))]
+    type Stage = Sh;
+
     /// A vertex scratch slot of the chosen shading.
     type Slot = rasterizer_core::pipeline::VertexSlot<
-        <Sh as rasterizer_core::shade::Shading<Fx16>>::Stored,
+        <Stage as rasterizer_core::shade::Shading<Fx16>>::Stored,
     >;
 
     #[cfg(feature = "depth")]
@@ -236,7 +243,23 @@ mod three_d {
         };
         #[cfg(feature = "noscratch")]
         let scratch: &mut [Slot] = &mut [];
-        let pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading);
+        #[cfg(feature = "fog")]
+        let stage = {
+            use rasterizer_core::shade::{Fog, FogCurve, FogSettings};
+            // Opaque settings, so that the fog's arithmetic is not folded away.
+            let settings = FogSettings {
+                color: black_box(embedded_graphics_core::pixelcolor::Rgb888::new(
+                    128, 144, 160,
+                )),
+                start: black_box(Fx16::from_int(2)),
+                end: black_box(Fx16::from_int(4)),
+                curve: FogCurve::Linear,
+            };
+            Fog::new(shading, settings, &xf.view)
+        };
+        #[cfg(not(feature = "fog"))]
+        let stage = shading;
+        let pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, stage);
         #[cfg(feature = "dither")]
         let mut pl = {
             struct Bayer4;

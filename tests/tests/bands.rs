@@ -308,6 +308,87 @@ fn suzanne_every_band_height() {
     );
 }
 
+/// Fog is per vertex (per triangle for flat shading), so bands match the whole frame: Gouraud,
+/// flat and vertex colours, linear and exponential, with and without a depth test, and dithered.
+#[test]
+fn fogged_bands_match_the_whole_frame() {
+    use rasterizer_core::shade::{Fog, FogCurve, FogSettings};
+    let m = suzanne();
+    let mesh = m.mesh();
+    let (w, h) = (160u32, 120u32);
+    // compare_bands' camera: the view is the same for any turn of the model.
+    let view = transforms(w, h, 23).view;
+    let fog = |curve| FogSettings {
+        color: Rgb888::new(128, 144, 160),
+        start: Fx16::from_ratio(5, 2),
+        end: Fx16::from_int(4),
+        curve,
+    };
+    let rows = [1u32, 5, 16, 33, 120];
+    let scratch = |rows: u32| vec![Scratch::ALL[rows as usize % 3]];
+    for curve in [FogCurve::Linear, FogCurve::exponential(48)] {
+        for depth in [Some(Compare::Less), None] {
+            compare_bands(
+                &mesh,
+                w,
+                h,
+                &|| {
+                    let lit = GouraudLit::<Fx16, Rgb565, 1>::new(lighting());
+                    (CullClockwise, Fog::new(lit, fog(curve), &view))
+                },
+                depth,
+                &rows,
+                &scratch,
+            );
+        }
+        compare_bands(
+            &mesh,
+            w,
+            h,
+            &|| {
+                let flat = FlatLit::<Fx16, Rgb565, 1>::new(lighting());
+                (CullClockwise, Fog::new(flat, fog(curve), &view))
+            },
+            Some(Compare::Less),
+            &rows,
+            &scratch,
+        );
+        compare_bands(
+            &mesh,
+            w,
+            h,
+            &|| {
+                let colors = VertexColors::<Rgb565>::new();
+                (CullClockwise, Fog::new(colors, fog(curve), &view))
+            },
+            Some(Compare::Less),
+            &rows,
+            &scratch,
+        );
+    }
+    struct Bayer4;
+    impl Numerics for Bayer4 {
+        const DITHER: Dither = Dither::Bayer4;
+    }
+    let xf = transforms(w, h, 30);
+    let vp = Viewport::new(w, h);
+    let shading = || {
+        let lit = GouraudLit::<Fx16, Rgb565, 1>::new(lighting());
+        Fog::new(lit, fog(FogCurve::Linear), &xf.view)
+    };
+    let (whole, _) = whole_frame(
+        &mesh,
+        w,
+        h,
+        Pipeline::new(&xf, vp, CullClockwise, NoDepth, shading()).with_numerics::<Bayer4>(),
+    );
+    for rows in [3u32, 7, 16] {
+        let p = Pipeline::new(&xf, vp, CullClockwise, NoDepth, shading()).with_numerics::<Bayer4>();
+        let (out, _) = banded(&mesh, w, h, rows, Scratch::Half, p);
+        assert!(out == whole, "{rows} rows differ (dithered fog)");
+    }
+}
+
 #[test]
 fn suzanne_m1_size_common_band_heights_with_and_without_scratch() {
     let m = suzanne();

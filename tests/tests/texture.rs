@@ -174,7 +174,11 @@ fn id_texture_error(cam: &Transforms<Fx16>, reps: f64) -> (usize, usize, f64) {
             let (tx, ty) = (i64::from(c >> 11), i64::from(c & 31));
             // The drawn texel index is taken modulo 32: compare within the repeat.
             let (u, v) = (u.rem_euclid(32.0), v.rem_euclid(32.0));
-            let e = |x: f64, i: i64| outside(x, i).min(outside(x - 32.0, i)).min(outside(x + 32.0, i));
+            let e = |x: f64, i: i64| {
+                outside(x, i)
+                    .min(outside(x - 32.0, i))
+                    .min(outside(x + 32.0, i))
+            };
             let err = e(u, tx).max(e(v, ty));
             if err > 0.0 {
                 off += 1;

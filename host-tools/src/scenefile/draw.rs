@@ -3,7 +3,7 @@
 use super::format::{
     CullMode, DitherMode, FillRuleDef, LightDef, PixelFormat, ShadingModel, Shape,
 };
-use super::load::{MeshData, OwnedMesh, Scene, SceneMesh};
+use super::load::{MeshData, OwnedMesh, Scene, SceneFog, SceneMesh};
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
 use embedded_graphics_simulator::{OutputImage, OutputSettingsBuilder, SimulatorDisplay};
@@ -13,7 +13,7 @@ use rasterizer_core::cull::Cull;
 use rasterizer_core::depth::DepthTest;
 use rasterizer_core::numerics::{Dither, Numerics, Perspective, Standard};
 use rasterizer_core::prelude::*;
-use rasterizer_core::shade::Shading;
+use rasterizer_core::shade::{Fog, FogCurve, FogSettings, Foggable, Shading, FOG_TABLE_LEN};
 use rasterizer_core::surface::{BlendError, ClipTo};
 use rasterizer_core::{mesh::MeshSource, pipeline::RenderStats};
 use std::convert::Infallible;
@@ -297,6 +297,8 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> R
                 translucent(target, m, &job, zbuf)
             } else if dithers(mesh) {
                 by_format(target, m, &job, zbuf, format)
+            } else if fogs(mesh) {
+                fogged(target, m, &job, zbuf)
             } else {
                 by_cull(target, m, &job, zbuf)
             }
@@ -361,6 +363,96 @@ fn dithers(m: &SceneMesh) -> bool {
             m.shading,
             ShadingModel::Gouraud | ShadingModel::VertexColors
         )
+}
+
+/// Whether a mesh is fogged: it asks for fog and has a colour to mix (filled, Gouraud, vertex
+/// colours or flat).
+fn fogs(m: &SceneMesh) -> bool {
+    m.fog.is_some()
+        && !m.wireframe
+        && matches!(
+            m.shading,
+            ShadingModel::Gouraud | ShadingModel::VertexColors | ShadingModel::Flat
+        )
+}
+
+/// A mesh's fog in `S`; without one, a curve that is zero everywhere, which leaves every colour
+/// exactly as it is (so the dithered path compiles one pipeline per shading model, fogged or not).
+fn fog_settings<S: Real>(fog: Option<&SceneFog>) -> FogSettings<S> {
+    match fog {
+        Some(f) => FogSettings {
+            color: f.color,
+            start: S::from_f64(f.start),
+            end: S::from_f64(f.end),
+            curve: f.curve,
+        },
+        None => FogSettings {
+            color: Rgb888::BLACK,
+            start: S::ZERO,
+            end: S::ONE,
+            curve: FogCurve::Table([0; FOG_TABLE_LEN]),
+        },
+    }
+}
+
+/// A fogged mesh (not dithered): culling chosen at run time and the shading model wrapped in
+/// [`Fog`], so fog adds one pipeline per model, depth stage and interpolation, not per culling.
+fn fogged<S: Real>(
+    target: &mut Target<'_>,
+    mesh: &DynMesh<'_, S>,
+    job: &Job<'_, S>,
+    zbuf: &mut [u16],
+) -> RenderStats {
+    let cull = ModeCull(job.mesh.cull);
+    if !job.mesh.depth {
+        return fogged_shading(target, mesh, job, cull, NoDepth);
+    }
+    let (w, h) = (job.viewport.width, job.viewport.height);
+    match DepthBuffer::new(zbuf, w, h, Compare::Less) {
+        Ok(depth) => fogged_shading(target, mesh, job, cull, depth),
+        Err(_) => RenderStats::default(),
+    }
+}
+
+/// Picks the shading model of a fogged mesh.
+fn fogged_shading<S: Real, D: DepthTest>(
+    target: &mut Target<'_>,
+    mesh: &DynMesh<'_, S>,
+    job: &Job<'_, S>,
+    cull: ModeCull,
+    depth: D,
+) -> RenderStats {
+    fn with_fog<S: Real, D: DepthTest, Sh: Foggable<S, Color = Rgb888>>(
+        target: &mut Target<'_>,
+        mesh: &DynMesh<'_, S>,
+        job: &Job<'_, S>,
+        cull: ModeCull,
+        depth: D,
+        inner: Sh,
+    ) -> RenderStats {
+        let settings = fog_settings(job.mesh.fog.as_ref());
+        let shading = Fog::new(inner, settings, &job.transforms.view);
+        by_perspective(target, mesh, job, cull, depth, shading)
+    }
+    let lighting = job.lighting.clone();
+    match job.mesh.shading {
+        ShadingModel::VertexColors => with_fog(
+            target,
+            mesh,
+            job,
+            cull,
+            depth,
+            VertexColors::<Rgb888>::new(),
+        ),
+        ShadingModel::Flat => {
+            let flat = FlatLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
+            with_fog(target, mesh, job, cull, depth, flat)
+        }
+        _ => {
+            let gouraud = GouraudLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
+            with_fog(target, mesh, job, cull, depth, gouraud)
+        }
+    }
 }
 
 /// The `Rgb888` target seen as a target of the output's colour `C`, so that a dithered pipeline
@@ -476,15 +568,21 @@ fn dithered_shading<S: Real, C: ShadeColor + Into<Rgb888>, D: DepthTest>(
         p.draw(target, mesh, &mut scratch).unwrap_or_default()
     }
     let bayer4 = job.mesh.dither == DitherMode::Bayer4;
+    let fog = fog_settings(job.mesh.fog.as_ref());
+    let view = &job.transforms.view;
     if job.mesh.shading == ShadingModel::VertexColors {
-        let sh = VertexColors::<C>::new();
+        let sh = Fog::new(VertexColors::<C>::new(), fog, view);
         return if bayer4 {
             draw::<S, C, D, _, Dithered<1>>(target, mesh, job, cull, depth, sh)
         } else {
             draw::<S, C, D, _, Dithered<2>>(target, mesh, job, cull, depth, sh)
         };
     }
-    let sh = GouraudLit::<S, C, MAX_LIGHTS>::new(job.lighting.clone());
+    let sh = Fog::new(
+        GouraudLit::<S, C, MAX_LIGHTS>::new(job.lighting.clone()),
+        fog,
+        view,
+    );
     if bayer4 {
         draw::<S, C, D, _, Dithered<1>>(target, mesh, job, cull, depth, sh)
     } else {

@@ -127,6 +127,8 @@ pub struct RenderOptions {
     /// The colour of the ambient light.
     #[serde(default = "white")]
     pub ambient: Color,
+    /// Fog by depth (`shade::Fog`), for meshes that do not set their own.
+    pub fog: Option<FogDef>,
 }
 
 impl Default for RenderOptions {
@@ -140,6 +142,7 @@ impl Default for RenderOptions {
             dither: DitherMode::default(),
             specular: SpecularModel::default(),
             ambient: white(),
+            fog: None,
         }
     }
 }
@@ -172,6 +175,36 @@ pub enum DitherMode {
     Bayer4,
     /// The 8 x 8 Bayer matrix.
     Bayer8,
+}
+
+/// A `fog` table: the colour, where it starts and ends (depths in front of the camera) and how
+/// it thickens in between.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FogDef {
+    /// The fog's colour.
+    pub color: Color,
+    /// The depth where fog begins.
+    pub start: f64,
+    /// The depth where only fog is seen.
+    pub end: f64,
+    /// The curve between them.
+    #[serde(default)]
+    pub mode: FogMode,
+    /// The exponential curve's density `k` (0 ..= 8).
+    #[serde(default = "default_density")]
+    pub density: f64,
+}
+
+/// How fog thickens between `start` and `end`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FogMode {
+    /// In proportion to depth (`FogCurve::Linear`).
+    #[default]
+    Linear,
+    /// `(1 - e^(-k t)) / (1 - e^(-k))` (`FogCurve::exponential`).
+    Exponential,
 }
 
 /// Back-face culling.
@@ -275,6 +308,8 @@ pub struct MeshDef {
     /// Opacity 0 ..= 255 (default 255, opaque): below 255 the mesh is blended over what is
     /// drawn before it and tests depth without writing it.
     pub opacity: Option<u8>,
+    /// Replaces `render.fog`.
+    pub fog: Option<FogDef>,
 }
 
 /// The `texture_filter` key.
@@ -515,4 +550,7 @@ fn default_near() -> f64 {
 }
 fn default_far() -> f64 {
     100.0
+}
+fn default_density() -> f64 {
+    3.0
 }

@@ -1,9 +1,9 @@
 //! Reading a scene file: parsing, checking every value, loading the meshes.
 
 use super::format::{
-    Camera, Color, CullMode, DitherMode, LightDef, MeshDef, NormalsMode, PixelFormat, ScaleDef,
-    SceneFile, ShadingModel, Shape, SpecularModel, TextureFilterDef, TextureWrapDef,
-    VertexColorMode,
+    Camera, Color, CullMode, DitherMode, FogDef, FogMode, LightDef, MeshDef, NormalsMode,
+    PixelFormat, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel, TextureFilterDef,
+    TextureWrapDef, VertexColorMode,
 };
 use super::limits;
 use super::reference::Real;
@@ -13,8 +13,9 @@ use fixtures::texture_file::{TextureFileError, TextureImage, MAX_SIDE};
 use fixtures::vec64::{cross, norm, sub as sub3};
 use rasterizer_core::mesh::MAGIC;
 use rasterizer_core::prelude::*;
-use rasterizer_core::texture::{Filter, Wrap};
 use rasterizer_core::raster::line::MAX_LINE_WIDTH;
+use rasterizer_core::shade::{FogCurve, FOG_MAX_DENSITY};
+use rasterizer_core::texture::{Filter, Wrap};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -97,6 +98,8 @@ pub struct SceneMesh {
     pub texture: Option<SceneTexture>,
     /// Opacity: below 255, blended through `Translucent` with a read-only depth test.
     pub opacity: u8,
+    /// Fog, when the mesh or `[render]` asks for it.
+    pub fog: Option<SceneFog>,
 }
 
 /// A mesh's texture, loaded and converted to Rgb565.
@@ -110,6 +113,44 @@ pub struct SceneTexture {
     pub filter: Filter,
     /// How coordinates outside `0 ..= 1` address the texture.
     pub wrap: Wrap,
+}
+
+/// A checked `fog` table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneFog {
+    /// The fog's colour.
+    pub color: Rgb888,
+    /// Where it starts, in world units in front of the camera.
+    pub start: f64,
+    /// Where it ends.
+    pub end: f64,
+    /// Its curve.
+    pub curve: FogCurve,
+}
+
+/// Checks a `fog` table: `start` and `end` within 16.16's comfortable range, the density within
+/// what the exponential table covers.
+fn scene_fog(f: &FogDef) -> Result<SceneFog, String> {
+    limits::within("fog.start", &[f.start], limits::MAX_COORD)?;
+    limits::within("fog.end", &[f.end], limits::MAX_COORD)?;
+    let max = f64::from(FOG_MAX_DENSITY) / 16.0;
+    if !(0.0..=max).contains(&f.density) {
+        return Err(format!(
+            "fog.density = {} is out of range: 0 ..= {}",
+            limits::num(f.density),
+            limits::num(max)
+        ));
+    }
+    Ok(SceneFog {
+        color: rgb(f.color),
+        start: f.start,
+        end: f.end,
+        curve: match f.mode {
+            FogMode::Linear => FogCurve::Linear,
+            // In sixteenths, as the core takes it.
+            FogMode::Exponential => FogCurve::exponential((f.density * 16.0).round() as u16),
+        },
+    })
 }
 
 /// Vertex data: a packed blob drawn in place, or a mesh in memory.
@@ -453,6 +494,13 @@ fn load_mesh(
             "mesh {name}: dither does not apply to a textured mesh; remove it or the texture"
         ));
     }
+    // A mesh's table replaces [render]'s as a whole.
+    let fog = def
+        .fog
+        .or(render.fog)
+        .map(|f| scene_fog(&f))
+        .transpose()
+        .map_err(|e| format!("mesh {name}: {e}"))?;
     let c = def.color.0;
     let m = def.material.as_ref();
     let material = Material {
@@ -484,6 +532,7 @@ fn load_mesh(
         dither: def.dither.unwrap_or(render.dither),
         texture,
         opacity: def.opacity.unwrap_or(u8::MAX),
+        fog,
     })
 }
 

@@ -2,10 +2,16 @@
 //!
 //! [`Lighting`] turns a position and a normal into a lit colour, per vertex (Gouraud) or per pixel,
 //! with fixed-capacity light lists and no floats, so it runs on the same cores as the rasterizer.
+//! [`Fog`] mixes a shading model's colour toward a fog colour by depth.
 
+pub mod fog;
 pub mod light;
 pub mod model;
 pub mod textured;
+
+pub use fog::{
+    Fog, FogColor, FogCurve, FogSettings, Foggable, FOG_MAX_DENSITY, FOG_ONE, FOG_TABLE_LEN,
+};
 
 pub use light::{Light, Lighting, Material, Specular};
 pub use model::{

@@ -175,7 +175,7 @@ const fn channel_frac(max: u8) -> u32 {
 /// A colour's three channels at the target's depth, each with [`channel_frac`] fractional bits
 /// and half a step added (so the fused loop's shift rounds), from `num[c] / den` 8-bit steps.
 #[inline(always)]
-fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3] {
+pub(super) fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3] {
     let mut out = [0i32; 3];
     for c in 0..3 {
         let f = channel_frac(C::MAX[c]);
@@ -317,12 +317,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
         []
     }
     fn face(&mut self, v: &[VertexIn<S>; 3]) {
-        let normal = (v[1].position - v[0].position).cross(v[2].position - v[0].position);
-        // The centroid, for point lights and the specular term.
-        let third = S::from_ratio(1, 3);
-        let centre = (v[0].position + v[1].position + v[2].position).scale(third);
-        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
-        self.color = from_sums(lighting.shade_sums(centre, normal));
+        self.color = from_sums(flat_face_sums(self, v));
     }
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
@@ -332,6 +327,30 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
     fn pixel(&self, _: &[i32; 0]) -> C {
         self.color
     }
+}
+
+/// A triangle's lit sums ([`Lighting::shade_sums`]) as [`FlatLit`] lights it: with the face
+/// normal, at the centroid.
+#[inline(always)]
+pub(super) fn flat_face_sums<S: Scalar, C, const N: usize>(
+    flat: &FlatLit<S, C, N>,
+    v: &[VertexIn<S>; 3],
+) -> [u64; 3] {
+    let normal = (v[1].position - v[0].position).cross(v[2].position - v[0].position);
+    // The centroid, for point lights and the specular term.
+    let third = S::from_ratio(1, 3);
+    let centre = (v[0].position + v[1].position + v[2].position).scale(third);
+    let lighting = flat.frame.as_ref().unwrap_or(&flat.lighting);
+    lighting.shade_sums(centre, normal)
+}
+
+/// Sets a [`FlatLit`]'s colour for the triangle from lit sums, rounded once.
+#[inline(always)]
+pub(super) fn set_flat_sums<S, C: ShadeColor, const N: usize>(
+    flat: &mut FlatLit<S, C, N>,
+    sums: [u64; 3],
+) {
+    flat.color = from_sums(sums);
 }
 
 /// Lit per vertex with the mesh's normals; the lit colour is interpolated (Gouraud shading).
