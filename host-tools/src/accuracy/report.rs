@@ -428,8 +428,9 @@ fn texture_section(s: &mut String, sweep: &Sweep) {
          the exact perspective-correct coordinates at its centre, interpolated in f64 from the \
          triangle's vertices as the pipeline projected them (so this is the texture path's own \
          error, apart from the geometry's). A 256-texel id texture names the texel each pixel \
-         drew; multiplying the model's coordinates by 4 and 16 makes it address the texture as \
-         one of 1024 texels a side (M4's own) and 4096 would, resolving the error more finely. \
+         drew; multiplying the model's coordinates by 4, 16 and 256 makes it address the texture \
+         as one of 1024 texels a side (M4's own), 4096 and 65536 would, resolving the error \
+         ever more finely. \
          Distance: how far the exact coordinates lie from the texel drawn, in texels of that \
          side, the larger of the two axes (zero when they fall in it). The affine columns are \
          the same measure had the coordinates been interpolated linearly in screen space (the \

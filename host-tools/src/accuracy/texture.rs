@@ -54,8 +54,8 @@ fn outside(x: f64, i: f64, side: f64) -> f64 {
     d(x).min(d(x - side)).min(d(x + side))
 }
 
-/// Measures M4 with a 256-texel id texture addressed as textures of 256, 1024 (M4's own) and
-/// 4096 texels a side.
+/// Measures M4 with a 256-texel id texture addressed as textures of 256, 1024 (M4's own), 4096
+/// and 65536 texels a side.
 ///
 /// # Errors
 /// The model or a draw failing, as text.
@@ -127,7 +127,7 @@ pub fn measure() -> Result<Vec<TextureRow>, String> {
     }
     let texture = Texture::new(8, 8, &texels).map_err(|e| e.to_string())?;
     let mut rows = Vec::new();
-    for times in [1i32, 4, 16] {
+    for times in [1i32, 4, 16, 256] {
         let side = id_side * times as u32;
         let scaled: Vec<[i32; 2]> = uvs.iter().map(|uv| uv.map(|c| c * times)).collect();
         let uvs = &scaled;

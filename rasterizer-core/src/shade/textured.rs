@@ -6,11 +6,12 @@
 //! `1 / w` is taken from the vertex's clip-space `w`.
 //!
 //! Perspective-correct coordinates, in integers: per triangle, the three `1 / w` are scaled
-//! together to 16 bits (their ratios are all that matter) and the coordinates are made relative
+//! together to 31 bits (their ratios are all that matter) and the coordinates are made relative
 //! to the triangle's smallest whole texel, scaled to the triangle's extent, and multiplied by
-//! them; the span loop interpolates `u / w`, `v / w` and `1 / w` as planes (16 more fractional
-//! bits) and each pixel divides, so the coordinates are exact up to the planes' rounding (see
-//! `docs/ACCURACY.md` for the measured error). A pipeline that interpolates every value
+//! them; the span loop interpolates `u / w`, `v / w` and `1 / w` as 32-bit planes and each pixel
+//! divides, so the coordinates are exact up to the planes' rounding, about 2^-30 of the
+//! triangle's extent in texels (`docs/ACCURACY.md` measures it). The values use all 32 bits, so
+//! the span loop gives them no fractional bits of its own (`FUSED_FRAC` 0). A pipeline that interpolates every value
 //! perspective-correctly ([`crate::numerics::Perspective`]) gets affine values here and corrects
 //! them itself.
 
@@ -21,7 +22,8 @@ use crate::geom::MAX_VARYINGS;
 use crate::math::{Mat4, Scalar};
 use crate::texture::{Filter, Texture, Wrap};
 
-/// Values per vertex: light r g b (8.8, half a step added), u, v (16.16 texture units) and `1 / w`.
+/// Values per vertex: light r g b (8.23, half a step added), u, v (16.16 texture units) and
+/// `1 / w`.
 type Values = [i32; 6];
 
 /// The largest `1 / w` kept per vertex, as `2^Q_BITS / w`: with `w` at least the clipper's
@@ -162,6 +164,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     const NEEDS_UV: bool = true;
     const NEEDS_W: bool = true;
     const NEEDS_TRIANGLE: bool = true;
+    const FUSED_FRAC: u32 = 0;
     const FUSED_OFFSET: u32 = 0;
 
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
@@ -172,10 +175,11 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> Values {
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
-        // sums / (255 2^16) 8-bit steps, in 8.8 with half a step added (the pixel truncates).
+        // sums / (255 2^16) 8-bit steps (at most 255), in 8.23 with half a step added (the
+        // pixel truncates): below 2^31.
         let light = lighting
             .shade_sums(v.position, v.normal)
-            .map(|s| ((s * 256 + 255 * (1 << 15)) / (255 << 16)) as i32 + 128);
+            .map(|s| ((s * 128 + 127) / 255).min(255 << 23) as i32 + (1 << 22));
         // Affine until `project` sets 1 / w: every vertex the same.
         [light[0], light[1], light[2], v.uv[0], v.uv[1], 1 << 16]
     }
@@ -186,15 +190,15 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     }
 
     fn triangle(&mut self, v: &mut [Values; 3]) {
-        // 1 / w of the three, scaled together so the largest has 16 bits.
+        // 1 / w of the three, scaled together so the largest has 31 bits.
         let q_max = v[0][5].max(v[1][5]).max(v[2][5]).max(1) as u32;
         let bits = 32 - q_max.leading_zeros();
         let q = [0, 1, 2].map(|k| {
             let q = v[k][5].max(1) as u32;
-            let q = if bits > 16 {
-                q >> (bits - 16)
+            let q = if bits > 31 {
+                q >> (bits - 31)
             } else {
-                q << (16 - bits)
+                q << (31 - bits)
             };
             i64::from(q.max(1))
         });
@@ -210,7 +214,8 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
             // shifts stay within 64 bits).
             let rel = t.map(|x| (x - (base << 16)).min(u32::MAX.into()));
             let extent = rel[0].max(rel[1]).max(rel[2]).max(1) as u64;
-            // rel q / 2^shift stays below 2^16 (q below 2^16, rel below 2^shift).
+            // rel q / 2^shift stays below 2^31 (q below 2^31, rel below 2^shift); the product
+            // below 2^63.
             let shift = (64 - extent.leading_zeros()).max(1);
             for k in 0..3 {
                 v[k][axis] = ((rel[k] * q[k]) >> shift) as i32;
@@ -229,7 +234,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
         let q = v[5].max(1) as i64;
         let u = (i64::from(v[3].max(0)) << self.current.shift[0]) / q;
         let w = (i64::from(v[4].max(0)) << self.current.shift[1]) / q;
-        let light = [0, 1, 2].map(|c| (v[c].clamp(0, 65535) as u32) >> 8);
+        let light = [0, 1, 2].map(|c| (v[c].max(0) as u32) >> 23);
         self.shade(u, w, light)
     }
 
@@ -239,6 +244,6 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
         let [su, sv] = self.current.shift;
         let u = ((u64::from(acc[3]) << su) / q) as i64;
         let v = ((u64::from(acc[4]) << sv) / q) as i64;
-        self.shade(u, v, [acc[0] >> 24, acc[1] >> 24, acc[2] >> 24])
+        self.shade(u, v, [acc[0] >> 23, acc[1] >> 23, acc[2] >> 23])
     }
 }
