@@ -110,6 +110,16 @@ impl<'a> Texture<'a> {
         })
     }
 
+    /// A texture whose sides and length the caller has checked ([`crate::mesh::PackedMesh`]'s
+    /// parser): no second check in the code. Wrong ones read texels as 0, never out of bounds.
+    pub(crate) const fn checked(width_log2: u8, height_log2: u8, texels: &'a [u8]) -> Self {
+        Self {
+            texels,
+            width_log2,
+            height_log2,
+        }
+    }
+
     /// The width's power of two.
     pub const fn width_log2(&self) -> u8 {
         self.width_log2

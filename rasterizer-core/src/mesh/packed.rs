@@ -204,6 +204,20 @@ const fn pad4(n: usize) -> usize {
 
 /// The section layout of a blob up to the triangles: `(start, len)` of positions, normals,
 /// colours, texture coordinates and indices, and the length so far (where a texture starts).
+/// The first non-zero byte between the header and the first section, or between sections
+/// (`(start, len)`, in order, within `bytes`). One loop, not one per section: a smaller parser.
+#[inline(never)]
+fn nonzero_padding(bytes: &[u8], sections: &[(usize, usize)]) -> Option<usize> {
+    let mut covered = HEADER_LEN;
+    for &(start, len) in sections {
+        if let Some(o) = (covered..start).find(|&o| bytes.get(o).is_some_and(|&b| b != 0)) {
+            return Some(o);
+        }
+        covered = start + len;
+    }
+    None
+}
+
 fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 5], usize) {
     let mut at = HEADER_LEN;
     let mut section = |len: usize| {
@@ -268,7 +282,7 @@ impl<'a> PackedMesh<'a> {
         let (n, t) = (nv as usize, nt as usize);
         let ([pos, nrm, col, uv, idx], mut total) = layout(n, t, flags);
         // The texture section: its header, then texels as many as its sides say.
-        let (mut sides, mut tex) = ((total, 0), (total, 0));
+        let (mut sides, mut tex, mut texture_sides) = ((total, 0), (total, 0), None);
         if flags & FLAG_TEXTURE != 0 {
             let Some(&[w, h, ..]) = bytes.get(total..total + TEXTURE_HEADER_LEN) else {
                 return Err(MeshError::WrongLength {
@@ -285,6 +299,7 @@ impl<'a> PackedMesh<'a> {
             // The two zero bytes after the sides are checked as padding below.
             sides = (total, 2);
             tex = (total + TEXTURE_HEADER_LEN, 2 << (w + h));
+            texture_sides = Some((w, h));
             total = pad4(tex.0 + tex.1);
         }
         if bytes.len() != total {
@@ -294,15 +309,9 @@ impl<'a> PackedMesh<'a> {
             });
         }
         // Padding: every byte not inside the header or a section is zero.
-        let mut covered = HEADER_LEN;
-        for (start, len) in [pos, nrm, col, uv, idx, sides, tex] {
-            if let Some(o) = (covered..start).find(|&o| bytes[o] != 0) {
-                return Err(MeshError::BadPadding { offset: o });
-            }
-            covered = start + len;
-        }
-        if let Some(o) = (covered..total).find(|&o| bytes[o] != 0) {
-            return Err(MeshError::BadPadding { offset: o });
+        let sections = [pos, nrm, col, uv, idx, sides, tex, (total, 0)];
+        if let Some(offset) = nonzero_padding(bytes, &sections) {
+            return Err(MeshError::BadPadding { offset });
         }
         let offset = [0, 1, 2].map(|k| u32_at(bytes, 16 + 4 * k) as i32);
         let scale = [0, 1, 2].map(|k| u32_at(bytes, 28 + 4 * k));
@@ -317,7 +326,8 @@ impl<'a> PackedMesh<'a> {
                 return Err(MeshError::BadScale);
             }
         }
-        let sec = |(start, len): (usize, usize)| &bytes[start..start + len];
+        // Every section lies within `bytes` (the length was checked): no panic path.
+        let sec = |(start, len): (usize, usize)| bytes.get(start..start + len).unwrap_or_default();
         let mesh = Self {
             vertices: n,
             triangles: t,
@@ -329,12 +339,8 @@ impl<'a> PackedMesh<'a> {
             uvs: (flags & FLAG_UVS != 0).then(|| sec(uv)),
             indices: sec(idx),
             wide: flags & FLAG_U32_INDICES != 0,
-            texture: if flags & FLAG_TEXTURE != 0 {
-                let (w, h) = (bytes[sides.0], bytes[sides.0 + 1]);
-                Some(Texture::new(w, h, sec(tex)).map_err(MeshError::Texture)?)
-            } else {
-                None
-            },
+            // Sides and length were checked above.
+            texture: texture_sides.map(|(w, h)| Texture::checked(w, h, sec(tex))),
         };
         for v in 0..n {
             let bad = |b: &[u8]| (0..3).any(|k| u16_at(b, 6 * v + 2 * k) == 0x8000);

@@ -174,12 +174,12 @@ where
             Some(s) if !s.st.is_empty() => s.st.unpack(),
             _ => {
                 let space = Space {
-                    mvp: &self.mvp,
                     model: &self.model,
                     normal_matrix: &self.normal_matrix,
                     model_space: self.model_space,
                 };
-                let packed = shade::<S, Sh, M, N>(&mut self.shading, &space, mesh, i, None);
+                let packed =
+                    shade::<S, Sh, M, N>(&mut self.shading, &space, &self.mvp, mesh, i, None);
                 if let Some(s) = scratch.get_mut(i) {
                     s.st = packed;
                 }
@@ -193,7 +193,6 @@ where
     #[inline(always)]
     pub(super) fn vertex_in<M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
         let space = Space {
-            mvp: &self.mvp,
             model: &self.model,
             normal_matrix: &self.normal_matrix,
             model_space: self.model_space,
@@ -231,7 +230,6 @@ where
     ) -> [Sh::Varyings; 3] {
         use crate::shade::Stored;
         let space = Space {
-            mvp: &self.mvp,
             model: &self.model,
             normal_matrix: &self.normal_matrix,
             model_space: self.model_space,
@@ -240,7 +238,8 @@ where
         let normal = (p[1] - p[0]).cross(p[2] - p[0]);
         let mut out = [Sh::Varyings::default(); 3];
         for (&i, o) in idx.iter().zip(&mut out) {
-            *o = shade::<S, Sh, M, N>(&mut self.shading, &space, mesh, i, Some(normal)).unpack();
+            *o = shade::<S, Sh, M, N>(&mut self.shading, &space, &self.mvp, mesh, i, Some(normal))
+                .unpack();
         }
         out
     }
@@ -363,8 +362,6 @@ pub(super) fn viewport_edges<const BITS: u32>(vp: &Viewport) -> [i64; 4] {
 /// Where a shader's vertices are taken from: the model and normal matrices, and whether the
 /// shader lights in model space this frame.
 struct Space<'a, S> {
-    /// The model-view-projection matrix, for the shaders that need a vertex's clip-space `w`.
-    mvp: &'a Mat4<S>,
     model: &'a Mat4<S>,
     normal_matrix: &'a Mat4<S>,
     model_space: bool,
@@ -443,22 +440,25 @@ fn shade_vertex<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
 fn shade<S: Scalar, Sh: Shading<S>, M: MeshSource<S>, N: Numerics>(
     shading: &mut Sh,
     space: &Space<'_, S>,
+    mvp: &Mat4<S>,
     mesh: &M,
     i: usize,
     normal: Option<Vec3<S>>,
 ) -> Sh::Stored {
     if Sh::NEEDS_W && !N::PERSPECTIVE {
-        shade_vertex_w(shading, space, mesh, i, normal)
+        shade_vertex_w(shading, space, mvp, mesh, i, normal)
     } else {
         shade_vertex(shading, space, mesh, i, normal)
     }
 }
 
-/// [`shade_vertex`] followed by [`Shading::project`] with the vertex's clip-space `w`.
+/// [`shade_vertex`] followed by [`Shading::project`] with the vertex's clip-space `w` (from
+/// `mvp`).
 #[inline]
 fn shade_vertex_w<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
     shading: &mut Sh,
     space: &Space<'_, S>,
+    mvp: &Mat4<S>,
     mesh: &M,
     i: usize,
     normal: Option<Vec3<S>>,
@@ -469,7 +469,7 @@ fn shade_vertex_w<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
         vin.normal = n;
     }
     let mut values = shading.vertex(&vin);
-    let w = space.mvp.transform_point(mesh.position(i)).w;
+    let w = mvp.transform_point(mesh.position(i)).w;
     shading.project(&mut values, w);
     Sh::Stored::pack(&values)
 }
