@@ -7,8 +7,8 @@
 //!
 //! Perspective-correct coordinates, in integers: per triangle, the three `1 / w` are scaled
 //! together to 31 bits (their ratios are all that matter) and the coordinates are made relative
-//! to the triangle's smallest whole texel, scaled to the triangle's extent, and multiplied by
-//! them; the span loop interpolates `u / w`, `v / w` and `1 / w` as 32-bit planes and each pixel
+//! to the whole texel before the triangle's smallest (a margin against wrapping), scaled to the
+//! triangle's extent, and multiplied by them; the span loop interpolates `u / w`, `v / w` and `1 / w` as 32-bit planes and each pixel
 //! divides, so the coordinates are exact up to the planes' rounding, about 2^-30 of the
 //! triangle's extent in texels (`docs/ACCURACY.md` measures it). The values use all 32 bits, so
 //! the span loop gives them no fractional bits of its own (`FUSED_FRAC` 0). A pipeline that interpolates every value
@@ -33,7 +33,8 @@ const Q_BITS: u32 = 22;
 /// What the pixels of the current triangle need to undo its scaling.
 #[derive(Debug, Clone, Copy, Default)]
 struct TriangleScale {
-    /// The triangle's smallest whole texel in x and y (16.16 texel units shifted right by 16).
+    /// The whole texel before the triangle's smallest, in x and y (16.16 texel units shifted
+    /// right by 16).
     base: [i32; 2],
     /// `u / w` was scaled down by `2^shift` texel units (16.16): the pixel shifts back.
     shift: [u32; 2],
@@ -207,9 +208,11 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
             u32::from(self.texture.height_log2()),
         );
         for (axis, log2) in [(3usize, wl), (4, hl)] {
-            // Texel units (16.16) relative to the triangle's smallest whole texel.
+            // Texel units (16.16) relative to the whole texel before the triangle's smallest: a
+            // texel of margin, so that the planes' rounding (a few units of 2^-31) cannot take
+            // a pixel's value below zero, where it would wrap.
             let t = [0, 1, 2].map(|k| i64::from(v[k][axis]) << log2);
-            let base = t[0].min(t[1]).min(t[2]) >> 16;
+            let base = (t[0].min(t[1]).min(t[2]) >> 16) - 1;
             // Beyond 2^16 texels across one triangle the coordinates are clamped (the pixels'
             // shifts stay within 64 bits).
             let rel = t.map(|x| (x - (base << 16)).min(u32::MAX.into()));
