@@ -1039,6 +1039,19 @@ fn readme_speed(f: &Figures) -> String {
         },
         "-".to_string(),
     ]);
+    if let Some(per) = f.get("M4", "ours", "per_primitive") {
+        let against = f
+            .get("M4", "ours/ours-untextured", "ratio")
+            .map_or_else(String::new, |r| {
+                format!(" ({}x the same scene untextured)", dec(r, 2))
+            });
+        t.row(&[
+            "M4: Spot textured (nearest texel x Gouraud), instructions per mesh triangle"
+                .to_string(),
+            format!("{}{against}", int(per)),
+            "-".to_string(),
+        ]);
+    }
     t.done()
 }
 
