@@ -171,12 +171,22 @@ fn texture_problems_name_the_file_the_line_and_the_fix() {
 }
 
 #[test]
-fn a_texture_needs_gouraud_shading_and_no_dither() {
+fn a_texture_needs_gouraud_shading_and_no_dither_fog_or_opacity() {
     let dir = setup("shading");
     for (name, extra, needle) in [
         ("phong", "shading = \"phong\"\n", "not \"phong\""),
         ("flat", "shading = \"flat\"\n", "not \"flat\""),
         ("dither", "dither = \"bayer4\"\n", "dither does not apply"),
+        (
+            "fog",
+            "fog = { color = [1, 2, 3], start = 1.0, end = 2.0 }\n",
+            "fog does not apply",
+        ),
+        (
+            "opacity",
+            "opacity = 128\n",
+            "opacity below 255 does not apply",
+        ),
     ] {
         let path = scene(
             &dir,

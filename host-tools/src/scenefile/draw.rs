@@ -366,10 +366,11 @@ fn dithers(m: &SceneMesh) -> bool {
 }
 
 /// Whether a mesh is fogged: it asks for fog and has a colour to mix (filled, Gouraud, vertex
-/// colours or flat).
+/// colours or flat, not textured).
 fn fogs(m: &SceneMesh) -> bool {
     m.fog.is_some()
         && !m.wireframe
+        && m.texture.is_none()
         && matches!(
             m.shading,
             ShadingModel::Gouraud | ShadingModel::VertexColors | ShadingModel::Flat

@@ -494,6 +494,17 @@ fn load_mesh(
             "mesh {name}: dither does not apply to a textured mesh; remove it or the texture"
         ));
     }
+    if texture.is_some() && def.fog.is_some() {
+        return Err(format!(
+            "mesh {name}: fog does not apply to a textured mesh; remove it or the texture"
+        ));
+    }
+    if texture.is_some() && def.opacity.is_some_and(|o| o < u8::MAX) {
+        return Err(format!(
+            "mesh {name}: opacity below 255 does not apply to a textured mesh; remove it or the \
+             texture"
+        ));
+    }
     // A mesh's table replaces [render]'s as a whole.
     let fog = def
         .fog
