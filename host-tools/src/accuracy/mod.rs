@@ -13,6 +13,7 @@ pub mod blending;
 pub mod breakdown;
 pub mod config;
 pub mod count;
+pub mod fog;
 pub mod metrics;
 pub mod plot;
 pub mod report;

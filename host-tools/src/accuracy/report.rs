@@ -336,6 +336,7 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
     dithering(&mut s, sweep);
     texture_section(&mut s, sweep);
     super::blending::section(&mut s);
+    super::fog::section(&mut s);
 
     let _ = writeln!(s, "## Where each format breaks down\n");
     let _ = writeln!(
