@@ -378,6 +378,22 @@ impl<S: Scalar> Space<'_, S> {
         }
     }
 
+    /// [`Space::vertex_in`] with `normal` instead of the vertex's own when there is one (a face
+    /// normal).
+    #[inline(always)]
+    fn vertex_in_with<Sh: Shading<S>, M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        i: usize,
+        normal: Option<Vec3<S>>,
+    ) -> VertexIn<S> {
+        let mut vin = self.vertex_in::<Sh, M>(mesh, i);
+        if let Some(n) = normal {
+            vin.normal = n;
+        }
+        vin
+    }
+
     /// The data of vertex `i` the shader may read.
     #[inline(always)]
     fn vertex_in<Sh: Shading<S>, M: MeshSource<S>>(&self, mesh: &M, i: usize) -> VertexIn<S> {
@@ -427,11 +443,7 @@ fn shade_vertex<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
     normal: Option<Vec3<S>>,
 ) -> Sh::Stored {
     use crate::shade::Stored;
-    let mut vin = space.vertex_in::<Sh, M>(mesh, i);
-    if let Some(n) = normal {
-        vin.normal = n;
-    }
-    Sh::Stored::pack(&shading.vertex(&vin))
+    Sh::Stored::pack(&shading.vertex(&space.vertex_in_with::<Sh, M>(mesh, i, normal)))
 }
 
 /// [`shade_vertex`], or for a shader whose values depend on the vertex's clip-space `w`
@@ -464,11 +476,7 @@ fn shade_vertex_w<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
     normal: Option<Vec3<S>>,
 ) -> Sh::Stored {
     use crate::shade::Stored;
-    let mut vin = space.vertex_in::<Sh, M>(mesh, i);
-    if let Some(n) = normal {
-        vin.normal = n;
-    }
-    let mut values = shading.vertex(&vin);
+    let mut values = shading.vertex(&space.vertex_in_with::<Sh, M>(mesh, i, normal));
     let w = mvp.transform_point(mesh.position(i)).w;
     shading.project(&mut values, w);
     Sh::Stored::pack(&values)
