@@ -1,6 +1,7 @@
 //! Textured meshes (`TexturedLit`): texel coordinates against the exact perspective-correct f64
 //! ones, filters and wrap modes, bands against the whole frame, and hard input.
 
+use fixtures::reference3d::{projected_corners, screen_weights};
 use proptest::prelude::*;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::{Specular, TexturedLit};
@@ -84,7 +85,8 @@ fn draw_from(
 }
 
 /// The exact texel coordinates at each pixel centre: the drawn triangles' screen vertices (the
-/// pipeline's own projection) and clip-space `w`, interpolated perspective-correctly in f64.
+/// pipeline's own projection) and clip-space `w`, interpolated perspective-correctly in f64
+/// (or screen-linearly, without `perspective`).
 fn exact_uv<'m>(
     mesh: &'m Mesh<'m, Fx16>,
     size: f64,
@@ -109,41 +111,20 @@ fn exact_uv_from<'m>(
         },
     );
     let mvp = cam.model.then(&cam.view).then(&cam.projection);
-    let verts: Vec<(f64, f64, f64)> = mesh
-        .positions
-        .iter()
-        .map(|&v| {
-            let clip = mvp.transform_point(v);
-            let (s, _) = p.project(&clip);
-            (
-                f64::from(s.x) / 64.0,
-                f64::from(s.y) / 64.0,
-                f64::from(clip.w.to_bits()) / 65536.0,
-            )
-        })
-        .collect();
+    let corners = projected_corners(&p, &mvp, mesh.positions);
     move |x, y| {
-        let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
         for tri in mesh.triangles {
-            let v = tri.map(|i| verts[i as usize]);
-            let area =
-                (v[1].0 - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (v[1].1 - v[0].1);
-            let l1 = ((cx - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (cy - v[0].1)) / area;
-            let l2 = ((v[1].0 - v[0].0) * (cy - v[0].1) - (cx - v[0].0) * (v[1].1 - v[0].1)) / area;
-            let l = [1.0 - l1 - l2, l1, l2];
-            if l.iter().any(|&b| b < -1e-9) {
+            let c = tri.map(|i| corners[usize::from(i)]);
+            let Some(b) = screen_weights(&c, x as u32, y as u32, W, H, perspective) else {
+                continue;
+            };
+            // The pixel centre lies in the triangle (on an edge counts).
+            if b.iter().any(|&w| w < -1e-9) {
                 continue;
             }
-            let uv = tri.map(|i| mesh.uvs.unwrap()[i as usize]);
-            let q = |k: usize| if perspective { 1.0 / v[k].2 } else { 1.0 };
-            let den: f64 = (0..3).map(|k| l[k] * q(k)).sum();
-            let f = |a: usize| {
-                (0..3)
-                    .map(|k| l[k] * q(k) * f64::from(uv[k][a]) / 65536.0)
-                    .sum::<f64>()
-                    / den
-                    * size
-            };
+            let uv = tri.map(|i| mesh.uvs.unwrap()[usize::from(i)]);
+            let f =
+                |a: usize| (0..3).map(|k| b[k] * f64::from(uv[k][a])).sum::<f64>() / 65536.0 * size;
             return Some((f(0), f(1)));
         }
         None

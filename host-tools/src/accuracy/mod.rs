@@ -288,6 +288,18 @@ pub fn run_count(args: &CountArgs) -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
+/// Panics unless docs/ACCURACY.md holds `section` as the report's code writes it now (for the
+/// sections computed without scenes, which their tests check against the committed report).
+#[cfg(test)]
+pub(crate) fn assert_report_holds(section: &str) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/ACCURACY.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    assert!(
+        doc.contains(section),
+        "regenerate docs/ACCURACY.md; the section is now:\n{section}"
+    );
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,7 @@
 //! (screen position and clip-space `w`), so the measure is the texture path's own error, apart
 //! from the geometry's.
 
-use fixtures::reference3d::{color_id, FaceIds, FaceMesh};
+use fixtures::reference3d::{color_id, projected_corners, screen_weights, FaceIds, FaceMesh};
 use fixtures::scenes::{HEIGHT, WIDTH};
 use fixtures::scenes3d::{transforms, Scene};
 use rasterizer_core::prelude::*;
@@ -102,20 +102,7 @@ pub fn measure() -> Result<Vec<TextureRow>, String> {
         },
     );
     let mvp = xf.model.then(&xf.view).then(&xf.projection);
-    let screen: Vec<(f64, f64, f64)> = loaded
-        .positions
-        .iter()
-        .map(|&v| {
-            let clip = mvp.transform_point(v);
-            let (s, _) = probe.project(&clip);
-            let sub = f64::from(1u32 << rasterizer_core::pipeline::DEFAULT_BITS);
-            (
-                f64::from(s.x) / sub,
-                f64::from(s.y) / sub,
-                f64::from(clip.w.to_bits()) / 65536.0,
-            )
-        })
-        .collect();
+    let corners = projected_corners(&probe, &mvp, &loaded.positions);
 
     // Texel (x, y) holds y 256 + x: 16 bits.
     let id_side = 256u32;
@@ -163,35 +150,25 @@ pub fn measure() -> Result<Vec<TextureRow>, String> {
             let Some(tri) = loaded.triangles.get(id as usize) else {
                 continue;
             };
-            let (x, y) = (
-                (i as u32 % WIDTH) as f64 + 0.5,
-                (i as u32 / WIDTH) as f64 + 0.5,
-            );
-            let v = tri.map(|k| screen[k as usize]);
-            let area =
-                (v[1].0 - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (v[1].1 - v[0].1);
-            if area == 0.0 {
-                continue;
-            }
-            let l1 = ((x - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (y - v[0].1)) / area;
-            let l2 = ((v[1].0 - v[0].0) * (y - v[0].1) - (x - v[0].0) * (v[1].1 - v[0].1)) / area;
-            let l = [1.0 - l1 - l2, l1, l2];
+            let (px, py) = (i as u32 % WIDTH, i as u32 / WIDTH);
+            let c = tri.map(|k| corners[k as usize]);
             let uv = tri.map(|k| uvs[k as usize]);
             let at = |perspective: bool, axis: usize| {
-                let q = |k: usize| if perspective { 1.0 / v[k].2 } else { 1.0 };
-                let den: f64 = (0..3).map(|k| l[k] * q(k)).sum();
-                (0..3)
-                    .map(|k| l[k] * q(k) * f64::from(uv[k][axis]) / 65536.0)
-                    .sum::<f64>()
-                    / den
-                    * ring
+                let b = screen_weights(&c, px, py, WIDTH, HEIGHT, perspective)?;
+                let u: f64 = (0..3).map(|k| b[k] * f64::from(uv[k][axis])).sum();
+                Some(u / 65536.0 * ring)
+            };
+            let (Some(u), Some(v), Some(ua), Some(va)) =
+                (at(true, 0), at(true, 1), at(false, 0), at(false, 1))
+            else {
+                continue;
             };
             let (tx, ty) = (
                 f64::from(u32::from(raw) % id_side),
                 f64::from(u32::from(raw) / id_side),
             );
-            let err = |p: bool| outside(at(p, 0), tx, ring).max(outside(at(p, 1), ty, ring));
-            let (e, a) = (err(true), err(false));
+            let e = outside(u, tx, ring).max(outside(v, ty, ring));
+            let a = outside(ua, tx, ring).max(outside(va, ty, ring));
             row.pixels += 1;
             if e > 0.0 {
                 row.off += 1;
