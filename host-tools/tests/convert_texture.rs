@@ -5,38 +5,13 @@
 use rasterizer_core::mesh::MeshSource;
 use rasterizer_core::prelude::*;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-fn models() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/assets/models")
-}
+#[path = "support/convert.rs"]
+mod support;
+use support::{convert, models, scratch_in, text};
 
 fn scratch(name: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "host-tools-convert-texture-{name}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn convert(input: &Path, output: &Path, extra: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_host-tools"))
-        .arg("convert")
-        .arg(input)
-        .arg("-o")
-        .arg(output)
-        .args(extra)
-        .output()
-        .unwrap()
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
+    scratch_in("convert-texture", name)
 }
 
 /// An 8-bit RGB PNG of `w` x `h` pixels coloured by `f`.
