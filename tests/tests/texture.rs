@@ -1,7 +1,7 @@
 //! Textured meshes (`TexturedLit`): texel coordinates against the exact perspective-correct f64
 //! ones, filters and wrap modes, bands against the whole frame, and hard input.
 
-use fixtures::reference3d::{projected_corners, screen_weights};
+use fixtures::reference3d::{full_white_light, projected_corners, screen_weights};
 use proptest::prelude::*;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::{Specular, TexturedLit};
@@ -26,23 +26,11 @@ fn id_texture() -> Vec<u8> {
     t
 }
 
-/// Light of 255 in every channel everywhere: the drawn colour is the texel's.
-fn full_light() -> Lighting<Fx16, 0> {
-    let white = Rgb888::new(255, 255, 255);
-    let material = Material {
-        ambient: white,
-        diffuse: white,
-        specular: Rgb888::BLACK,
-        shininess: 0,
-    };
-    Lighting::new(material, white, Specular::None, Vec3::default())
-}
-
-/// A floor quad from z = 1 to z = -9 seen from above its near end, so depth varies by a factor
-/// of several across it; its uv run 0..reps.
 /// Positions, texture coordinates and triangles.
 type Floor = (Vec<Vec3<Fx16>>, Vec<[i32; 2]>, Vec<[u16; 3]>);
 
+/// A floor quad from z = 1 to z = -9 seen from above its near end, so depth varies by a factor
+/// of several across it; its uv run 0..reps.
 fn floor(reps: f64) -> Floor {
     let p = |x: f64, z: f64| Vec3::new(fx(x), fx(-1.0), fx(z));
     let positions = vec![p(-2.0, 1.0), p(2.0, 1.0), p(2.0, -9.0), p(-2.0, -9.0)];
@@ -145,7 +133,7 @@ fn id_texture_error(cam: &Transforms<Fx16>, reps: f64) -> (usize, usize, f64) {
     let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
     let texels = id_texture();
     let texture = Texture::new(5, 5, &texels).unwrap();
-    let buf = draw_from(cam, TexturedLit::new(full_light(), texture), &mesh);
+    let buf = draw_from(cam, TexturedLit::new(full_white_light(), texture), &mesh);
     let exact = exact_uv_from(*cam, &mesh, 32.0, true);
     let (mut n, mut worst, mut off) = (0, 0.0f64, 0);
     for y in 0..H as i32 {
@@ -194,7 +182,7 @@ fn mock_target_gets_each_pixel_once() {
     let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
     let texels = id_texture();
     let texture = Texture::new(5, 5, &texels).unwrap();
-    let shader = TexturedLit::new(full_light(), texture).with_filter(Filter::Bilinear);
+    let shader = TexturedLit::new(full_white_light(), texture).with_filter(Filter::Bilinear);
     let whole = draw(shader.clone(), &mesh);
     let mut mock = tests::StrictMock::<Rgb565>::new(W, H);
     let mut p = Pipeline::new(&camera(), Viewport::new(W, H), NoCull, NoDepth, shader);
@@ -229,7 +217,7 @@ fn affine_coordinates_would_fail_the_check() {
     let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
     let texels = id_texture();
     let texture = Texture::new(5, 5, &texels).unwrap();
-    let buf = draw(TexturedLit::new(full_light(), texture), &mesh);
+    let buf = draw(TexturedLit::new(full_white_light(), texture), &mesh);
     let exact = exact_uv(&mesh, 32.0, true);
     let affine = exact_uv(&mesh, 32.0, false);
     let (mut n, mut far) = (0, 0);
@@ -294,9 +282,9 @@ fn clamp_and_repeat_differ_beyond_the_texture() {
     let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
     let texels = id_texture();
     let texture = Texture::new(5, 5, &texels).unwrap();
-    let repeat = draw(TexturedLit::new(full_light(), texture), &mesh);
+    let repeat = draw(TexturedLit::new(full_white_light(), texture), &mesh);
     let clamp = draw(
-        TexturedLit::new(full_light(), texture).with_wrap(Wrap::Clamp),
+        TexturedLit::new(full_white_light(), texture).with_wrap(Wrap::Clamp),
         &mesh,
     );
     let exact = exact_uv(&mesh, 32.0, true);
@@ -330,9 +318,9 @@ fn bilinear_blends_neighbouring_texels() {
         }
     }
     let texture = Texture::new(2, 2, &bytes).unwrap();
-    let nearest = draw(TexturedLit::new(full_light(), texture), &mesh);
+    let nearest = draw(TexturedLit::new(full_white_light(), texture), &mesh);
     let bilinear = draw(
-        TexturedLit::new(full_light(), texture).with_filter(Filter::Bilinear),
+        TexturedLit::new(full_white_light(), texture).with_filter(Filter::Bilinear),
         &mesh,
     );
     let reds = |b: &[u16]| {
@@ -359,7 +347,7 @@ fn bands_equal_the_whole_frame() {
     let texels = id_texture();
     let texture = Texture::new(5, 5, &texels).unwrap();
     for filter in [Filter::Nearest, Filter::Bilinear] {
-        let shader = TexturedLit::new(full_light(), texture).with_filter(filter);
+        let shader = TexturedLit::new(full_white_light(), texture).with_filter(filter);
         let whole = draw(shader.clone(), &mesh);
         for rows in [1u32, 7, 16, 72] {
             let mut frame = vec![0u16; (W * H) as usize];
@@ -455,7 +443,7 @@ proptest! {
         let mut buf = vec![0u16; (W * H) as usize];
         let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
         let mut pl = Pipeline::new(&cam, Viewport::new(W, H), NoCull, NoDepth,
-            TexturedLit::new(full_light(), texture).with_filter(Filter::Bilinear));
+            TexturedLit::new(full_white_light(), texture).with_filter(Filter::Bilinear));
         let mut scratch = vec![VertexSlot::<[i32; 6]>::EMPTY; 4];
         pl.draw(&mut fb, &mesh, &mut scratch).unwrap();
         prop_assert!(buf.iter().all(|&c| c == 0 || c == 0xf81f));

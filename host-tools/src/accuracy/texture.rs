@@ -6,11 +6,12 @@
 //! (screen position and clip-space `w`), so the measure is the texture path's own error, apart
 //! from the geometry's.
 
-use fixtures::reference3d::{color_id, projected_corners, screen_weights, FaceIds, FaceMesh};
+use fixtures::reference3d::{
+    color_id, full_white_light, projected_corners, screen_weights, FaceIds, FaceMesh,
+};
 use fixtures::scenes::{HEIGHT, WIDTH};
 use fixtures::scenes3d::{transforms, Scene};
 use rasterizer_core::prelude::*;
-use rasterizer_core::shade::Specular;
 
 /// The error of one texture size.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,18 +34,6 @@ pub struct TextureRow {
     pub affine_mean: f64,
     /// See [`TextureRow::affine_mean`].
     pub affine_max: f64,
-}
-
-/// Full white light everywhere, so a texel's colour is drawn unchanged.
-fn full_light() -> Lighting<Fx16, 0> {
-    let white = Rgb888::new(255, 255, 255);
-    let material = Material {
-        ambient: white,
-        diffuse: white,
-        specular: Rgb888::BLACK,
-        shininess: 0,
-    };
-    Lighting::new(material, white, Specular::None, Vec3::default())
 }
 
 /// How far `x` lies outside `[i, i + 1)`, on a ring of `side` texels (the texture repeats).
@@ -129,7 +118,7 @@ pub fn measure() -> Result<Vec<TextureRow>, String> {
             vp,
             CullClockwise,
             depth,
-            TexturedLit::new(full_light(), texture),
+            TexturedLit::new(full_white_light(), texture),
         );
         let mesh = loaded.mesh().with_uvs(uvs);
         let mut scratch = vec![VertexSlot::EMPTY; loaded.positions.len()];
