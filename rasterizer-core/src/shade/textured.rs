@@ -1,19 +1,19 @@
 //! A textured, Gouraud-lit shader: the texel under each pixel times the light of its vertices.
 //!
 //! Per vertex the light is computed as [`super::GouraudLit`] does (the material's colours apply,
-//! so a white diffuse colour gives the texture's own colours in full light) and kept with 8
+//! so a white diffuse colour gives the texture's own colours in full light) and kept with 23
 //! fractional bits per 8-bit channel; texture coordinates are kept as the mesh gives them, and
 //! `1 / w` is taken from the vertex's clip-space `w`.
 //!
 //! Perspective-correct coordinates, in integers: per triangle, the three `1 / w` are scaled
 //! together to 31 bits (their ratios are all that matter) and the coordinates are made relative
 //! to the whole texel before the triangle's smallest (a margin against wrapping), scaled to the
-//! triangle's extent, and multiplied by them; the span loop interpolates `u / w`, `v / w` and `1 / w` as 32-bit planes and each pixel
-//! divides, so the coordinates are exact up to the planes' rounding, about 2^-30 of the
-//! triangle's extent in texels (`docs/ACCURACY.md` measures it). The values use all 32 bits, so
-//! the span loop gives them no fractional bits of its own (`FUSED_FRAC` 0). A pipeline that interpolates every value
-//! perspective-correctly ([`crate::numerics::Perspective`]) gets affine values here and corrects
-//! them itself.
+//! triangle's extent, and multiplied by them; the span loop interpolates `u / w`, `v / w` and
+//! `1 / w` as 32-bit planes and each pixel divides, so the coordinates are exact up to the
+//! planes' rounding, about 2^-30 of the triangle's extent in texels (`docs/ACCURACY.md` measures
+//! it). The values use all 32 bits, so the span loop gives them no fractional bits of its own
+//! (`FUSED_FRAC` 0). A pipeline that interpolates every value perspective-correctly
+//! ([`crate::numerics::Perspective`]) gets affine values here and corrects them itself.
 
 use super::model::{Shading, VertexIn};
 use super::Lighting;
@@ -176,11 +176,11 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> Values {
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
-        // sums / (255 2^16) 8-bit steps (at most 255), in 8.23 with half a step added (the
-        // pixel truncates): below 2^31.
+        // sums / (255 2^16) 8-bit steps (at most 255, `shade_sums` clamps), in 8.23 with half a
+        // step added (the pixel truncates): below 2^31.
         let light = lighting
             .shade_sums(v.position, v.normal)
-            .map(|s| ((s * 128 + 127) / 255).min(255 << 23) as i32 + (1 << 22));
+            .map(|s| ((s * 128 + 127) / 255) as i32 + (1 << 22));
         // Affine until `project` sets 1 / w: every vertex the same.
         [light[0], light[1], light[2], v.uv[0], v.uv[1], 1 << 16]
     }
@@ -191,18 +191,11 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     }
 
     fn triangle(&mut self, v: &mut [Values; 3]) {
-        // 1 / w of the three, scaled together so the largest has 31 bits.
+        // 1 / w of the three (each in 1 ..= 2^31 - 1), scaled together so the largest has 31
+        // bits.
         let q_max = v[0][5].max(v[1][5]).max(v[2][5]).max(1) as u32;
-        let bits = 32 - q_max.leading_zeros();
-        let q = [0, 1, 2].map(|k| {
-            let q = v[k][5].max(1) as u32;
-            let q = if bits > 31 {
-                q >> (bits - 31)
-            } else {
-                q << (31 - bits)
-            };
-            i64::from(q.max(1))
-        });
+        let up = q_max.leading_zeros() - 1;
+        let q = [0, 1, 2].map(|k| i64::from((v[k][5].max(1) as u32) << up));
         let (wl, hl) = (
             u32::from(self.texture.width_log2()),
             u32::from(self.texture.height_log2()),
@@ -211,20 +204,21 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
             // Texel units (16.16) relative to the whole texel before the triangle's smallest: a
             // texel of margin, so that the planes' rounding (a few units of 2^-31) cannot take
             // a pixel's value below zero, where it would wrap.
+            // An i32 coordinate times at most 2^10 texels: below 2^41, so `base` fits an i32.
             let t = [0, 1, 2].map(|k| i64::from(v[k][axis]) << log2);
             let base = (t[0].min(t[1]).min(t[2]) >> 16) - 1;
             // Beyond 2^16 texels across one triangle the coordinates are clamped (the pixels'
             // shifts stay within 64 bits).
             let rel = t.map(|x| (x - (base << 16)).min(u32::MAX.into()));
-            let extent = rel[0].max(rel[1]).max(rel[2]).max(1) as u64;
+            let extent = rel[0].max(rel[1]).max(rel[2]) as u64;
             // rel q / 2^shift stays below 2^31 (q below 2^31, rel below 2^shift); the product
-            // below 2^63.
-            let shift = (64 - extent.leading_zeros()).max(1);
+            // below 2^63. The margin makes `extent` at least a texel, so `shift` is at least 17.
+            let shift = 64 - extent.leading_zeros();
             for k in 0..3 {
                 v[k][axis] = ((rel[k] * q[k]) >> shift) as i32;
             }
             let a = axis - 3;
-            self.current.base[a] = base.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+            self.current.base[a] = base as i32;
             self.current.shift[a] = shift;
         }
         for k in 0..3 {
@@ -235,10 +229,10 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     #[inline(always)]
     fn pixel(&self, v: &Values) -> C {
         let q = v[5].max(1) as i64;
-        let u = (i64::from(v[3].max(0)) << self.current.shift[0]) / q;
-        let w = (i64::from(v[4].max(0)) << self.current.shift[1]) / q;
+        let tu = (i64::from(v[3].max(0)) << self.current.shift[0]) / q;
+        let tv = (i64::from(v[4].max(0)) << self.current.shift[1]) / q;
         let light = [0, 1, 2].map(|c| (v[c].max(0) as u32) >> 23);
-        self.shade(u, w, light)
+        self.shade(tu, tv, light)
     }
 
     #[inline(always)]
