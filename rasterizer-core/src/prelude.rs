@@ -12,7 +12,7 @@ pub use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888}
 pub use embedded_graphics_core::prelude::*;
 pub use embedded_graphics_core::primitives::Rectangle;
 
-pub use crate::cull::{CullClockwise, CullCounterClockwise, NoCull};
+pub use crate::cull::{CullClockwise, CullCounterClockwise, NoCull, WindowSpace};
 pub use crate::depth::{Compare, DepthBuffer, DepthReadOnly, NoDepth};
 pub use crate::geom::SubPoint;
 pub use crate::math::{Angle, Fx16, Mat4, Vec3};

@@ -166,7 +166,7 @@ where
                     let _ = ps.push(self.project(&v.pos).0);
                 }
                 let area = super::front::polygon_area(ps.iter().copied());
-                if area == 0 || !self.cull.keep(area) {
+                if area == 0 || !self.keeps(area) {
                     stats.culled += 1;
                     return None;
                 }

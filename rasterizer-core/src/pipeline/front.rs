@@ -48,7 +48,7 @@ impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for ShaderCol
     }
 }
 
-/// The signed doubled area of a convex polygon of screen points, saturated to `i64` (its sign
+/// The signed doubled area of a convex polygon of screen points, saturated to `±i64::MAX` (its sign
 /// and whether it is zero are exact).
 pub(super) fn polygon_area<const BITS: u32>(
     points: impl Iterator<Item = SubPoint<BITS>> + Clone,
@@ -66,7 +66,7 @@ pub(super) fn polygon_area<const BITS: u32>(
         }
         prev = Some(c);
     }
-    area.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+    area.clamp(-i128::from(i64::MAX), i128::from(i64::MAX)) as i64
 }
 
 impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
@@ -108,7 +108,7 @@ where
         let keep = if area == 0 {
             keep_flat
         } else {
-            self.cull.keep(area)
+            self.keeps(area)
         };
         if !keep {
             stats.culled += 1;
@@ -199,8 +199,7 @@ where
             Front::Skip => Ok(()),
             Front::Inside { idx, v } => {
                 if Sh::NEEDS_FACE {
-                    let vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
-                    self.shading.face(&vin);
+                    self.face(mesh, idx);
                 }
                 let var = self.face_values(mesh, idx, scratch);
                 stats.drawn += 1;
@@ -273,13 +272,12 @@ where
         }
         // The clipped polygon is convex: its total signed area decides its facing.
         let area = polygon_area(screen.iter().map(|v| v.p));
-        if area == 0 || !self.cull.keep(area) {
+        if area == 0 || !self.keeps(area) {
             stats.culled += 1;
             return Ok(());
         }
         if Sh::NEEDS_FACE {
-            let vin = [0, 1, 2].map(|k| self.vertex_in(mesh, idx[k]));
-            self.shading.face(&vin);
+            self.face(mesh, idx);
         }
         for k in 1..screen.len() - 1 {
             self.raster(target, &[screen[0], screen[k], screen[k + 1]])?;

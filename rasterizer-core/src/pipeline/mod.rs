@@ -125,6 +125,16 @@ pub struct Pipeline<S, C, D, Sh, const BITS: u32 = DEFAULT_BITS, N = Standard> {
     edges: [i64; 4],
     /// The shader takes model-space positions and normals this frame.
     model_space: bool,
+    /// The model-view matrix mirrors: winding on screen is the reverse of the mesh's.
+    mirrored: bool,
+    /// All ones when culling must negate screen areas (mirrored, not [`Cull::WINDOW_SPACE`]),
+    /// else zero: a branch-free negation per triangle.
+    facing: i64,
+    /// The model matrix mirrors: a cross product of world-space edges points into the mesh.
+    model_mirrors: bool,
+    /// This frame, the shader lights in world space under a mirroring model matrix: face
+    /// normals from world-space edges must be turned round.
+    flip_faces: bool,
     /// The culling stage.
     pub cull: C,
     /// The depth stage.
@@ -165,11 +175,16 @@ where
             height: viewport.height.min(max),
             ..viewport
         };
+        let mirrored = transforms.model.mirrors() != transforms.view.mirrors();
         Self {
             raw: RawMvp::new(&mvp),
             mvp,
             model: transforms.model,
             normal_matrix: transforms.model,
+            mirrored,
+            facing: -i64::from(mirrored && !C::WINDOW_SPACE),
+            model_mirrors: transforms.model.mirrors(),
+            flip_faces: false,
             viewport,
             area: PixelRect::from_rectangle(&viewport.rectangle()),
             edges: viewport_edges::<DEFAULT_BITS>(&viewport),
@@ -210,6 +225,10 @@ where
             raw: self.raw,
             model: self.model,
             normal_matrix: self.normal_matrix,
+            mirrored: self.mirrored,
+            facing: self.facing,
+            model_mirrors: self.model_mirrors,
+            flip_faces: false,
             viewport: self.viewport,
             area: self.area,
             edges: viewport_edges::<B>(&self.viewport),
@@ -229,6 +248,22 @@ where
     /// The composed model-view-projection matrix.
     pub fn mvp(&self) -> &Mat4<S> {
         &self.mvp
+    }
+
+    /// Whether the model and view matrices together mirror ([`Mat4::mirrors`]), so that every
+    /// triangle appears on screen with the reverse of its winding in the mesh. Culling then
+    /// judges triangles by their winding in the mesh (unless [`Cull::WINDOW_SPACE`]).
+    pub fn mirrored(&self) -> bool {
+        self.mirrored
+    }
+
+    /// The culling stage's verdict on a triangle of doubled signed screen area `area`, judged by
+    /// its winding in the mesh when the transforms mirror.
+    #[inline(always)]
+    pub(super) fn keeps(&self, area: i64) -> bool {
+        // Areas stay within ±i64::MAX, so the negation cannot overflow.
+        let m = self.facing;
+        self.cull.keep((area ^ m).wrapping_sub(m))
     }
 
     /// Draws a mesh filled with the pipeline's shading, depth test and culling.
@@ -315,7 +350,7 @@ where
                         continue;
                     }
                     let area = polygon_area(poly.iter().map(|v| self.project(&v.pos).0));
-                    if area != 0 && !self.cull.keep(area) {
+                    if area != 0 && !self.keeps(area) {
                         stats.culled += 1;
                         continue;
                     }

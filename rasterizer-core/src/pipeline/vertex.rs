@@ -200,6 +200,18 @@ where
         space.vertex_in::<Sh, M>(mesh, i)
     }
 
+    /// Hands the shader a visible triangle ([`Shading::face`]), its vertices in the order whose
+    /// edges' cross product points out of the mesh in the space the shader lights in: swapped
+    /// when a mirroring model matrix has reversed them in world space.
+    #[inline(always)]
+    pub(super) fn face<M: MeshSource<S>>(&mut self, mesh: &M, idx: [usize; 3]) {
+        let mut vin = idx.map(|i| self.vertex_in(mesh, i));
+        if self.flip_faces {
+            vin.swap(1, 2);
+        }
+        self.shading.face(&vin);
+    }
+
     /// The shader values of a triangle's three vertices. A lit shader on a mesh without normals
     /// gets the face normal (the cross product of the edges) at all three, which depends on the
     /// face, so those values are never kept in the scratch.
@@ -236,6 +248,8 @@ where
         };
         let p = [0, 1, 2].map(|k| space.position(mesh, idx[k]));
         let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+        // A mirroring model matrix turns the cross product of world-space edges inwards.
+        let normal = if self.flip_faces { -normal } else { normal };
         let mut out = [Sh::Varyings::default(); 3];
         for (&i, o) in idx.iter().zip(&mut out) {
             *o = shade::<S, Sh, M, N>(&mut self.shading, &space, &self.mvp, mesh, i, Some(normal))
@@ -254,6 +268,7 @@ where
         // Model-space lighting needs normals carried by the model matrix itself.
         let model = (self.normal_matrix == self.model).then_some(&self.model);
         self.model_space = self.shading.begin_frame(model);
+        self.flip_faces = self.model_mirrors && !self.model_space;
         // Every vertex with a slot is transformed now, in one tight loop: the triangles then only
         // read their slots.
         let n = scratch.len().min(mesh.vertex_count());

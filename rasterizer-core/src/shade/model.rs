@@ -133,7 +133,10 @@ pub trait Shading<S: Scalar> {
     fn triangle(&mut self, v: &mut [Self::Varyings; 3]) {
         let _ = v;
     }
-    /// Once per visible triangle, before its pixels.
+    /// Once per visible triangle, before its pixels. The vertices come in the order whose edges'
+    /// cross product `(v1 - v0) x (v2 - v0)` points out of the mesh's front face in the space
+    /// the shader lights in, also under a mirroring model matrix (which the pipeline undoes by
+    /// swapping two of them).
     fn face(&mut self, _vertices: &[VertexIn<S>; 3]) {}
     /// Per pixel: the colour from the interpolated values.
     fn pixel(&self, v: &Self::Varyings) -> Self::Color;
