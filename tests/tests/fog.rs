@@ -483,10 +483,13 @@ fn ambient_phong<C: ShadeColor>(color: Rgb888) -> PhongLit<Fx16, C, 1> {
     PhongLit::new(Lighting::new(material, Rgb888::WHITE, Specular::None, eye))
 }
 
+/// Each drawn pixel `(x, y)` with the f64 weights of the three vertices at its centre.
+type Weights = Vec<(i32, i32, [f64; 3])>;
+
 /// The triangle (-1, -1), (1, -1), (-1, 1) at view-space depths `depths`, filling the lower left
 /// half of a 16 x 16 screen, through `shading`: the mock and, for each vertex, its weight at each
 /// pixel centre in f64 (the projection keeps x and y, so screen and space weights agree).
-fn draw_slanted<C, Sh>(depths: [Fx16; 3], shading: Sh) -> (StrictMock<C>, Vec<(i32, i32, [f64; 3])>)
+fn draw_slanted<C, Sh>(depths: [Fx16; 3], shading: Sh) -> (StrictMock<C>, Weights)
 where
     C: ShadeColor + core::fmt::Debug,
     Sh: Shading<Fx16, Color = C>,
