@@ -29,9 +29,10 @@ fn main() {
         1 => println!("cargo::rustc-cfg=three_d"),
         _ => panic!("choose at most one shading feature: {shading:?}"),
     }
-    // Fog mixes a colour per vertex or per triangle, which unlit and Phong shading do not have.
-    if on("fog") && !(on("flat") || on("gouraud")) {
-        panic!("fog needs flat or gouraud shading");
+    // Fog mixes a lit colour (per vertex, triangle or pixel), which unlit shading does not have,
+    // and the textured model does not take it.
+    if on("fog") && !(on("flat") || on("gouraud") || on("phong")) {
+        panic!("fog needs flat, gouraud or phong shading");
     }
     if ["line2d", "triangle2d", "gouraud2d", "polygon2d", "aa2d"]
         .into_iter()

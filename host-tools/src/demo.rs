@@ -137,48 +137,177 @@ pub const SCENES: [Scene; 7] = [
     },
 ];
 
+/// Every file the demo writes, in the order it writes them: the 2D pictures, then the 3D ones.
+pub fn files() -> impl Iterator<Item = &'static str> {
+    SCENES
+        .iter()
+        .map(|s| s.file)
+        .chain(demo3d::SCENES.iter().map(|s| s.file))
+}
+
+/// The `demo` command's long help, listing [`files`] so that the help cannot leave one out.
+pub fn long_help() -> String {
+    let list = |files: &mut dyn Iterator<Item = &'static str>| files.collect::<Vec<_>>().join(", ");
+    format!(
+        "Render the demo pictures as PNG files.\n\n\
+         The 2D pictures are drawn by rasterizer-core through `AnyTarget` onto an \
+         embedded-graphics-simulator display ({WIDTH}x{HEIGHT} pixels) and saved at {SCALE}x \
+         scale, so single pixels are easy to see: {}.\n\n\
+         The 3D pictures are rendered by the 3D pipeline at {}x{} and saved at {}x scale: {}. \
+         Their mesh (suzanne.obj) is read from --models.\n\n\
+         The file names are fixed. The set is written all or nothing: every picture is rendered \
+         into a temporary directory next to --out first and only then moved into place, so on \
+         any failure the files already in --out stay as they were and nothing partial is left.\n\n\
+         Example: cargo run --release -p host-tools -- demo --out /tmp/pictures",
+        list(&mut SCENES.iter().map(|s| s.file)),
+        demo3d::WIDTH,
+        demo3d::HEIGHT,
+        demo3d::SCALE,
+        list(&mut demo3d::SCENES.iter().map(|s| s.file)),
+    )
+}
+
+/// The directory of the models when `--models` is not given: `assets/models` under the current
+/// directory, else in the repository the binary was built from while it is still there, else
+/// under the nearest ancestor of the executable's directory that has one (a binary cargo built
+/// lies in `target/<profile>/` of the repository).
+pub fn default_models() -> Option<PathBuf> {
+    let rel = Path::new("assets").join("models");
+    if rel.is_dir() {
+        return Some(rel);
+    }
+    let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(&rel);
+    if built.is_dir() {
+        return Some(built);
+    }
+    let exe = std::env::current_exe().ok()?;
+    exe.ancestors()
+        .skip(1)
+        .map(|dir| dir.join(&rel))
+        .find(|dir| dir.is_dir())
+}
+
 /// Renders every scene into `out` (created if missing), the 2D ones first, calling `on_written`
-/// after each file. The 3D scenes load their meshes from `models` (the repository's
+/// after each file is in place. The 3D scenes load their meshes from `models` (the repository's
 /// `assets/models`).
 ///
+/// All or nothing: the pictures are rendered into a temporary directory beside `out` (on the same
+/// file system, so moving them is a rename), and moved into `out` only when every one of them is
+/// written; a file that fails to move puts the ones moved before it back. The temporary
+/// directory is removed whatever happens.
+///
 /// # Errors
-/// [`DemoError::CreateDir`] when `out` cannot be created, [`DemoError::Model`] when a mesh cannot
-/// be loaded, [`DemoError::Save`] when a file cannot be written, [`DemoError::Scene`] when the
-/// rasterizer rejects a scene's input.
+/// [`DemoError::CreateDir`] when `out` or the temporary directory cannot be created,
+/// [`DemoError::Model`] when a mesh cannot be loaded, [`DemoError::Save`] when a file cannot be
+/// written or moved into place, [`DemoError::Scene`] when the rasterizer rejects a scene's input.
 pub fn run(
     out: &Path,
     models: &Path,
     mut on_written: impl FnMut(&Path) -> Result<(), StdoutError>,
 ) -> Result<(), DemoError> {
-    std::fs::create_dir_all(out).map_err(|source| DemoError::CreateDir {
-        path: out.to_path_buf(),
-        source,
-    })?;
+    let create = |path: &Path| {
+        std::fs::create_dir_all(path).map_err(|source| DemoError::CreateDir {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
+    create(out)?;
+    let name = out
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let staging = out.with_file_name(format!(".{name}.demo-{}", std::process::id()));
+    create(&staging)?;
+    let rendered = render_all(&staging, models).and_then(|()| install(&staging, out));
+    let _ = std::fs::remove_dir_all(&staging);
+    for file in rendered? {
+        on_written(&file).map_err(DemoError::Stdout)?;
+    }
+    Ok(())
+}
+
+/// Renders every picture into `dir`.
+fn render_all(dir: &Path, models: &Path) -> Result<(), DemoError> {
     let models = demo3d::Models::load(models)
         .map_err(|(path, message)| DemoError::Model { path, message })?;
     let save = |display: &Display, file: &str, scale: u32| {
         let settings = OutputSettingsBuilder::new().scale(scale).build();
-        let path = out.join(file);
+        let path = dir.join(file);
         let image = display.to_rgb_output_image(&settings);
         let buf = image.as_image_buffer();
         write_png(&path, &[], buf.width(), buf.height(), &buf).map_err(|e| DemoError::Save {
             path: path.clone(),
             message: e.message,
-        })?;
-        Ok(path)
+        })
     };
     for scene in &SCENES {
-        let display = render(scene)?;
-        on_written(&save(&display, scene.file, SCALE)?).map_err(DemoError::Stdout)?;
+        save(&render(scene)?, scene.file, SCALE)?;
     }
     for scene in &demo3d::SCENES {
         let display = demo3d::render(scene, &models).map_err(|message| DemoError::Scene {
             name: scene.file,
             message,
         })?;
-        on_written(&save(&display, scene.file, demo3d::SCALE)?).map_err(DemoError::Stdout)?;
+        save(&display, scene.file, demo3d::SCALE)?;
     }
     Ok(())
+}
+
+/// Moves every picture from `staging` into `out`, keeping the files it replaces in
+/// `staging/replaced` until all are in, so that a failure can put them back. Returns the paths
+/// written.
+fn install(staging: &Path, out: &Path) -> Result<Vec<PathBuf>, DemoError> {
+    let save_error = |path: &Path, message: String| DemoError::Save {
+        path: path.to_path_buf(),
+        message,
+    };
+    // Only files are replaced: a directory (or anything else) in the way is an error before
+    // anything moves.
+    for file in files() {
+        let dest = out.join(file);
+        if let Ok(meta) = std::fs::symlink_metadata(&dest) {
+            if !meta.is_file() {
+                return Err(save_error(&dest, "it exists and is not a file".into()));
+            }
+        }
+    }
+    let replaced = staging.join("replaced");
+    std::fs::create_dir(&replaced).map_err(|e| save_error(&replaced, e.to_string()))?;
+    // (file, whether an old one was kept) for each file moved so far.
+    let mut moved: Vec<(&str, bool)> = Vec::new();
+    let mut result = Ok(());
+    for file in files() {
+        let dest = out.join(file);
+        let kept = dest.exists();
+        if kept {
+            if let Err(e) = std::fs::rename(&dest, replaced.join(file)) {
+                result = Err(save_error(
+                    &dest,
+                    format!("cannot move the old file aside: {e}"),
+                ));
+                break;
+            }
+        }
+        if let Err(e) = std::fs::rename(staging.join(file), &dest) {
+            if kept {
+                let _ = std::fs::rename(replaced.join(file), &dest);
+            }
+            result = Err(save_error(&dest, e.to_string()));
+            break;
+        }
+        moved.push((file, kept));
+    }
+    if let Err(e) = result {
+        // Back as it was: the new files out, the old ones in.
+        for (file, kept) in moved.into_iter().rev() {
+            let dest = out.join(file);
+            let _ = std::fs::remove_file(&dest);
+            if kept {
+                let _ = std::fs::rename(replaced.join(file), &dest);
+            }
+        }
+        return Err(e);
+    }
+    Ok(files().map(|f| out.join(f)).collect())
 }
 
 /// Draws one scene onto a fresh display with the dark background.

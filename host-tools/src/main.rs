@@ -6,7 +6,7 @@
 mod demo;
 mod demo3d;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -31,19 +31,8 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Render the demo pictures (lines, triangles, polygons, clipping, 3D meshes) as PNG files.
-    #[command(long_about = "Render the demo pictures as PNG files.\n\n\
-        The 2D pictures are drawn by rasterizer-core through `AnyTarget` onto an \
-        embedded-graphics-simulator display (200x150 pixels) and saved at 3x scale, so \
-        single pixels are easy to see: lines_octants.png, lines_gradient.png, \
-        triangle_outlines.png, triangles_flat.png, triangles_gouraud.png, polygons.png, \
-        clipping.png.\n\n\
-        The 3D pictures are rendered by the 3D pipeline at 320x240 and saved at 2x scale: \
-        suzanne_wireframe.png, suzanne_flat.png, suzanne_gouraud.png, suzanne_phong.png \
-        (into a Framebuffer<Rgb565>, then copied to the display), cube_inside.png and \
-        near_plane_crossing.png (straight onto the display through `AnyTarget`). Their meshes \
-        are read from --models.\n\n\
-        The file names are fixed; existing files are overwritten.\n\n\
-        Example: cargo run --release -p host-tools -- demo --out /tmp/pictures")]
+    ///
+    /// The long help, which lists every file, is made from the demo's own list in `main`.
     Demo(DemoArgs),
     /// Convert an OBJ file into the packed fixed-point mesh firmware embeds (or Rust source).
     Convert(host_tools::convert::ConvertArgs),
@@ -89,18 +78,31 @@ struct DemoArgs {
 
     /// Directory holding the OBJ models of the 3D pictures (suzanne.obj).
     ///
-    /// Defaults to the repository's assets/models, wherever the command is run from.
-    #[arg(long, value_name = "DIR", default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models"))]
-    models: PathBuf,
+    /// Default: assets/models, looked up in the current directory, then in the repository
+    /// host-tools was built from, then in the directories above the executable (a binary cargo
+    /// built lies in the repository's target/), so it is found wherever the command is run from.
+    #[arg(long, value_name = "DIR")]
+    models: Option<PathBuf>,
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let command = Cli::command().mut_subcommand("demo", |demo| demo.long_about(demo::long_help()));
+    let cli = match Cli::from_arg_matches(&command.get_matches()) {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
     let result: Result<(), Box<dyn std::error::Error>> = match cli.command {
-        Command::Demo(args) => demo::run(&args.out, &args.models, |path| {
-            host_tools::outln!("wrote {}", path.display())
-        })
-        .map_err(Into::into),
+        Command::Demo(args) => match args.models.or_else(demo::default_models) {
+            Some(models) => demo::run(&args.out, &models, |path| {
+                host_tools::outln!("wrote {}", path.display())
+            })
+            .map_err(Into::into),
+            None => Err(
+                "cannot find assets/models in the current directory or above the \
+                 executable; pass --models DIR"
+                    .into(),
+            ),
+        },
         Command::Convert(args) => host_tools::convert::run(&args),
         #[cfg(feature = "view")]
         Command::View(args) => host_tools::view::run(&args),

@@ -116,3 +116,79 @@ fn demo_reports_a_missing_model() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `demo --help` names every file the demo writes (it is made from the same list), and shows no
+/// path of the machine it was built on.
+#[test]
+fn demo_help_lists_every_picture_and_no_build_path() {
+    let run = Command::new(env!("CARGO_BIN_EXE_host-tools"))
+        .args(["demo", "--help"])
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let help = String::from_utf8_lossy(&run.stdout);
+    for file in FILES {
+        assert!(
+            help.contains(file),
+            "{file} missing from demo --help:\n{help}"
+        );
+    }
+    let listed = help.matches(".png").count();
+    assert_eq!(
+        listed,
+        FILES.len(),
+        "demo --help lists other files:\n{help}"
+    );
+    assert!(
+        !help.contains(env!("CARGO_MANIFEST_DIR")),
+        "demo --help shows a build path:\n{help}"
+    );
+    assert!(help.contains("assets/models"), "{help}");
+}
+
+/// A demo that fails part of the way leaves the pictures already in `--out` as they were and no
+/// partial set, nor its temporary directory: here the last 3D picture's name is taken by a
+/// directory, which the demo refuses to replace.
+#[test]
+fn demo_failure_leaves_the_old_pictures() {
+    let dir = scratch("demo-all-or-nothing");
+    let out = dir.join("images");
+    std::fs::create_dir_all(&out).unwrap();
+    let blocked = "near_plane_crossing.png";
+    for file in FILES {
+        if file == blocked {
+            std::fs::create_dir(out.join(file)).unwrap();
+        } else {
+            std::fs::write(out.join(file), format!("old {file}")).unwrap();
+        }
+    }
+    let run = Command::new(env!("CARGO_BIN_EXE_host-tools"))
+        .args(["demo", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success(), "demo should fail");
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l.starts_with("error: ") && l.contains(blocked)),
+        "no error naming {blocked}:\n{stderr}"
+    );
+    for file in FILES {
+        let path = out.join(file);
+        if file == blocked {
+            assert!(path.is_dir(), "{file} replaced");
+        } else {
+            let now = std::fs::read_to_string(&path).unwrap_or_default();
+            assert_eq!(now, format!("old {file}"), "{file} changed");
+        }
+    }
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, ["images"], "left beside --out: {left:?}");
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), FILES.len());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

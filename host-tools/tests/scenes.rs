@@ -473,7 +473,7 @@ fn fog_key_fogs_by_depth() {
     };
     let beyond = "fog = { color = \"#ff0000\", start = 10.0, end = 20.0 }";
     let before = "fog = { color = \"#00ff00\", start = -2.0, end = 0.0, mode = \"exponential\" }";
-    for shading in ["gouraud", "flat", "vertex_colors"] {
+    for shading in ["gouraud", "flat", "vertex_colors", "phong"] {
         let plain = render("plain", &format!("shading = \"{shading}\""), "");
         let far = render("far", &format!("shading = \"{shading}\"\n{beyond}"), "");
         assert!(
@@ -515,7 +515,7 @@ fn fog_key_fogs_by_depth() {
     expect_failure(
         &dir,
         "bad_density",
-        &fog("start = 1.0, end = 2.0, density = 9.0"),
+        &fog("start = 1.0, end = 2.0, mode = \"exponential\", density = 9.0"),
         &["density"],
     );
     expect_failure(
@@ -531,4 +531,73 @@ fn fog_key_fogs_by_depth() {
         &["mode"],
     );
     expect_failure(&dir, "no_end", &fog("start = 1.0"), &["end"]);
+}
+
+/// `density` is the exponential curve's: given with linear fog (the default mode) it would be
+/// ignored, so it is refused, naming where it is.
+#[test]
+fn fog_density_needs_exponential_mode() {
+    let dir = scratch("fog_density");
+    let suzanne = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
+    let fog = "fog = { color = \"#808080\", start = 1.0, end = 2.0, density = 2.0 }";
+    let mesh = format!("[[meshes]]\npath = {suzanne:?}\n");
+    expect_failure(
+        &dir,
+        "render_density",
+        &format!("{OUTPUT}[render]\n{fog}\n\n{mesh}"),
+        &[
+            "[render]",
+            "fog.density applies only with mode = \"exponential\"",
+        ],
+    );
+    expect_failure(
+        &dir,
+        "mesh_density",
+        &format!("{OUTPUT}{mesh}{fog}\n"),
+        &["mesh ", "suzanne.obj", "fog.density applies only"],
+    );
+    let ok = dir.join("exponential.toml");
+    let exponential = fog.replace("density", "mode = \"exponential\", density");
+    std::fs::write(&ok, format!("{OUTPUT}{mesh}{exponential}\n")).unwrap();
+    assert!(host_tools::scenefile::load(&ok).is_ok());
+}
+
+/// Keys the drawing of a mesh would ignore are refused, naming the mesh, the key and, when it
+/// comes from there, `[render]`: fog and dithering with no colour to mix or dither, a material or
+/// generated vertex colours its shading does not read, a depth buffer for a wireframe.
+#[test]
+fn keys_that_would_be_ignored_are_refused() {
+    let dir = scratch("ignored_keys");
+    let suzanne = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
+    let fog = "fog = { color = \"#808080\", start = 1.0, end = 2.0 }";
+    let mesh = |extra: &str| format!("{OUTPUT}[[meshes]]\npath = {suzanne:?}\n{extra}\n");
+    let cases: &[(&str, String, &[&str])] = &[
+        ("fog_wire", mesh(&format!("wireframe = true\n{fog}")), &["fog does not apply to a wireframe"]),
+        ("fog_unlit", mesh(&format!("shading = \"none\"\n{fog}")), &["fog does not apply to shading = \"none\""]),
+        ("fog_translucent", mesh(&format!("opacity = 100\n{fog}")), &["fog does not apply to a translucent"]),
+        (
+            "fog_render_wire",
+            format!("{OUTPUT}[render]\n{fog}\n\n[[meshes]]\npath = {suzanne:?}\nwireframe = true\n"),
+            &["fog (from [render]) does not apply to a wireframe"],
+        ),
+        ("dither_flat", mesh("shading = \"flat\"\ndither = \"bayer4\""), &["dither does not apply to shading = \"flat\""]),
+        ("dither_phong", mesh("shading = \"phong\"\ndither = \"bayer8\""), &["dither does not apply to shading = \"phong\""]),
+        ("dither_wire", mesh("wireframe = true\ndither = \"bayer4\""), &["dither does not apply to a wireframe"]),
+        ("dither_perspective", mesh("perspective_correct = true\ndither = \"bayer4\""), &["dither does not apply to a perspective-correct"]),
+        ("dither_translucent", mesh("opacity = 100\ndither = \"bayer4\""), &["dither does not apply to a translucent"]),
+        (
+            "dither_render_unlit",
+            format!("{OUTPUT}[render]\ndither = \"bayer4\"\n\n[[meshes]]\npath = {suzanne:?}\nshading = \"none\"\n"),
+            &["dither (from [render]) does not apply"],
+        ),
+        ("material_unlit", mesh("shading = \"vertex_colors\"\nmaterial = { shininess = 4 }"), &["material applies only to lit shading"]),
+        ("material_wire", mesh("wireframe = true\nmaterial = { shininess = 4 }"), &["material applies only to lit shading", "wireframe"]),
+        ("vertex_colors_gouraud", mesh("vertex_colors = \"normal\""), &["vertex_colors applies only to shading = \"vertex_colors\""]),
+        ("depth_wire", mesh("wireframe = true\ndepth = true"), &["depth = true does not apply to a wireframe"]),
+    ];
+    for (name, scene, needles) in cases {
+        let mut all = vec!["mesh ", "suzanne.obj"];
+        all.extend_from_slice(needles);
+        expect_failure(&dir, name, scene, &all);
+    }
 }

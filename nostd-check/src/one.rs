@@ -7,7 +7,7 @@
 //! depth buffer, `Compare::Less`), `cull` (`CullClockwise`) and the draw call (`draw` by default,
 //! `banded` for `draw_banded` in 16-row bands), each with a vertex scratch of one slot per mesh
 //! vertex, or with an empty one with `noscratch`, `dither` for 4 x 4 ordered dithering of the
-//! interpolated colour, `fog` for linear fog (`shade::Fog`, with `flat` or `gouraud`), and
+//! interpolated colour, `fog` for linear fog (`shade::Fog`, with `flat`, `gouraud` or `phong`), and
 //! `translucent` for the mesh drawn through `Translucent` at opacity 128 (with `depth`, the buffer
 //! read-only). The scene is M1: the packed Suzanne, 320 x 240 Rgb565, one directional light; the
 //! shading feature `textured` draws the textured cube (`TexturedLit`, the packed mesh's own

@@ -365,16 +365,10 @@ fn dithers(m: &SceneMesh) -> bool {
         )
 }
 
-/// Whether a mesh is fogged: it asks for fog and has a colour to mix (filled, Gouraud, vertex
-/// colours or flat, not textured).
+/// Whether a mesh is fogged: it asks for fog (the loader allows it only where it applies:
+/// filled, lit or vertex colours, not textured or translucent).
 fn fogs(m: &SceneMesh) -> bool {
     m.fog.is_some()
-        && !m.wireframe
-        && m.texture.is_none()
-        && matches!(
-            m.shading,
-            ShadingModel::Gouraud | ShadingModel::VertexColors | ShadingModel::Flat
-        )
 }
 
 /// A mesh's fog in `S`; without one, a curve that is zero everywhere, which leaves every colour
@@ -448,6 +442,10 @@ fn fogged_shading<S: Real, D: DepthTest>(
         ShadingModel::Flat => {
             let flat = FlatLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
             with_fog(target, mesh, job, cull, depth, flat)
+        }
+        ShadingModel::Phong => {
+            let phong = PhongLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
+            with_fog(target, mesh, job, cull, depth, phong)
         }
         _ => {
             let gouraud = GouraudLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);

@@ -191,9 +191,9 @@ pub struct FogDef {
     /// The curve between them.
     #[serde(default)]
     pub mode: FogMode,
-    /// The exponential curve's density `k` (0 ..= 8).
-    #[serde(default = "default_density")]
-    pub density: f64,
+    /// The exponential curve's density `k` (0 ..= 8; default 3); only with `mode =
+    /// "exponential"`.
+    pub density: Option<f64>,
 }
 
 /// How fog thickens between `start` and `end`.
@@ -551,6 +551,7 @@ fn default_near() -> f64 {
 fn default_far() -> f64 {
     100.0
 }
-fn default_density() -> f64 {
+/// The exponential curve's density when `fog.density` is not given.
+pub fn default_density() -> f64 {
     3.0
 }

@@ -1,9 +1,9 @@
 //! Reading a scene file: parsing, checking every value, loading the meshes.
 
 use super::format::{
-    Camera, Color, CullMode, DitherMode, FogDef, FogMode, LightDef, MeshDef, NormalsMode,
-    PixelFormat, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel, TextureFilterDef,
-    TextureWrapDef, VertexColorMode,
+    default_density, Camera, Color, CullMode, DitherMode, FogDef, FogMode, LightDef, MeshDef,
+    NormalsMode, PixelFormat, RenderOptions, ScaleDef, SceneFile, ShadingModel, Shape,
+    SpecularModel, TextureFilterDef, TextureWrapDef, VertexColorMode,
 };
 use super::limits;
 use super::reference::Real;
@@ -129,15 +129,23 @@ pub struct SceneFog {
 }
 
 /// Checks a `fog` table: `start` and `end` within 16.16's comfortable range, the density within
-/// what the exponential table covers.
+/// what the exponential table covers and given only where it applies.
 fn scene_fog(f: &FogDef) -> Result<SceneFog, String> {
     limits::within("fog.start", &[f.start], limits::MAX_COORD)?;
     limits::within("fog.end", &[f.end], limits::MAX_COORD)?;
+    if f.mode == FogMode::Linear && f.density.is_some() {
+        return Err(
+            "fog.density applies only with mode = \"exponential\" (linear fog has no density); \
+             remove it or add mode = \"exponential\""
+                .into(),
+        );
+    }
+    let density = f.density.unwrap_or_else(default_density);
     let max = f64::from(FOG_MAX_DENSITY) / 16.0;
-    if !(0.0..=max).contains(&f.density) {
+    if !(0.0..=max).contains(&density) {
         return Err(format!(
             "fog.density = {} is out of range: 0 ..= {}",
-            limits::num(f.density),
+            limits::num(density),
             limits::num(max)
         ));
     }
@@ -148,7 +156,7 @@ fn scene_fog(f: &FogDef) -> Result<SceneFog, String> {
         curve: match f.mode {
             FogMode::Linear => FogCurve::Linear,
             // In sixteenths, as the core takes it.
-            FogMode::Exponential => FogCurve::exponential((f.density * 16.0).round() as u16),
+            FogMode::Exponential => FogCurve::exponential((density * 16.0).round() as u16),
         },
     })
 }
@@ -256,6 +264,10 @@ pub fn load(path: &Path) -> Result<Scene, String> {
         lights.push(light);
     }
 
+    // Checked once here, so that its errors name [render] rather than the first mesh taking it.
+    if let Some(fog) = &file.render.fog {
+        scene_fog(fog).map_err(|e| format!("{shown}: [render] {e}"))?;
+    }
     let dir = path.parent().unwrap_or(Path::new("."));
     let mut meshes = Vec::new();
     for m in file.meshes {
@@ -479,26 +491,10 @@ fn load_mesh(
         return Err(format!(
             "mesh {name}: a texture is drawn with shading = \"gouraud\" (the texel times the \
              light of the vertices), not \"{}\"",
-            match shading {
-                ShadingModel::None => "none",
-                ShadingModel::VertexColors => "vertex_colors",
-                ShadingModel::Flat => "flat",
-                ShadingModel::Gouraud => "gouraud",
-                ShadingModel::Phong => "phong",
-            }
+            shading_name(shading)
         ));
     }
-    let dither = def.dither.unwrap_or(render.dither);
-    if texture.is_some() && dither != DitherMode::None {
-        return Err(format!(
-            "mesh {name}: dither does not apply to a textured mesh; remove it or the texture"
-        ));
-    }
-    if texture.is_some() && def.fog.is_some() {
-        return Err(format!(
-            "mesh {name}: fog does not apply to a textured mesh; remove it or the texture"
-        ));
-    }
+    check_stages_apply(&def, render, texture.is_some())?;
     if texture.is_some() && def.opacity.is_some_and(|o| o < u8::MAX) {
         return Err(format!(
             "mesh {name}: opacity below 255 does not apply to a textured mesh; remove it or the \
@@ -545,6 +541,105 @@ fn load_mesh(
         opacity: def.opacity.unwrap_or(u8::MAX),
         fog,
     })
+}
+
+/// Refuses a key the mesh's drawing would ignore: fog and dithering where the pipeline it gets
+/// has no colour to mix or dither, a material or generated vertex colours its shading does not
+/// read, a depth buffer for edges. A key inherited from `[render]` is named as such, since the
+/// fix is there.
+fn check_stages_apply(def: &MeshDef, render: &RenderOptions, textured: bool) -> Result<(), String> {
+    let name = &def.path;
+    let wireframe = def.wireframe.unwrap_or(render.wireframe);
+    let shading = def.shading.unwrap_or(render.shading);
+    let translucent = def.opacity.is_some_and(|o| o < u8::MAX);
+    let from = |own: bool| if own { "" } else { " (from [render])" };
+    // What a colour-mixing stage cannot work on, or None.
+    let no_colour = if wireframe {
+        Some("a wireframe mesh (its edges are one unlit colour)".to_string())
+    } else if textured {
+        Some("a textured mesh".to_string())
+    } else if translucent {
+        Some("a translucent mesh (opacity below 255)".to_string())
+    } else if shading == ShadingModel::None {
+        Some("shading = \"none\" (one unlit colour)".to_string())
+    } else {
+        None
+    };
+    if def.fog.is_some() || render.fog.is_some() {
+        if let Some(what) = &no_colour {
+            return Err(format!(
+                "mesh {name}: fog{} does not apply to {what}; remove it{}",
+                from(def.fog.is_some()),
+                if def.fog.is_some() {
+                    ""
+                } else {
+                    " from [render] and give each mesh that takes fog its own `fog`"
+                }
+            ));
+        }
+    }
+    let dither = def.dither.unwrap_or(render.dither);
+    if dither != DitherMode::None {
+        let perspective = def
+            .perspective_correct
+            .unwrap_or(render.perspective_correct);
+        let what = no_colour.or_else(|| match shading {
+            ShadingModel::Flat | ShadingModel::Phong => Some(format!(
+                "shading = \"{}\" (it dithers the colour Gouraud and vertex-colour shading \
+                 interpolate)",
+                shading_name(shading)
+            )),
+            _ if perspective => Some("a perspective-correct mesh".into()),
+            _ => None,
+        });
+        if let Some(what) = what {
+            return Err(format!(
+                "mesh {name}: dither{} does not apply to {what}; remove it{}",
+                from(def.dither.is_some()),
+                if def.dither.is_some() {
+                    ""
+                } else {
+                    " from [render] and give each mesh that takes dithering its own `dither`"
+                }
+            ));
+        }
+    }
+    let unlit = wireframe || matches!(shading, ShadingModel::None | ShadingModel::VertexColors);
+    if def.material.is_some() && unlit {
+        return Err(format!(
+            "mesh {name}: material applies only to lit shading (flat, gouraud, phong), not to {}",
+            if wireframe {
+                "a wireframe mesh".to_string()
+            } else {
+                format!("shading = \"{}\"", shading_name(shading))
+            }
+        ));
+    }
+    if def.vertex_colors != VertexColorMode::File
+        && (wireframe || shading != ShadingModel::VertexColors)
+    {
+        return Err(format!(
+            "mesh {name}: vertex_colors applies only to shading = \"vertex_colors\" (filled)"
+        ));
+    }
+    if wireframe && def.depth == Some(true) {
+        return Err(format!(
+            "mesh {name}: depth = true does not apply to a wireframe mesh (edges are drawn \
+             without a depth buffer); remove it"
+        ));
+    }
+    Ok(())
+}
+
+/// A shading model as the scene file spells it.
+fn shading_name(s: ShadingModel) -> &'static str {
+    match s {
+        ShadingModel::None => "none",
+        ShadingModel::VertexColors => "vertex_colors",
+        ShadingModel::Flat => "flat",
+        ShadingModel::Gouraud => "gouraud",
+        ShadingModel::Phong => "phong",
+    }
 }
 
 /// The mesh's texture: the `texture` key's PNG, else a packed mesh's own texture (`own`);

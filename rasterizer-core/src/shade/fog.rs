@@ -1,10 +1,12 @@
 //! Fog: a shading model's colour mixed toward a fog colour by the depth of each vertex.
 //!
-//! [`Fog`] wraps a colour-interpolating shading model ([`GouraudLit`], [`VertexColors`], or
-//! [`FlatLit`] once per triangle) and mixes each vertex's colour toward the fog colour before
-//! the triangle interpolates it, so fogging costs a few integer operations per vertex and
-//! nothing per pixel: the span loop runs the inner model's own pixel code. A pipeline without
-//! [`Fog`] compiles none of it.
+//! [`Fog`] wraps a shading model with a colour to mix. A colour-interpolating one ([`GouraudLit`],
+//! [`VertexColors`], or [`FlatLit`] once per triangle) has each vertex's colour mixed toward the
+//! fog colour before the triangle interpolates it, so fogging costs a few integer operations per
+//! vertex and nothing per pixel: the span loop runs the inner model's own pixel code.
+//! [`PhongLit`], which makes its colour per pixel, interpolates the share of fog of its vertices
+//! as one more value and mixes each pixel's lit colour by it before rounding: one interpolated
+//! value and three multiply-adds per pixel. A pipeline without [`Fog`] compiles none of it.
 //!
 //! # The model
 //! The depth `d` of a point is its distance in front of the camera along the view direction:
@@ -30,14 +32,19 @@
 //! only), interpolated linearly between its entries: within `k² / (8192 (1 - e^-k))` of the
 //! curve (below 0.008 for the largest density, 8), plus half a step of 0.15. The colour channels
 //! are mixed at the target's depth in the inner model's own fixed point, rounded once, so a share
-//! of 0 leaves them untouched and a share of 1 gives the fog colour exactly.
+//! of 0 leaves them untouched and a share of 1 gives the fog colour exactly. [`PhongLit`]'s share
+//! is the vertices' 0.15 shares, interpolated in 0.30 (so the interpolation adds no error beyond
+//! a step of 0.30): a pixel's share lies between its vertices' as a Gouraud pixel's colour does,
+//! and where the three shares are unclamped the interpolated share is the share at the pixel's
+//! interpolated position, as linear fog is linear in position. Its lit sums are mixed with it
+//! before their one rounding, as [`FlatLit`]'s are.
 //!
 //! [`Mat4::look_at`]: crate::math::Mat4::look_at
 
-use super::model::{flat_face_sums, set_flat_sums, target_channels};
-use super::{FlatLit, GouraudLit, Shading, VertexColors, VertexIn};
+use super::model::{flat_face_sums, from_sums, phong_sums, set_flat_sums, target_channels};
+use super::{FlatLit, GouraudLit, PhongLit, Shading, Stored, VertexColors, VertexIn};
 use crate::color::ShadeColor;
-use crate::geom::MAX_VARYINGS;
+use crate::geom::{Varyings, MAX_VARYINGS};
 use crate::math::{Mat4, Scalar, Vec3};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
@@ -147,14 +154,18 @@ pub struct FogSettings<S> {
 pub struct FogColor {
     rgb: Rgb888,
     channels: [i32; 3],
+    /// In the units of the lit sums: `1 / (255 · 2^16)` of an 8-bit step.
+    sums: [u64; 3],
 }
 
 impl FogColor {
     /// The fog colour for shading models of colour `C`.
     pub fn new<C: ShadeColor>(rgb: Rgb888) -> Self {
+        let rgb8 = [rgb.r(), rgb.g(), rgb.b()].map(u64::from);
         Self {
             rgb,
-            channels: target_channels::<C>([rgb.r(), rgb.g(), rgb.b()].map(u64::from), 1),
+            channels: target_channels::<C>(rgb8, 1),
+            sums: rgb8.map(|c| (c * 255) << 16),
         }
     }
 
@@ -171,13 +182,34 @@ impl FogColor {
 }
 
 /// A shading model [`Fog`] can fog: it mixes its colour toward the fog colour, per vertex (in
-/// its interpolated values) or per triangle.
+/// its interpolated values), per triangle, or per pixel by an interpolated share.
 pub trait Foggable<S: Scalar>: Shading<S> {
     /// The model's colour is one per triangle, made in [`Shading::face`]: [`Fog`] fogs it by
     /// the triangle's centroid with [`Foggable::fog_face`] instead of per vertex.
     const FOG_PER_FACE: bool = false;
-    /// Mixes a vertex's values `share` of the way (0.15, at most [`FOG_ONE`]) toward `fog`.
-    fn fog_vertex(values: &mut Self::Varyings, fog: &FogColor, share: u32);
+    /// The values the fogged model interpolates: its own when it mixes per vertex or per
+    /// triangle, its own and the share of fog when it mixes per pixel.
+    type Fogged: Varyings;
+    /// What the vertex scratch keeps of them.
+    type FoggedStored: Stored<Self::Fogged>;
+    /// A vertex's values `share` of the way (0.15, at most [`FOG_ONE`]) toward `fog` (`share`
+    /// is 0 for models with [`Foggable::FOG_PER_FACE`]).
+    fn fog_vertex(values: Self::Varyings, fog: &FogColor, share: u32) -> Self::Fogged;
+    /// [`Shading::project`] of the fogged values.
+    fn fog_project(&self, v: &mut Self::Fogged, w: S);
+    /// [`Shading::triangle`] of the fogged values.
+    fn fog_triangle(&mut self, v: &mut [Self::Fogged; 3]);
+    /// [`Shading::pixel`] of the fogged values.
+    fn fog_pixel(&self, v: &Self::Fogged, fog: &FogColor) -> Self::Color;
+    /// [`Shading::pixel_fused`] of the fogged values.
+    fn fog_pixel_fused(&self, acc: &[u32; MAX_VARYINGS], fog: &FogColor) -> Self::Color;
+    /// [`Shading::pixel_fused_dithered`] of the fogged values.
+    fn fog_pixel_fused_dithered(
+        &self,
+        acc: &[u32; MAX_VARYINGS],
+        threshold: u32,
+        fog: &FogColor,
+    ) -> Self::Color;
     /// [`Shading::face`] with the triangle's colour mixed `share` of the way toward `fog`: for
     /// models with [`Foggable::FOG_PER_FACE`] (the default ignores the fog).
     fn fog_face(&mut self, vertices: &[VertexIn<S>; 3], fog: &FogColor, share: u32) {
@@ -186,35 +218,75 @@ pub trait Foggable<S: Scalar>: Shading<S> {
     }
 }
 
+/// The [`Foggable`] items of a model that fogs its own values (per vertex or per triangle): it
+/// interpolates and colours them as it does unfogged, so its pixels cost what they did.
+macro_rules! fogs_own_values {
+    ($s:ty) => {
+        type Fogged = <Self as Shading<$s>>::Varyings;
+        type FoggedStored = <Self as Shading<$s>>::Stored;
+        #[inline(always)]
+        fn fog_project(&self, v: &mut Self::Fogged, w: $s) {
+            <Self as Shading<$s>>::project(self, v, w);
+        }
+        #[inline(always)]
+        fn fog_triangle(&mut self, v: &mut [Self::Fogged; 3]) {
+            <Self as Shading<$s>>::triangle(self, v);
+        }
+        #[inline(always)]
+        fn fog_pixel(&self, v: &Self::Fogged, _: &FogColor) -> Self::Color {
+            <Self as Shading<$s>>::pixel(self, v)
+        }
+        #[inline(always)]
+        fn fog_pixel_fused(&self, acc: &[u32; MAX_VARYINGS], _: &FogColor) -> Self::Color {
+            <Self as Shading<$s>>::pixel_fused(self, acc)
+        }
+        #[inline(always)]
+        fn fog_pixel_fused_dithered(
+            &self,
+            acc: &[u32; MAX_VARYINGS],
+            threshold: u32,
+            _: &FogColor,
+        ) -> Self::Color {
+            <Self as Shading<$s>>::pixel_fused_dithered(self, acc, threshold)
+        }
+    };
+}
+
 /// Three interpolated channels mixed `share` (0.15) of the way toward the fog's: rounded once,
 /// between the two (both carry the same half step, which the mix keeps).
 #[inline(always)]
-fn mix_channels(values: &mut [i32; 3], fog: &FogColor, share: u32) {
+fn mix_channels(mut values: [i32; 3], fog: &FogColor, share: u32) -> [i32; 3] {
     for (v, f) in values.iter_mut().zip(fog.channels) {
         // |f - v| < 2^16 and share <= 2^15: the product fits an i64 with room to spare.
         let d = i64::from(f) - i64::from(*v);
         *v += ((d * i64::from(share) + (1 << 14)) >> 15) as i32;
     }
+    values
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Foggable<S> for GouraudLit<S, C, N> {
+    fogs_own_values!(S);
     #[inline(always)]
-    fn fog_vertex(values: &mut [i32; 3], fog: &FogColor, share: u32) {
-        mix_channels(values, fog, share);
+    fn fog_vertex(values: [i32; 3], fog: &FogColor, share: u32) -> [i32; 3] {
+        mix_channels(values, fog, share)
     }
 }
 
 impl<S: Scalar, C: ShadeColor> Foggable<S> for VertexColors<C> {
+    fogs_own_values!(S);
     #[inline(always)]
-    fn fog_vertex(values: &mut [i32; 3], fog: &FogColor, share: u32) {
-        mix_channels(values, fog, share);
+    fn fog_vertex(values: [i32; 3], fog: &FogColor, share: u32) -> [i32; 3] {
+        mix_channels(values, fog, share)
     }
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Foggable<S> for FlatLit<S, C, N> {
     const FOG_PER_FACE: bool = true;
+    fogs_own_values!(S);
     #[inline(always)]
-    fn fog_vertex(_: &mut [i32; 0], _: &FogColor, _: u32) {}
+    fn fog_vertex(_: [i32; 0], _: &FogColor, _: u32) -> [i32; 0] {
+        []
+    }
     fn fog_face(&mut self, vertices: &[VertexIn<S>; 3], fog: &FogColor, share: u32) {
         // The lit sums (units of 1 / (255 · 2^16) of an 8-bit step, at most 255 steps) mixed
         // before their one rounding to the target.
@@ -232,8 +304,60 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Foggable<S> for FlatLit<S, C, N> 
     }
 }
 
-/// A shading model fogged per vertex (per triangle for [`FlatLit`]): see the
-/// [module documentation](self).
+/// Fractional bits of the share of fog [`PhongLit`] interpolates: 0.15 shifted up by 15, so
+/// that the interpolation adds no error of its own and the share stays below `2^31` (the
+/// clipper interpolates it as an `i32`).
+const PHONG_SHARE_BITS: u32 = 30;
+
+/// Phong fogs per pixel: the share of fog at each vertex is interpolated as a seventh value and
+/// the lit sums are mixed toward the fog colour before their one rounding, so a pixel costs one
+/// more interpolated value and three multiply-adds.
+impl<S: Scalar, C: ShadeColor, const N: usize> Foggable<S> for PhongLit<S, C, N> {
+    type Fogged = [i32; 7];
+    type FoggedStored = [i32; 7];
+    #[inline(always)]
+    fn fog_vertex(v: [i32; 6], _: &FogColor, share: u32) -> [i32; 7] {
+        // share <= 2^15, so the shifted share is at most 2^30.
+        let share = (share << (PHONG_SHARE_BITS - 15)) as i32;
+        [v[0], v[1], v[2], v[3], v[4], v[5], share]
+    }
+    // PhongLit neither projects nor rescales its values.
+    #[inline(always)]
+    fn fog_project(&self, _: &mut [i32; 7], _: S) {}
+    #[inline(always)]
+    fn fog_triangle(&mut self, _: &mut [[i32; 7]; 3]) {}
+    #[inline(always)]
+    fn fog_pixel(&self, v: &[i32; 7], fog: &FogColor) -> C {
+        let [a, b, c, d, e, f, share] = *v;
+        let sums = phong_sums(self, &[a, b, c, d, e, f]);
+        let one = 1u64 << PHONG_SHARE_BITS;
+        // The interpolated share lies between the vertices' up to the interpolation's last
+        // unit; clamped so that rounding cannot push it out of [0, 1].
+        let share = u64::from(share.max(0) as u32).min(one);
+        let mut mixed = [0u64; 3];
+        for ch in 0..3 {
+            // Sums at most 255 · 255 · 2^16 < 2^32, times at most 2^30: the weighted sum stays
+            // below 2^63.
+            mixed[ch] =
+                (sums[ch] * (one - share) + fog.sums[ch] * share + (one >> 1)) >> PHONG_SHARE_BITS;
+        }
+        from_sums(mixed)
+    }
+    #[inline(always)]
+    fn fog_pixel_fused(&self, acc: &[u32; MAX_VARYINGS], fog: &FogColor) -> C {
+        // PhongLit's FUSED_FRAC is 0: each accumulator is its value.
+        let v = [0, 1, 2, 3, 4, 5, 6].map(|i| acc[i] as i32);
+        self.fog_pixel(&v, fog)
+    }
+    #[inline(always)]
+    fn fog_pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], _: u32, fog: &FogColor) -> C {
+        // No interpolated colour to dither, as unfogged.
+        self.fog_pixel_fused(acc, fog)
+    }
+}
+
+/// A shading model fogged per vertex (per triangle for [`FlatLit`], per pixel for
+/// [`PhongLit`]): see the [module documentation](self).
 ///
 /// ```
 /// use rasterizer_core::prelude::*;
@@ -333,8 +457,8 @@ where
     Sh::Color: ShadeColor,
 {
     type Color = Sh::Color;
-    type Varyings = Sh::Varyings;
-    type Stored = Sh::Stored;
+    type Varyings = Sh::Fogged;
+    type Stored = Sh::FoggedStored;
     const NEEDS_WORLD: bool = true;
     const NEEDS_FACE: bool = Sh::NEEDS_FACE;
     const FUSED_FRAC: u32 = Sh::FUSED_FRAC;
@@ -345,12 +469,12 @@ where
 
     #[inline(always)]
     fn project(&self, v: &mut Self::Varyings, w: S) {
-        self.inner.project(v, w);
+        self.inner.fog_project(v, w);
     }
 
     #[inline(always)]
     fn triangle(&mut self, v: &mut [Self::Varyings; 3]) {
-        self.inner.triangle(v);
+        self.inner.fog_triangle(v);
     }
 
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
@@ -371,11 +495,13 @@ where
 
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> Self::Varyings {
-        let mut values = self.inner.vertex(v);
-        if !Sh::FOG_PER_FACE {
-            Sh::fog_vertex(&mut values, &self.color, self.share_at(v.position));
-        }
-        values
+        let values = self.inner.vertex(v);
+        let share = if Sh::FOG_PER_FACE {
+            0
+        } else {
+            self.share_at(v.position)
+        };
+        Sh::fog_vertex(values, &self.color, share)
     }
 
     fn face(&mut self, v: &[VertexIn<S>; 3]) {
@@ -391,16 +517,17 @@ where
 
     #[inline(always)]
     fn pixel(&self, v: &Self::Varyings) -> Self::Color {
-        self.inner.pixel(v)
+        self.inner.fog_pixel(v, &self.color)
     }
 
     #[inline(always)]
     fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> Self::Color {
-        self.inner.pixel_fused(acc)
+        self.inner.fog_pixel_fused(acc, &self.color)
     }
 
     #[inline(always)]
     fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> Self::Color {
-        self.inner.pixel_fused_dithered(acc, threshold)
+        self.inner
+            .fog_pixel_fused_dithered(acc, threshold, &self.color)
     }
 }

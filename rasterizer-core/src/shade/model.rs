@@ -192,7 +192,7 @@ pub(super) fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3
 
 /// A lit colour from [`Lighting::shade_sums`] at the target's depth, rounded once.
 #[inline(always)]
-fn from_sums<C: ShadeColor>(sums: [u64; 3]) -> C {
+pub(super) fn from_sums<C: ShadeColor>(sums: [u64; 3]) -> C {
     // sums[c] / (255 · 2^16) 8-bit steps, times max / 255, rounded half up.
     let d = 255 * 255 * (1u64 << 16);
     let ch = |c: usize| ((sums[c] * u64::from(C::MAX[c]) + d / 2) / d) as u8;
@@ -452,10 +452,20 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
     }
     #[inline(always)]
     fn pixel(&self, v: &[i32; 6]) -> C {
-        let f = |i: usize| S::from_fx16_bits(v[i]);
-        let normal = Vec3::new(f(0), f(1), f(2));
-        let position = Vec3::new(f(3), f(4), f(5));
-        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
-        from_sums(lighting.shade_sums(position, normal))
+        from_sums(phong_sums(self, v))
     }
+}
+
+/// The lit sums ([`Lighting::shade_sums`]) of a pixel of [`PhongLit`] from its interpolated
+/// normal and position.
+#[inline(always)]
+pub(super) fn phong_sums<S: Scalar, C, const N: usize>(
+    phong: &PhongLit<S, C, N>,
+    v: &[i32; 6],
+) -> [u64; 3] {
+    let f = |i: usize| S::from_fx16_bits(v[i]);
+    let normal = Vec3::new(f(0), f(1), f(2));
+    let position = Vec3::new(f(3), f(4), f(5));
+    let lighting = phong.frame.as_ref().unwrap_or(&phong.lighting);
+    lighting.shade_sums(position, normal)
 }
