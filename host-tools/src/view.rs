@@ -6,7 +6,7 @@
 //! meshes wrote. Left and right arrows (or dragging with the mouse) turn the meshes about the
 //! vertical axis, up and down tilt them; Escape or Q closes the window.
 
-use crate::scenefile::{load, render_posed, Pose};
+use crate::scenefile::{load_warning, render_posed, Pose};
 use rasterizer_core::prelude::*;
 use sdl2::event::Event;
 use sdl2::keyboard::Keycode;
@@ -39,7 +39,7 @@ const DRAG_STEP: i32 = 65536 / 720;
 /// # Errors
 /// A message for the `error:` line: the scene, SDL2 (no display, for example), or the screenshot.
 pub fn run(args: &ViewArgs) -> Result<(), Box<dyn std::error::Error>> {
-    let scene = load(&args.scene)?;
+    let scene = load_warning(&args.scene)?;
     let scale = args.scale.unwrap_or(scene.scale);
     let name = args.scene.file_name().map_or_else(
         || args.scene.display().to_string(),

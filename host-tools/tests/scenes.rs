@@ -532,3 +532,44 @@ fn fog_key_fogs_by_depth() {
     );
     expect_failure(&dir, "no_end", &fog("start = 1.0"), &["end"]);
 }
+
+/// A scene with an odd but usable OBJ (CRLF line endings, a missing material library): every
+/// command that reads scenes says so in `warning:` lines on stderr and still does its work.
+#[test]
+fn obj_warnings_reach_the_user() {
+    let dir = scratch("obj-warnings");
+    let obj = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/unit_cube.obj"),
+    )
+    .unwrap();
+    let odd = format!("mtllib nowhere.mtl\n{obj}").replace('\n', "\r\n");
+    std::fs::write(dir.join("odd.obj"), odd).unwrap();
+    let scene = dir.join("odd.toml");
+    std::fs::write(
+        &scene,
+        "[output]\nwidth = 48\nheight = 32\n[camera]\neye = [1.5, 1.2, 2.5]\n\
+         [[meshes]]\npath = \"odd.obj\"\n",
+    )
+    .unwrap();
+    let out = |name: &str| dir.join(name);
+    for (cmd, extra) in [
+        ("render", vec!["-o".into(), out("r.png")]),
+        (
+            "animate",
+            vec!["--frames".into(), "1".into(), "-o".into(), out("a.gif")],
+        ),
+        ("compare", vec!["-o".into(), out("c.png")]),
+    ] {
+        let o = bin().arg(cmd).arg(&scene).args(&extra).output().unwrap();
+        let (stdout, stderr) = text(&o);
+        assert!(o.status.success(), "{cmd}: {stdout}{stderr}");
+        for needle in ["CRLF", "nowhere.mtl"] {
+            assert!(
+                stderr.lines().any(|l| l.starts_with("warning: ")
+                    && l.contains("odd.obj")
+                    && l.contains(needle)),
+                "{cmd}: no warning about {needle}: {stderr}"
+            );
+        }
+    }
+}

@@ -16,7 +16,7 @@ pub use format::{
     PixelFormat, RenderOptions, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel,
     TextureFilterDef, TextureWrapDef, VertexColorMode,
 };
-pub use load::{load, MeshData, OwnedMesh, Scene, SceneMesh, SceneTexture};
+pub use load::{load, load_with_warnings, MeshData, OwnedMesh, Scene, SceneMesh, SceneTexture};
 pub use reference::{Real, F64};
 
 use crate::output::{
@@ -139,6 +139,21 @@ fn the_help_states_the_limits_in_force() {
     assert!(LIMITS_HELP.contains(&MAX_OUTPUT_PIXELS.to_string()));
 }
 
+/// [`load`] for a command: the OBJ reader's warnings are printed as `warning:` lines on stderr
+/// (before an error, when the scene is refused: they often say why, e.g. a file with bare CR
+/// line endings has no faces).
+///
+/// # Errors
+/// As [`load`].
+pub fn load_warning(path: &Path) -> Result<Scene> {
+    let mut warnings = Vec::new();
+    let scene = load_with_warnings(path, &mut warnings);
+    for w in &warnings {
+        crate::errln!("warning: {w}");
+    }
+    Ok(scene?)
+}
+
 /// Checks the size of one output image, `width x height` PNG pixels, before anything is drawn.
 fn check_output(scene: &Scene, scale: u32, width: u64, height: u64) -> Result<()> {
     let pixels = width * height;
@@ -162,7 +177,7 @@ fn check_output(scene: &Scene, scale: u32, width: u64, height: u64) -> Result<()
 /// Any failure, as a message for the `error:` line; an existing output is left as it was then.
 pub fn render(args: &RenderArgs) -> Result<()> {
     let to_stdout = goes_to_stdout(&args.output);
-    let scene = load(&args.scene)?;
+    let scene = load_warning(&args.scene)?;
     check_output_name(&args.output, &scene.inputs(), &["png"], "a PNG", "")?;
     let scale = args.scale.unwrap_or(scene.scale);
     check_output(
@@ -206,7 +221,7 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
         );
     }
     let to_stdout = goes_to_stdout(&args.output);
-    let scene = load(&args.scene)?;
+    let scene = load_warning(&args.scene)?;
     if args.png_sequence {
         let format = "PNG files (--png-sequence)";
         check_output_name(&args.output, &scene.inputs(), &["png"], format, "")?;
@@ -360,7 +375,7 @@ pub fn difference(
 /// Any failure, as a message for the `error:` line.
 pub fn compare(args: &CompareArgs) -> Result<()> {
     let to_stdout = goes_to_stdout(&args.output);
-    let scene = load(&args.scene)?;
+    let scene = load_warning(&args.scene)?;
     check_output_name(&args.output, &scene.inputs(), &["png"], "a PNG", "")?;
     if scene.meshes.is_empty() {
         return Err(format!(
