@@ -120,7 +120,7 @@ fn bad_scenes_fail_with_file_and_line() {
         &dir,
         "bad_colour",
         &format!("{OUTPUT}background = [0, 300, 0]\n"),
-        &["line 4", "0..=255"],
+        &["line 4", "0 ..= 255"],
     );
     expect_failure(
         &dir,
@@ -572,4 +572,70 @@ fn obj_warnings_reach_the_user() {
             );
         }
     }
+}
+
+/// Every integer key of the scene format names its allowed range when a value is outside it
+/// (not "expected u8": a Rust type is no help to someone writing a scene).
+#[test]
+fn integer_keys_name_their_range() {
+    let dir = scratch("ranges");
+    let shape = |key: &str| {
+        format!("{OUTPUT}[[shapes]]\nkind = \"line\"\nfrom = [1.0, 1.0]\nto = [3.0, 4.0]\ncolor = [1, 2, 3]\nantialias = true\n{key}\n")
+    };
+    let mesh = |key: &str| format!("{OUTPUT}[[meshes]]\npath = \"m.obj\"\n{key}\n");
+    let cases = [
+        (
+            "width",
+            "[output]\nwidth = -3\nheight = 24\n".to_string(),
+            "1 ..= 4096",
+        ),
+        (
+            "height",
+            "[output]\nwidth = 3\nheight = 5000000000\n".into(),
+            "1 ..= 4096",
+        ),
+        ("scale", format!("{OUTPUT}scale = 0\n"), "1 ..= 16"),
+        (
+            "background",
+            format!("{OUTPUT}background = [0, 300, 0]\n"),
+            "0 ..= 255",
+        ),
+        ("mesh_opacity", mesh("opacity = 300"), "0 ..= 255"),
+        (
+            "shininess",
+            mesh("material = { shininess = 70000 }"),
+            "0 ..= 65535",
+        ),
+        ("shape_opacity", shape("opacity = -1"), "`opacity`"),
+        ("line_width", shape("width = 0"), "`width`"),
+        (
+            "clip",
+            shape("clip = [0, 0, 5000000000, 1]"),
+            "-2147483648 ..= 2147483647",
+        ),
+    ];
+    for (name, scene, range) in cases {
+        expect_failure(&dir, name, &scene, &[range]);
+        let (stdout, stderr) = {
+            let o = bin()
+                .arg("render")
+                .arg(dir.join(format!("{name}.toml")))
+                .args(["-o", "-"])
+                .output()
+                .unwrap();
+            text(&o)
+        };
+        assert!(
+            !stderr.contains("expected u") && !stderr.contains("expected i"),
+            "{name}: {stdout}{stderr}"
+        );
+    }
+    // Inside [[shapes]] the key is named along with its range.
+    expect_failure(
+        &dir,
+        "shape_opacity",
+        &shape("opacity = -1"),
+        &["0 ..= 255"],
+    );
+    expect_failure(&dir, "line_width", &shape("width = 0"), &["1 ..= 65535"]);
 }
