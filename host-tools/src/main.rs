@@ -67,7 +67,8 @@ enum Command {
         interpolation, and combinations) is measured against an f64 reference on the workload \
         scenes M1-M3 and on random scenes, its instructions per M1 frame are counted with \
         callgrind (valgrind must be installed, or pass --no-count), and the limits of each format \
-        are found. Writes OUT/ACCURACY.md and OUT/images/accuracy.svg.\n\n\
+        are found. Writes OUT/ACCURACY.md and OUT/images/accuracy.svg. A progress bar is shown on \
+        stderr when it is a terminal.\n\n\
         Run from the repository root, release build: \
         cargo run --release -p host-tools -- accuracy"
     )]

@@ -22,6 +22,7 @@ pub use reference::{Real, F64};
 use crate::output::{
     check_output as check_output_name, encode_png, goes_to_stdout, is_stdout, write_png, OutputFile,
 };
+use crate::progress::Progress;
 use crate::sayln;
 use embedded_graphics_simulator::SimulatorDisplay;
 use image::codecs::gif::{GifEncoder, Repeat};
@@ -58,7 +59,8 @@ pub struct AnimateArgs {
     /// derived from (`out.png` gives `out_000.png`, `out_001.png`, ...; .png or no extension).
     #[arg(short, long, value_name = "FILE", allow_hyphen_values = true)]
     pub output: PathBuf,
-    /// Frames in one full turn, 1 ..= 720.
+    /// Frames in one full turn, 1 ..= 720 (a progress bar counts them on stderr when it is a
+    /// terminal).
     #[arg(long, value_name = "N", default_value_t = 36, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_FRAMES)))]
     pub frames: u32,
     /// Write numbered PNG files instead of a GIF.
@@ -246,6 +248,8 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
     check_output(&scene, scale, width, height)?;
     let turn = |k: u32| Angle((u64::from(k) * 65536 / u64::from(n)) as u16);
     let inputs = scene.inputs();
+    let progress = Progress::new(true);
+    progress.stage("frames", u64::from(n));
     if args.png_sequence {
         let stem = args
             .output
@@ -266,7 +270,9 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
                 return Err(out.error(e).into());
             }
             pending.push(out.finish()?);
+            progress.inc();
         }
+        progress.finish();
         for p in pending {
             p.commit()?;
         }
@@ -304,9 +310,11 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
             };
             let frame = Frame::from_parts(rgba, 0, 0, Delay::from_numer_denom_ms(delay, 1));
             encoder.encode_frame(frame).map_err(FrameError::Encode)?;
+            progress.inc();
         }
         Ok(())
     })();
+    progress.finish();
     match result {
         Ok(()) => out.commit()?,
         Err(FrameError::Scene(e)) => return Err(e.into()),
