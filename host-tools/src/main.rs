@@ -48,6 +48,9 @@ enum Command {
     /// Convert an OBJ file into the packed fixed-point mesh firmware embeds (or Rust source).
     Convert(host_tools::convert::ConvertArgs),
     /// Show a scene file in a live window, turned with the arrow keys or the mouse (feature `view`).
+    ///
+    /// Needs a display: X11 (DISPLAY) or Wayland (WAYLAND_DISPLAY), or a driver chosen with
+    /// SDL_VIDEODRIVER; where no window can be opened it fails with an error saying why.
     #[cfg(feature = "view")]
     #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
     View(host_tools::view::ViewArgs),
