@@ -538,18 +538,22 @@ impl<'de> Deserialize<'de> for Color {
 
 /// An integer key's value, range-checked here rather than by serde's `u8`, `u32`, ... so that
 /// an error names the range the key allows (`expected an integer 0 ..= 255`), not a Rust type.
-struct Int<const MIN: i64, const MAX: i64>(i64);
+/// With `LATER`, any `u32` passes: `load` checks the range then, in a one-line message with the
+/// key and the value.
+struct Int<const MIN: i64, const MAX: i64, const LATER: bool = false>(i64);
 
-impl<'de, const MIN: i64, const MAX: i64> Deserialize<'de> for Int<MIN, MAX> {
+impl<'de, const MIN: i64, const MAX: i64, const LATER: bool> Deserialize<'de>
+    for Int<MIN, MAX, LATER>
+{
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct V<const MIN: i64, const MAX: i64>;
-        impl<const MIN: i64, const MAX: i64> Visitor<'_> for V<MIN, MAX> {
-            type Value = Int<MIN, MAX>;
+        struct V<const MIN: i64, const MAX: i64, const LATER: bool>;
+        impl<const MIN: i64, const MAX: i64, const LATER: bool> Visitor<'_> for V<MIN, MAX, LATER> {
+            type Value = Int<MIN, MAX, LATER>;
             fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
                 write!(f, "an integer {MIN} ..= {MAX}")
             }
             fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
-                if (MIN..=MAX).contains(&v) {
+                if (MIN..=MAX).contains(&v) || (LATER && u32::try_from(v).is_ok()) {
                     Ok(Int(v))
                 } else {
                     Err(E::invalid_value(de::Unexpected::Signed(v), &self))
@@ -562,7 +566,7 @@ impl<'de, const MIN: i64, const MAX: i64> Deserialize<'de> for Int<MIN, MAX> {
                 }
             }
         }
-        d.deserialize_i64(V::<MIN, MAX>)
+        d.deserialize_i64(V::<MIN, MAX, LATER>)
     }
 }
 
@@ -576,11 +580,11 @@ fn named<T, E: de::Error>(key: &str, r: Result<T, E>) -> Result<T, E> {
 }
 
 fn size<'de, D: Deserializer<'de>>(d: D) -> Result<u32, D::Error> {
-    Int::<1, { super::MAX_SIZE as i64 }>::deserialize(d).map(|i| i.0 as u32)
+    Int::<1, { super::MAX_SIZE as i64 }, true>::deserialize(d).map(|i| i.0 as u32)
 }
 
 fn scale<'de, D: Deserializer<'de>>(d: D) -> Result<u32, D::Error> {
-    Int::<1, 16>::deserialize(d).map(|i| i.0 as u32)
+    Int::<1, 16, true>::deserialize(d).map(|i| i.0 as u32)
 }
 
 fn opacity<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u8>, D::Error> {
