@@ -51,6 +51,28 @@ pub fn err(args: fmt::Arguments<'_>) {
     let _ = lock.write_fmt(args).and_then(|()| lock.flush());
 }
 
+/// A message about the work: to stdout, or to stderr when stdout carries the command's data
+/// (`-o -`), where a message would corrupt it. Use [`sayln!`](crate::sayln).
+///
+/// # Errors
+/// As [`out`].
+pub fn say(data_on_stdout: bool, args: fmt::Arguments<'_>) -> Result<(), StdoutError> {
+    if data_on_stdout {
+        err(args);
+        Ok(())
+    } else {
+        out(args)
+    }
+}
+
+/// `outln!` that goes to stderr when the first argument is true (see [`say`]).
+#[macro_export]
+macro_rules! sayln {
+    ($data_on_stdout:expr, $($arg:tt)*) => {
+        $crate::console::say($data_on_stdout, format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
 /// `println!` that returns `Result<(), StdoutError>` instead of panicking.
 #[macro_export]
 macro_rules! outln {

@@ -5,6 +5,7 @@ pub mod console;
 pub mod convert;
 pub mod figures;
 pub mod output;
+pub mod progress;
 pub mod scenefile;
 #[cfg(feature = "view")]
 pub mod view;

@@ -37,6 +37,9 @@ enum Command {
     /// Convert an OBJ file into the packed fixed-point mesh firmware embeds (or Rust source).
     Convert(host_tools::convert::ConvertArgs),
     /// Show a scene file in a live window, turned with the arrow keys or the mouse (feature `view`).
+    ///
+    /// Needs a display: X11 (DISPLAY) or Wayland (WAYLAND_DISPLAY), or a driver chosen with
+    /// SDL_VIDEODRIVER; where no window can be opened it fails with an error saying why.
     #[cfg(feature = "view")]
     #[command(after_long_help = host_tools::scenefile::LIMITS_HELP)]
     View(host_tools::view::ViewArgs),
@@ -56,7 +59,8 @@ enum Command {
         interpolation, and combinations) is measured against an f64 reference on the workload \
         scenes M1-M3 and on random scenes, its instructions per M1 frame are counted with \
         callgrind (valgrind must be installed, or pass --no-count), and the limits of each format \
-        are found. Writes OUT/ACCURACY.md and OUT/images/accuracy.svg.\n\n\
+        are found. Writes OUT/ACCURACY.md and OUT/images/accuracy.svg. A progress bar is shown on \
+        stderr when it is a terminal.\n\n\
         Run from the repository root, release build: \
         cargo run --release -p host-tools -- accuracy"
     )]

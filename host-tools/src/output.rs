@@ -6,13 +6,18 @@
 //! temporary file behind. A symbolic link is followed and its target replaced (the link stays);
 //! a device node, FIFO or socket is written in place and never removed. An output that is one of
 //! the command's inputs (same device and inode, however it is spelt) is refused before anything
-//! is written.
+//! is written. `-` is standard output, written in place; a reader that goes away (a closed pipe)
+//! ends it quietly, as [`crate::console`] does for messages.
+//!
+//! Whether a path is a device is asked of the path itself (the kernel follows its links):
+//! `/dev/stdout` links to `/proc/self/fd/1`, which links to `pipe:[N]`, a name that exists
+//! nowhere, so following the links by hand would take a pipe for a new file in `/proc`.
 
 use std::fmt;
 use std::fs::{self, File, OpenOptions, Permissions};
-use std::io::{self, BufWriter, Write};
+use std::io::{self, BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
 /// Why an output could not be written: `cannot write PATH: CAUSE`.
 #[derive(Debug)]
@@ -41,8 +46,87 @@ enum Sink {
         /// The permissions of the file being replaced, given to its successor.
         mode: Option<Permissions>,
     },
-    /// A device, FIFO or socket: written in place.
-    Direct(BufWriter<File>),
+    /// A device, FIFO, socket or standard output: written in place.
+    Direct(BufWriter<Box<dyn Write>>),
+}
+
+/// True for the output `-`: standard output.
+pub fn is_stdout(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// True when `path` is standard output however it is named (`-`, `/dev/stdout`, or the file
+/// stdout is redirected to): messages must then go to stderr, or they would corrupt the data.
+pub fn goes_to_stdout(path: &Path) -> bool {
+    is_stdout(path) || same_file(path, Path::new("/dev/stdout"))
+}
+
+/// Standard output as an output file. Once its reader has gone (a closed pipe) the rest is
+/// dropped and the command carries on, as `console::out` does: there is no one left to tell.
+struct Stdout;
+
+static STDOUT_GONE: AtomicBool = AtomicBool::new(false);
+
+impl Stdout {
+    fn gone<T>(r: io::Result<T>, none: T) -> io::Result<T> {
+        match r {
+            Err(e) if e.kind() == io::ErrorKind::BrokenPipe => {
+                STDOUT_GONE.store(true, Ordering::Relaxed);
+                Ok(none)
+            }
+            r => r,
+        }
+    }
+}
+
+impl Write for Stdout {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        if STDOUT_GONE.load(Ordering::Relaxed) {
+            return Ok(buf.len());
+        }
+        Self::gone(io::stdout().lock().write(buf), buf.len())
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        if STDOUT_GONE.load(Ordering::Relaxed) {
+            return Ok(());
+        }
+        Self::gone(io::stdout().lock().flush(), ())
+    }
+}
+
+/// Checks an output before the work: it must not be one of `inputs`, and its extension must
+/// name the format the command writes. `accepted` are the extensions of that format (lower
+/// case, without the dot); `format` names it for the message, `hint` says what else the user
+/// can do. A path without an extension (`-`, a device, a FIFO) is taken as it is: the
+/// command's format is the only one it could mean.
+///
+/// # Errors
+/// An [`OutputError`] naming the path and the input, or the format and the extensions accepted.
+pub fn check_output(
+    path: &Path,
+    inputs: &[&Path],
+    accepted: &[&str],
+    format: &str,
+    hint: &str,
+) -> Result<(), OutputError> {
+    // First, as the graver mistake: a scene named as its own output has a wrong extension too.
+    refuse_input(path, inputs)?;
+    let Some(ext) = path.extension() else {
+        return Ok(());
+    };
+    let ext = ext.to_string_lossy();
+    if accepted.iter().any(|a| ext.eq_ignore_ascii_case(a)) {
+        return Ok(());
+    }
+    let list: Vec<String> = accepted.iter().map(|a| format!(".{a}")).collect();
+    Err(OutputError {
+        path: path.to_path_buf(),
+        message: format!(
+            "this writes {format}, but the extension is .{ext}; accepted: {}{hint}",
+            list.join(", ")
+        ),
+    })
 }
 
 /// An output being written. Implements [`Write`]; nothing is visible at the output path until
@@ -115,6 +199,17 @@ fn create_temp(dir: &Path, name: &str) -> io::Result<(PathBuf, File)> {
     }
 }
 
+/// An output that is one of the inputs (same device and inode) is refused.
+fn refuse_input(path: &Path, inputs: &[&Path]) -> Result<(), OutputError> {
+    match inputs.iter().find(|i| same_file(path, i)) {
+        Some(input) => Err(OutputError {
+            path: path.to_path_buf(),
+            message: format!("it is the input {}; choose another output", input.display()),
+        }),
+        None => Ok(()),
+    }
+}
+
 impl OutputFile {
     /// Prepares to write `path`. `inputs` are the files the command reads; an output that is one
     /// of them is refused.
@@ -127,22 +222,39 @@ impl OutputFile {
             path: path.to_path_buf(),
             message,
         };
-        if let Some(input) = inputs.iter().find(|i| same_file(path, i)) {
-            return Err(fail(format!(
-                "it is the input {}; choose another output",
-                input.display()
-            )));
+        if is_stdout(path) {
+            // A picture on a terminal is only noise, and likely a forgotten redirection.
+            if io::stdout().is_terminal() {
+                return Err(fail(
+                    "standard output is a terminal; redirect it to a file or a pipe".into(),
+                ));
+            }
+            return Ok(Self {
+                shown: path.to_path_buf(),
+                sink: Some(Sink::Direct(BufWriter::new(Box::new(Stdout)))),
+                first_error: None,
+            });
         }
-        let target = resolve_links(path).map_err(|e| fail(e.to_string()))?;
-        let sink = match fs::metadata(&target) {
+        refuse_input(path, inputs)?;
+        // The kernel follows the links here (see the module's comment on /dev/stdout).
+        match fs::metadata(path) {
             Ok(m) if m.is_dir() => return Err(fail("it is a directory".into())),
             Ok(m) if !m.is_file() => {
                 let file = OpenOptions::new()
                     .write(true)
-                    .open(&target)
+                    .open(path)
                     .map_err(|e| fail(e.to_string()))?;
-                Sink::Direct(BufWriter::new(file))
+                return Ok(Self {
+                    shown: path.to_path_buf(),
+                    sink: Some(Sink::Direct(BufWriter::new(Box::new(file)))),
+                    first_error: None,
+                });
             }
+            _ => {}
+        }
+        let target = resolve_links(path).map_err(|e| fail(e.to_string()))?;
+        let sink = match fs::metadata(&target) {
+            Ok(m) if m.is_dir() => return Err(fail("it is a directory".into())),
             existing => {
                 let name = target
                     .file_name()
@@ -257,9 +369,10 @@ impl OutputFile {
         self.finish()?.commit()
     }
 
-    fn writer(&mut self) -> io::Result<&mut BufWriter<File>> {
+    fn writer(&mut self) -> io::Result<&mut dyn Write> {
         match &mut self.sink {
-            Some(Sink::Replace { file, .. }) | Some(Sink::Direct(file)) => Ok(file),
+            Some(Sink::Replace { file, .. }) => Ok(file),
+            Some(Sink::Direct(file)) => Ok(file),
             None => Err(io::Error::other("the output is already finished")),
         }
     }

@@ -5,8 +5,14 @@
 //! change its title, and the title carries the frame time, the triangles drawn and the pixels the
 //! meshes wrote. Left and right arrows (or dragging with the mouse) turn the meshes about the
 //! vertical axis, up and down tilt them; Escape or Q closes the window.
+//!
+//! Without a display SDL would not fail: it falls back to its invisible `offscreen` driver (and
+//! would run forever without `--frames`), and its Wayland driver's library prints
+//! `error: XDG_RUNTIME_DIR is invalid ...` on stderr, a line that looks like ours. So the display
+//! is checked before SDL is started, SDL tries only the drivers of the displays named in the
+//! environment, and an invisible driver is refused.
 
-use crate::scenefile::{load, render_posed, Pose};
+use crate::scenefile::{load_warning, render_posed, Pose};
 use rasterizer_core::prelude::*;
 use sdl2::event::Event;
 use sdl2::keyboard::Keycode;
@@ -39,14 +45,14 @@ const DRAG_STEP: i32 = 65536 / 720;
 /// # Errors
 /// A message for the `error:` line: the scene, SDL2 (no display, for example), or the screenshot.
 pub fn run(args: &ViewArgs) -> Result<(), Box<dyn std::error::Error>> {
-    let scene = load(&args.scene)?;
+    let scene = load_warning(&args.scene)?;
     let scale = args.scale.unwrap_or(scene.scale);
     let name = args.scene.file_name().map_or_else(
         || args.scene.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let sdl = sdl2::init()?;
-    let video = sdl.video()?;
+    let sdl = sdl2::init().map_err(NoWindow)?;
+    let video = open_video(&sdl)?;
     let (mut yaw, mut pitch) = (0i32, 0i32);
     let pose = |yaw: i32, pitch: i32| Pose {
         yaw: Angle(yaw.rem_euclid(65536) as u16),
@@ -60,7 +66,7 @@ pub fn run(args: &ViewArgs) -> Result<(), Box<dyn std::error::Error>> {
         .window(&name, w, h)
         .position_centered()
         .build()
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| NoWindow(e.to_string()))?;
     let mut canvas = window
         .into_canvas()
         .software()
@@ -126,6 +132,59 @@ pub fn run(args: &ViewArgs) -> Result<(), Box<dyn std::error::Error>> {
         crate::output::write_png(path, &[args.scene.as_path()], w, h, &shot)?;
     }
     Ok(())
+}
+
+/// No window could be opened, and why.
+#[derive(Debug)]
+struct NoWindow(String);
+
+impl std::fmt::Display for NoWindow {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "no window could be opened: {}", self.0)
+    }
+}
+
+impl std::error::Error for NoWindow {}
+
+/// SDL's drivers that draw nowhere a user can see.
+const INVISIBLE_DRIVERS: [&str; 3] = ["offscreen", "dummy", "evdev"];
+
+fn set(var: &str) -> bool {
+    std::env::var_os(var).is_some_and(|v| !v.is_empty())
+}
+
+/// Starts SDL's video for a visible window, or says why there can be none.
+fn open_video(sdl: &sdl2::Sdl) -> Result<sdl2::VideoSubsystem, NoWindow> {
+    let chosen = set("SDL_VIDEODRIVER");
+    // Without a chosen driver SDL tries them all, Wayland's noisily, and ends in `offscreen`:
+    // try only those of the displays named (a console's kmsdrm can be chosen explicitly).
+    if !chosen {
+        let drivers =
+            match (set("WAYLAND_DISPLAY"), set("DISPLAY")) {
+                (true, true) => "wayland,x11",
+                (true, false) => "wayland",
+                (false, true) => "x11",
+                (false, false) => return Err(NoWindow(
+                    "no display (DISPLAY and WAYLAND_DISPLAY are not set); run it in a desktop \
+                     session or under xvfb-run, or choose a driver with SDL_VIDEODRIVER"
+                        .into(),
+                )),
+            };
+        sdl2::hint::set("SDL_VIDEODRIVER", drivers);
+    }
+    let video = sdl.video().map_err(|e| {
+        let display = std::env::var("DISPLAY").unwrap_or_default();
+        NoWindow(format!(
+            "SDL found no usable video driver: {e} (DISPLAY={display:?})"
+        ))
+    })?;
+    let driver = video.current_video_driver();
+    if INVISIBLE_DRIVERS.contains(&driver) {
+        return Err(NoWindow(format!(
+            "SDL's video driver `{driver}` shows nothing on a screen"
+        )));
+    }
+    Ok(video)
 }
 
 /// The window title: what the frame cost and did.

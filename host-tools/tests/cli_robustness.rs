@@ -11,7 +11,12 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-const BIN: &str = env!("CARGO_BIN_EXE_host-tools");
+#[path = "support/cli.rs"]
+mod cli;
+use cli::{
+    assert_error, assert_no_panic, assert_ok, listing, run, s, scratch_in, text,
+    with_closed_stdout, BIN,
+};
 
 fn models() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models")
@@ -19,73 +24,7 @@ fn models() -> PathBuf {
 
 /// A fresh directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("host-tools-robust-{}-{name}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// No panic text anywhere in the output.
-fn assert_no_panic(o: &Output, what: &str) {
-    let all = text(&o.stdout) + &text(&o.stderr);
-    assert!(
-        !all.contains("panicked") && !all.contains("RUST_BACKTRACE"),
-        "{what}: panic text:\n{all}"
-    );
-    assert_ne!(o.status.code(), Some(101), "{what}: exit 101 (a panic)");
-}
-
-/// A failure: non-zero exit (1), exactly one `error:` line, no panic; returns that line.
-fn assert_error(o: &Output, what: &str) -> String {
-    assert_no_panic(o, what);
-    let stderr = text(&o.stderr);
-    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
-    assert_eq!(
-        errors.len(),
-        1,
-        "{what}: want one error line, stderr:\n{stderr}\nstdout:\n{}",
-        text(&o.stdout)
-    );
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "{what}: exit code; stderr:\n{stderr}"
-    );
-    errors[0].to_string()
-}
-
-/// A success: exit 0, no `error:` line, no panic.
-fn assert_ok(o: &Output, what: &str) {
-    assert_no_panic(o, what);
-    assert!(
-        o.status.success(),
-        "{what}: exit {:?}, stderr:\n{}",
-        o.status.code(),
-        text(&o.stderr)
-    );
-    assert!(!text(&o.stderr).contains("error:"), "{what}");
-}
-
-/// The names in `dir`, sorted: shows any temporary file left behind.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+    scratch_in("robust", name)
 }
 
 fn assert_listing(dir: &Path, want: &[&str], what: &str) {
@@ -470,18 +409,6 @@ fn device_node_output_is_written_not_replaced() {
         assert!(is_char_device(&node), "{label}: the device node is gone");
         assert_eq!(listing(&dir), before, "{label}: files left behind");
     }
-}
-
-/// Runs `args` with stdout on a pipe whose read end is already closed.
-fn with_closed_stdout(args: &[&str]) -> Output {
-    let (reader, writer) = std::io::pipe().unwrap();
-    drop(reader);
-    Command::new(BIN)
-        .args(args)
-        .stdout(writer)
-        .stderr(Stdio::piped())
-        .output()
-        .unwrap()
 }
 
 /// Runs `args` with stdout on /dev/full.

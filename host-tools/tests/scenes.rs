@@ -120,7 +120,7 @@ fn bad_scenes_fail_with_file_and_line() {
         &dir,
         "bad_colour",
         &format!("{OUTPUT}background = [0, 300, 0]\n"),
-        &["line 4", "0..=255"],
+        &["line 4", "0 ..= 255"],
     );
     expect_failure(
         &dir,
@@ -600,4 +600,111 @@ fn keys_that_would_be_ignored_are_refused() {
         all.extend_from_slice(needles);
         expect_failure(&dir, name, scene, &all);
     }
+}
+
+/// A scene with an odd but usable OBJ (CRLF line endings, a missing material library): every
+/// command that reads scenes says so in `warning:` lines on stderr and still does its work.
+#[test]
+fn obj_warnings_reach_the_user() {
+    let dir = scratch("obj-warnings");
+    let obj = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/unit_cube.obj"),
+    )
+    .unwrap();
+    let odd = format!("mtllib nowhere.mtl\n{obj}").replace('\n', "\r\n");
+    std::fs::write(dir.join("odd.obj"), odd).unwrap();
+    let scene = dir.join("odd.toml");
+    std::fs::write(
+        &scene,
+        "[output]\nwidth = 48\nheight = 32\n[camera]\neye = [1.5, 1.2, 2.5]\n\
+         [[meshes]]\npath = \"odd.obj\"\n",
+    )
+    .unwrap();
+    let out = |name: &str| dir.join(name);
+    for (cmd, extra) in [
+        ("render", vec!["-o".into(), out("r.png")]),
+        (
+            "animate",
+            vec!["--frames".into(), "1".into(), "-o".into(), out("a.gif")],
+        ),
+        ("compare", vec!["-o".into(), out("c.png")]),
+    ] {
+        let o = bin().arg(cmd).arg(&scene).args(&extra).output().unwrap();
+        let (stdout, stderr) = text(&o);
+        assert!(o.status.success(), "{cmd}: {stdout}{stderr}");
+        for needle in ["CRLF", "nowhere.mtl"] {
+            assert!(
+                stderr.lines().any(|l| l.starts_with("warning: ")
+                    && l.contains("odd.obj")
+                    && l.contains(needle)),
+                "{cmd}: no warning about {needle}: {stderr}"
+            );
+        }
+    }
+}
+
+/// Every integer key of the scene format names its allowed range when a value is outside it
+/// (not "expected u8": a Rust type is no help to someone writing a scene).
+#[test]
+fn integer_keys_name_their_range() {
+    let dir = scratch("ranges");
+    let shape = |key: &str| {
+        format!("{OUTPUT}[[shapes]]\nkind = \"line\"\nfrom = [1.0, 1.0]\nto = [3.0, 4.0]\ncolor = [1, 2, 3]\nantialias = true\n{key}\n")
+    };
+    let mesh = |key: &str| format!("{OUTPUT}[[meshes]]\npath = \"m.obj\"\n{key}\n");
+    let cases = [
+        (
+            "width",
+            "[output]\nwidth = -3\nheight = 24\n".to_string(),
+            "1 ..= 4096",
+        ),
+        (
+            "height",
+            "[output]\nwidth = 3\nheight = 5000000000\n".into(),
+            "1 ..= 4096",
+        ),
+        ("scale", format!("{OUTPUT}scale = 0\n"), "1 ..= 16"),
+        (
+            "background",
+            format!("{OUTPUT}background = [0, 300, 0]\n"),
+            "0 ..= 255",
+        ),
+        ("mesh_opacity", mesh("opacity = 300"), "0 ..= 255"),
+        (
+            "shininess",
+            mesh("material = { shininess = 70000 }"),
+            "0 ..= 65535",
+        ),
+        ("shape_opacity", shape("opacity = -1"), "`opacity`"),
+        ("line_width", shape("width = 0"), "`width`"),
+        (
+            "clip",
+            shape("clip = [0, 0, 5000000000, 1]"),
+            "-2147483648 ..= 2147483647",
+        ),
+    ];
+    for (name, scene, range) in cases {
+        expect_failure(&dir, name, &scene, &[range]);
+        let (stdout, stderr) = {
+            let o = bin()
+                .arg("render")
+                .arg(dir.join(format!("{name}.toml")))
+                .args(["-o", "-"])
+                .output()
+                .unwrap();
+            text(&o)
+        };
+        assert!(
+            !stderr.contains("expected u") && !stderr.contains("expected i"),
+            "{name}: {stdout}{stderr}"
+        );
+    }
+    // Inside [[shapes]] the key is named along with its range.
+    expect_failure(
+        &dir,
+        "shape_opacity",
+        &shape("opacity = -1"),
+        &["0 ..= 255"],
+    );
+    expect_failure(&dir, "line_width", &shape("width = 0"), &["1 ..= 65535"]);
 }

@@ -1,13 +1,15 @@
 //! `host-tools view` in a real SDL2 window on a virtual X display (Xvfb): it opens, renders a
 //! few frames and closes, and what the window showed, read back from it, is the picture `render`
 //! writes. Built only with the `view` feature (which needs SDL2); skipped, saying so, where
-//! `xvfb-run` is not installed.
+//! `xvfb-run` is not installed. Without a display it fails with one error line of its own.
 #![cfg(feature = "view")]
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 
-const BIN: &str = env!("CARGO_BIN_EXE_host-tools");
+#[path = "support/cli.rs"]
+mod cli;
+use cli::{assert_error, scratch_in, text, BIN};
 
 fn scene(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -44,18 +46,12 @@ fn view(scene: &Path, frames: u32, dir: &Path) -> (u32, u32, Vec<u8>) {
     (img.width(), img.height(), img.into_raw())
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("host-tools-view-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn the_window_shows_what_render_writes() {
     if !have_xvfb() {
         return;
     }
-    let dir = temp_dir("render");
+    let dir = scratch_in("view", "render");
     let scene = scene("suzanne_gouraud.toml");
     let (w, h, shown) = view(&scene, 3, &dir);
     // Not blank: a lit mesh has many colours.
@@ -81,7 +77,7 @@ fn the_window_shows_what_render_writes() {
 
 #[test]
 fn a_scene_error_is_an_error_line_not_a_window() {
-    let dir = temp_dir("missing");
+    let dir = scratch_in("view", "missing");
     let out = Command::new(BIN)
         .arg("view")
         .arg(dir.join("missing.toml"))
@@ -95,4 +91,71 @@ fn a_scene_error_is_an_error_line_not_a_window() {
         "{err}"
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `view` with the display environment replaced by `env` (DISPLAY, WAYLAND_DISPLAY,
+/// SDL_VIDEODRIVER and XDG_RUNTIME_DIR removed first).
+fn view_without_display(scene: &Path, env: &[(&str, &str)]) -> Output {
+    let mut cmd = Command::new(BIN);
+    for var in [
+        "DISPLAY",
+        "WAYLAND_DISPLAY",
+        "SDL_VIDEODRIVER",
+        "XDG_RUNTIME_DIR",
+    ] {
+        cmd.env_remove(var);
+    }
+    // --frames, so that a view that runs invisibly ends (with exit 0) instead of hanging.
+    cmd.arg("view").arg(scene).args(["--frames", "3"]);
+    cmd.envs(env.iter().copied()).output().unwrap()
+}
+
+#[test]
+fn no_display_is_one_error_line_of_ours() {
+    let scene = scene("suzanne_gouraud.toml");
+    for env in [
+        &[][..],
+        // A display that is not there; without XDG_RUNTIME_DIR SDL's Wayland driver would also
+        // print its own `error:` line.
+        &[("DISPLAY", ":7777")][..],
+        &[("SDL_VIDEODRIVER", "offscreen")][..],
+        &[("SDL_VIDEODRIVER", "nonesuch")][..],
+    ] {
+        let what = format!("{env:?}");
+        let o = view_without_display(&scene, env);
+        let line = assert_error(&o, &what);
+        assert!(
+            line.starts_with("error: no window could be opened: "),
+            "{what}: {line}"
+        );
+        assert_eq!(
+            text(&o.stderr).lines().count(),
+            1,
+            "{what}: other lines on stderr:\n{}",
+            text(&o.stderr)
+        );
+    }
+}
+
+#[test]
+fn obj_warnings_come_before_the_window() {
+    let dir = scratch_in("view", "warnings");
+    let cube = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/unit_cube.obj");
+    let crlf = std::fs::read_to_string(cube).unwrap().replace('\n', "\r\n");
+    std::fs::write(dir.join("crlf.obj"), crlf).unwrap();
+    let scene = dir.join("crlf.toml");
+    std::fs::write(
+        &scene,
+        "[output]\nwidth = 32\nheight = 24\n[[meshes]]\npath = \"crlf.obj\"\n",
+    )
+    .unwrap();
+    let o = view_without_display(&scene, &[]);
+    assert_error(&o, "view");
+    let stderr = text(&o.stderr);
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l.starts_with("warning: ") && l.contains("crlf.obj") && l.contains("CRLF")),
+        "{stderr}"
+    );
 }

@@ -20,6 +20,7 @@ pub mod report;
 pub mod scene;
 pub mod texture;
 
+use crate::progress::Progress;
 use config::{Config, Measured};
 use count::Count;
 use scene::{Prepared, SceneDef};
@@ -147,12 +148,7 @@ pub fn sweep(plan: &Plan, progress: &dyn Fn(&str)) -> Sweep {
         }
     }
     let base = &plan.groups[0].scenes[0];
-    let formats: Vec<Config> = plan
-        .configs
-        .iter()
-        .filter(|c| c.varies == "default" || c.varies == "format" || c.varies == "control")
-        .copied()
-        .collect();
+    let formats = breakdown_configs(plan);
     let breakdown = breakdown::run(base, &formats, &plan.breakdown, |label| {
         progress(&format!("limits of {label}"))
     });
@@ -164,6 +160,15 @@ pub fn sweep(plan: &Plan, progress: &dyn Fn(&str)) -> Sweep {
         texture: None,
         texture_costs: Vec::new(),
     }
+}
+
+/// The configurations whose limits [`sweep`] finds: the formats, the default and the control.
+fn breakdown_configs(plan: &Plan) -> Vec<Config> {
+    plan.configs
+        .iter()
+        .filter(|c| c.varies == "default" || c.varies == "format" || c.varies == "control")
+        .copied()
+        .collect()
 }
 
 fn model_dirs(extra: &[PathBuf]) -> Vec<PathBuf> {
@@ -230,6 +235,8 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Box<dyn std::error::Error>> {
 
     let mut counts: Vec<Option<Count>> = vec![None; plan.configs.len()];
     let mut valgrind = None;
+    // Minutes of work: a bar on a terminal, nothing in a log (the report has every figure).
+    let progress = Progress::new(true);
     if !args.no_count {
         valgrind = Some(count::check_valgrind()?);
         let exe = std::env::current_exe()?;
@@ -241,25 +248,25 @@ pub fn run(args: &AccuracyArgs) -> Result<(), Box<dyn std::error::Error>> {
             .iter()
             .map(|d| d.display().to_string())
             .collect();
+        progress.stage("counting", plan.configs.len() as u64);
         for (c, slot) in plan.configs.iter().zip(counts.iter_mut()) {
-            let n = count::count(&exe, c.label, &models, &scratch)?;
-            crate::errln!(
-                "counted {:<16} {:>12} instructions  {}",
-                c.label,
-                n.instructions,
-                n.note
-            );
-            *slot = Some(n);
+            *slot = Some(count::count(&exe, c.label, &models, &scratch)?);
+            progress.inc();
         }
         let _ = std::fs::remove_dir(&scratch);
     }
 
-    let mut result = sweep(&plan, &|what| crate::errln!("{what}"));
+    // One step per scene measured, per configuration's limits and for the texture section.
+    let scenes: usize = plan.groups.iter().map(|g| g.scenes.len()).sum();
+    let steps = scenes + breakdown_configs(&plan).len() + 1;
+    progress.stage("measuring", steps as u64);
+    let mut result = sweep(&plan, &|_| progress.inc());
     for (row, c) in result.rows.iter_mut().zip(counts) {
         row.count = c;
     }
-    crate::errln!("texture coordinates on M4");
     result.texture = Some(texture::measure());
+    progress.inc();
+    progress.finish();
     result.texture_costs = texture::costs(&args.out.join("figures.tsv"));
     let meta = report::Meta {
         date: report::today(),

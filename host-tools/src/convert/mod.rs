@@ -29,14 +29,13 @@ pub use encode::{decode_normal, encode, quantise_normal, MeshData, Quantiser, Te
 pub use fixtures::obj::{newell_normal, triangulate_polygon, ObjError as ConvertError, Warning};
 pub use rust_source::{bytes_from_rust_source, is_rust_identifier, rust_source, static_name_for};
 
-use fixtures::obj::{normalize, Progress as _};
+use crate::progress::Progress;
+use fixtures::obj::normalize;
 use fixtures::vec64::{cross, dot, sub, V3 as P3};
-use indicatif::{ProgressBar, ProgressStyle};
 use rasterizer_core::mesh::MAX_COUNT;
 use rasterizer_core::prelude::*;
 use std::collections::HashMap;
 use std::fmt;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -125,7 +124,7 @@ pub struct Options {
     pub weld: bool,
     /// Drop the file's texture coordinates.
     pub no_uvs: bool,
-    /// Show a progress bar on stderr.
+    /// Show a progress bar on stderr (when it is a terminal).
     pub progress: bool,
 }
 
@@ -203,45 +202,6 @@ impl Conversion {
             .map_err(|e| format!("internal error: the encoded mesh does not parse: {e}"))?;
         self.report.bytes = self.blob.len();
         Ok(self)
-    }
-}
-
-/// A progress bar on stderr, or nothing.
-struct Progress(Option<ProgressBar>);
-
-impl fixtures::obj::Progress for Progress {
-    fn stage(&self, message: &'static str, len: u64) {
-        if let Some(bar) = &self.0 {
-            bar.set_message(message);
-            bar.set_length(len.max(1));
-            bar.set_position(0);
-        }
-    }
-
-    fn set(&self, pos: u64) {
-        if let Some(bar) = &self.0 {
-            bar.set_position(pos);
-        }
-    }
-}
-
-impl Progress {
-    fn new(enabled: bool) -> Self {
-        Self(enabled.then(|| {
-            let bar = ProgressBar::new(0);
-            bar.set_style(
-                ProgressStyle::with_template("{msg:>14} [{bar:40}] {percent:>3}%")
-                    .unwrap_or_else(|_| ProgressStyle::default_bar())
-                    .progress_chars("=> "),
-            );
-            bar
-        }))
-    }
-
-    fn finish(&self) {
-        if let Some(bar) = &self.0 {
-            bar.finish_and_clear();
-        }
     }
 }
 
@@ -758,7 +718,7 @@ pub fn run(args: &ConvertArgs) -> Result<(), Box<dyn std::error::Error>> {
         normals: args.normals,
         weld: args.weld,
         no_uvs: args.no_uvs,
-        progress: bytes.len() > (1 << 20) && std::io::stderr().is_terminal(),
+        progress: bytes.len() > (1 << 20),
     };
     let mut warnings = Vec::new();
     let result = convert_obj(&file, &bytes, args.input.parent(), &opts, &mut warnings);

@@ -33,8 +33,10 @@ pub struct SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct Output {
     /// Width in pixels (1 ..= 4096).
+    #[serde(deserialize_with = "size")]
     pub width: u32,
     /// Height in pixels (1 ..= 4096).
+    #[serde(deserialize_with = "size")]
     pub height: u32,
     /// The display's pixel format.
     #[serde(default)]
@@ -43,7 +45,7 @@ pub struct Output {
     #[serde(default = "black")]
     pub background: Color,
     /// How many PNG pixels one display pixel becomes, unless `--scale` says otherwise.
-    #[serde(default = "one")]
+    #[serde(default = "one", deserialize_with = "scale")]
     pub scale: u32,
 }
 
@@ -307,6 +309,7 @@ pub struct MeshDef {
     pub texture_wrap: Option<TextureWrapDef>,
     /// Opacity 0 ..= 255 (default 255, opaque): below 255 the mesh is blended over what is
     /// drawn before it and tests depth without writing it.
+    #[serde(default, deserialize_with = "opacity")]
     pub opacity: Option<u8>,
     /// Replaces `render.fog`.
     pub fog: Option<FogDef>,
@@ -388,7 +391,8 @@ pub struct MaterialDef {
     pub diffuse: Option<Color>,
     /// Reflected highlight; default white.
     pub specular: Option<Color>,
-    /// Specular exponent; default 16.
+    /// Specular exponent 0 ..= 65535; default 16.
+    #[serde(default, deserialize_with = "shininess")]
     pub shininess: Option<u16>,
 }
 
@@ -404,8 +408,10 @@ pub enum Shape {
         /// Its colour.
         color: Color,
         /// Opacity 0 ..= 255 (default opaque).
+        #[serde(default, deserialize_with = "opacity")]
         opacity: Option<u8>,
         /// Optional clip rectangle `[x, y, width, height]`.
+        #[serde(default, deserialize_with = "clip")]
         clip: Option<[i32; 4]>,
     },
     /// A line between the pixels containing `from` and `to`, in one colour or (`colors`) a
@@ -420,13 +426,16 @@ pub enum Shape {
         /// Start and end colours (give this or `color`).
         colors: Option<[Color; 2]>,
         /// Opacity 0 ..= 255 (default opaque).
+        #[serde(default, deserialize_with = "opacity")]
         opacity: Option<u8>,
         /// Anti-aliased (`draw_line_aa_wide`), one colour only.
         #[serde(default)]
         antialias: bool,
         /// Width in pixels across the line (anti-aliased lines only; default 1).
+        #[serde(default, deserialize_with = "line_width")]
         width: Option<u32>,
         /// Optional clip rectangle.
+        #[serde(default, deserialize_with = "clip")]
         clip: Option<[i32; 4]>,
     },
     /// A filled triangle with sub-pixel vertices (rounded to 1/16 pixel), flat (`color`) or
@@ -439,8 +448,10 @@ pub enum Shape {
         /// One colour per corner (give this or `color`).
         colors: Option<[Color; 3]>,
         /// Opacity 0 ..= 255 (default opaque).
+        #[serde(default, deserialize_with = "opacity")]
         opacity: Option<u8>,
         /// Optional clip rectangle.
+        #[serde(default, deserialize_with = "clip")]
         clip: Option<[i32; 4]>,
     },
     /// A triangle's outline: three lines between the pixels containing the corners.
@@ -450,8 +461,10 @@ pub enum Shape {
         /// Its colour.
         color: Color,
         /// Opacity 0 ..= 255 (default opaque).
+        #[serde(default, deserialize_with = "opacity")]
         opacity: Option<u8>,
         /// Optional clip rectangle.
+        #[serde(default, deserialize_with = "clip")]
         clip: Option<[i32; 4]>,
     },
     /// A filled polygon, concave or self-intersecting, sub-pixel vertices.
@@ -464,8 +477,10 @@ pub enum Shape {
         /// Its colour.
         color: Color,
         /// Opacity 0 ..= 255 (default opaque).
+        #[serde(default, deserialize_with = "opacity")]
         opacity: Option<u8>,
         /// Optional clip rectangle.
+        #[serde(default, deserialize_with = "clip")]
         clip: Option<[i32; 4]>,
     },
 }
@@ -491,7 +506,7 @@ impl<'de> Deserialize<'de> for Color {
         impl<'de> Visitor<'de> for V {
             type Value = Color;
             fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str("a colour: [r, g, b] with 0..=255 each, or \"#rrggbb\"")
+                f.write_str("a colour: [r, g, b] with 0 ..= 255 each, or \"#rrggbb\"")
             }
             fn visit_str<E: de::Error>(self, s: &str) -> Result<Color, E> {
                 let hex = s
@@ -508,7 +523,7 @@ impl<'de> Deserialize<'de> for Color {
                         .next_element()?
                         .ok_or_else(|| de::Error::invalid_length(i, &self))?;
                     *slot = u8::try_from(v).map_err(|_| {
-                        de::Error::invalid_value(de::Unexpected::Signed(v), &"0..=255")
+                        de::Error::invalid_value(de::Unexpected::Signed(v), &"0 ..= 255")
                     })?;
                 }
                 if seq.next_element::<de::IgnoredAny>()?.is_some() {
@@ -519,6 +534,79 @@ impl<'de> Deserialize<'de> for Color {
         }
         d.deserialize_any(V)
     }
+}
+
+/// An integer key's value, range-checked here rather than by serde's `u8`, `u32`, ... so that
+/// an error names the range the key allows (`expected an integer 0 ..= 255`), not a Rust type.
+/// With `LATER`, any `u32` passes: `load` checks the range then, in a one-line message with the
+/// key and the value.
+struct Int<const MIN: i64, const MAX: i64, const LATER: bool = false>(i64);
+
+impl<'de, const MIN: i64, const MAX: i64, const LATER: bool> Deserialize<'de>
+    for Int<MIN, MAX, LATER>
+{
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V<const MIN: i64, const MAX: i64, const LATER: bool>;
+        impl<const MIN: i64, const MAX: i64, const LATER: bool> Visitor<'_> for V<MIN, MAX, LATER> {
+            type Value = Int<MIN, MAX, LATER>;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "an integer {MIN} ..= {MAX}")
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+                if (MIN..=MAX).contains(&v) || (LATER && u32::try_from(v).is_ok()) {
+                    Ok(Int(v))
+                } else {
+                    Err(E::invalid_value(de::Unexpected::Signed(v), &self))
+                }
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+                match i64::try_from(v) {
+                    Ok(v) => self.visit_i64(v),
+                    Err(_) => Err(E::invalid_value(de::Unexpected::Unsigned(v), &self)),
+                }
+            }
+        }
+        d.deserialize_i64(V::<MIN, MAX, LATER>)
+    }
+}
+
+// The integer keys, one function per range (the ranges are also in docs/SCENES.md). The casts
+// cannot truncate: each range fits the field's type.
+
+/// Puts the key's name before an error: inside `[[shapes]]` (an internally tagged enum) the
+/// parser can point only at the table, not at the key.
+fn named<T, E: de::Error>(key: &str, r: Result<T, E>) -> Result<T, E> {
+    r.map_err(|e| E::custom(format_args!("`{key}`: {e}")))
+}
+
+fn size<'de, D: Deserializer<'de>>(d: D) -> Result<u32, D::Error> {
+    Int::<1, { super::MAX_SIZE as i64 }, true>::deserialize(d).map(|i| i.0 as u32)
+}
+
+fn scale<'de, D: Deserializer<'de>>(d: D) -> Result<u32, D::Error> {
+    Int::<1, 16, true>::deserialize(d).map(|i| i.0 as u32)
+}
+
+fn opacity<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u8>, D::Error> {
+    let r = Option::<Int<0, 255>>::deserialize(d);
+    named("opacity", r).map(|o| o.map(|i| i.0 as u8))
+}
+
+fn shininess<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u16>, D::Error> {
+    Option::<Int<0, 65535>>::deserialize(d).map(|o| o.map(|i| i.0 as u16))
+}
+
+fn line_width<'de, D: Deserializer<'de>>(d: D) -> Result<Option<u32>, D::Error> {
+    const MAX: i64 = rasterizer_core::raster::line::MAX_LINE_WIDTH as i64;
+    let r = Option::<Int<1, MAX>>::deserialize(d);
+    named("width", r).map(|o| o.map(|i| i.0 as u32))
+}
+
+fn clip<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[i32; 4]>, D::Error> {
+    const MIN: i64 = i32::MIN as i64;
+    const MAX: i64 = i32::MAX as i64;
+    let r = Option::<[Int<MIN, MAX>; 4]>::deserialize(d);
+    named("clip", r).map(|o| o.map(|c| c.map(|i| i.0 as i32)))
 }
 
 fn black() -> Color {

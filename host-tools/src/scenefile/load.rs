@@ -8,7 +8,7 @@ use super::format::{
 use super::limits;
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
-use fixtures::obj::RawMesh;
+use fixtures::obj::{LoadError, RawMesh};
 use fixtures::texture_file::{TextureFileError, TextureImage, MAX_SIDE};
 use fixtures::vec64::{cross, norm, sub as sub3};
 use rasterizer_core::mesh::MAGIC;
@@ -202,12 +202,22 @@ fn finite(v: &[f64]) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
-/// Reads and checks a scene file and loads its meshes.
+/// Reads and checks a scene file and loads its meshes; the OBJ reader's warnings are dropped
+/// (see [`load_with_warnings`]).
 ///
 /// # Errors
 /// A message starting with the file's path: TOML errors carry the parser's line and column,
 /// other problems the line of the table they are in.
 pub fn load(path: &Path) -> Result<Scene, String> {
+    load_with_warnings(path, &mut Vec::new())
+}
+
+/// [`load`], pushing the OBJ reader's warnings (`file:line: message`, odd but usable input such
+/// as CR line endings or a missing `.mtl`) onto `warnings`, also when the scene is then refused.
+///
+/// # Errors
+/// As [`load`].
+pub fn load_with_warnings(path: &Path, warnings: &mut Vec<String>) -> Result<Scene, String> {
     let shown = path.display();
     let src =
         std::fs::read_to_string(path).map_err(|e| format!("{shown}: cannot read scene: {e}"))?;
@@ -274,7 +284,7 @@ pub fn load(path: &Path) -> Result<Scene, String> {
         let span = m.span();
         let def = m.into_inner();
         let name = def.path.clone();
-        let mesh = load_mesh(dir, def, &file.render)
+        let mesh = load_mesh(dir, def, &file.render, warnings)
             .and_then(|m| {
                 let positions = match &m.data {
                     MeshData::Owned(o) => o.positions.clone(),
@@ -433,6 +443,7 @@ fn load_mesh(
     dir: &Path,
     def: MeshDef,
     render: &super::format::RenderOptions,
+    warnings: &mut Vec<String>,
 ) -> Result<SceneMesh, String> {
     let file = dir.join(&def.path);
     let name = def.path.clone();
@@ -476,7 +487,13 @@ fn load_mesh(
             MeshData::Packed(bytes)
         }
     } else {
-        let raw = RawMesh::load(&file).map_err(|e| format!("mesh {}: {e}", file.display()))?;
+        // Read here rather than through `RawMesh::load`, which drops the reader's warnings.
+        let shown = file.display().to_string();
+        let mut found = Vec::new();
+        let obj = fixtures::obj::read(&shown, &bytes, file.parent(), true, &mut found, &());
+        warnings.extend(found.iter().map(|w| w.display(&shown)));
+        let obj = obj.map_err(|e| format!("mesh {shown}: {}", LoadError::Obj(e)))?;
+        let raw = RawMesh::from_obj(&obj);
         if def.normals == NormalsMode::File && raw.normals.is_none() {
             return Err(format!(
                 "mesh {}: normals = \"file\" but it has none",

@@ -16,11 +16,14 @@ pub use format::{
     PixelFormat, RenderOptions, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel,
     TextureFilterDef, TextureWrapDef, VertexColorMode,
 };
-pub use load::{load, MeshData, OwnedMesh, Scene, SceneMesh, SceneTexture};
+pub use load::{load, load_with_warnings, MeshData, OwnedMesh, Scene, SceneMesh, SceneTexture};
 pub use reference::{Real, F64};
 
-use crate::outln;
-use crate::output::{encode_png, write_png, OutputFile};
+use crate::output::{
+    check_output as check_output_name, encode_png, goes_to_stdout, is_stdout, write_png, OutputFile,
+};
+use crate::progress::Progress;
+use crate::sayln;
 use embedded_graphics_simulator::SimulatorDisplay;
 use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbImage, RgbaImage};
@@ -37,8 +40,9 @@ pub const MAX_POLYGON: usize = 256;
 pub struct RenderArgs {
     /// The scene file.
     pub scene: PathBuf,
-    /// The PNG to write.
-    #[arg(short, long, value_name = "FILE")]
+    /// The PNG to write: a name ending in .png, a device or FIFO, or `-` for standard output
+    /// (always PNG).
+    #[arg(short, long, value_name = "FILE", allow_hyphen_values = true)]
     pub output: PathBuf,
     /// PNG pixels per display pixel, 1 ..= 16 (default: the scene's `output.scale`).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
@@ -50,11 +54,13 @@ pub struct RenderArgs {
 pub struct AnimateArgs {
     /// The scene file.
     pub scene: PathBuf,
-    /// The output: an animated GIF, or with `--png-sequence` the name the numbered PNGs are
-    /// derived from (`out.gif` gives `out_000.png`, `out_001.png`, ...).
-    #[arg(short, long, value_name = "FILE")]
+    /// The output: an animated GIF (a name ending in .gif, a device or FIFO, or `-` for
+    /// standard output, always GIF), or with `--png-sequence` the name the numbered PNGs are
+    /// derived from (`out.png` gives `out_000.png`, `out_001.png`, ...; .png or no extension).
+    #[arg(short, long, value_name = "FILE", allow_hyphen_values = true)]
     pub output: PathBuf,
-    /// Frames in one full turn, 1 ..= 720.
+    /// Frames in one full turn, 1 ..= 720 (a progress bar counts them on stderr when it is a
+    /// terminal).
     #[arg(long, value_name = "N", default_value_t = 36, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_FRAMES)))]
     pub frames: u32,
     /// Write numbered PNG files instead of a GIF.
@@ -82,8 +88,10 @@ pub enum Reference {
 pub struct CompareArgs {
     /// The scene file.
     pub scene: PathBuf,
-    /// The difference image to write (PNG): fixed point | reference | differences.
-    #[arg(short, long, value_name = "FILE")]
+    /// The difference image to write (PNG): fixed point | reference | differences. A name
+    /// ending in .png, a device or FIFO, or `-` for standard output (always PNG; the figures go
+    /// to stderr then).
+    #[arg(short, long, value_name = "FILE", allow_hyphen_values = true)]
     pub output: PathBuf,
     /// What the difference image compares 16.16 with (all pairs are printed either way).
     #[arg(long, value_enum, default_value = "f32")]
@@ -120,7 +128,9 @@ pub const LIMITS_HELP: &str = "Scene files: the format and every allowed value a
     animate of it to a GIF 203 MB, to a PNG sequence 187 MB; a GIF of a 1024 x 1024 scene at scale 4 134 MB; a GIF of a 320 x 240 scene \
     at scale 4 15 MB with 36, 144 or 720 frames.\n\n\
     Output files are written to a temporary file beside the target and renamed over it when \
-    complete: a failure leaves an existing file as it was.";
+    complete: a failure leaves an existing file as it was. A device or FIFO (/dev/stdout, \
+    mkfifo) is written in place; `-o -` writes to standard output, and messages go to stderr \
+    then. The format is the command's: a name whose extension says another one is refused.";
 
 #[cfg(test)]
 #[test]
@@ -129,6 +139,21 @@ fn the_help_states_the_limits_in_force() {
         assert!(LIMITS_HELP.contains(&figure.to_string()), "{figure}");
     }
     assert!(LIMITS_HELP.contains(&MAX_OUTPUT_PIXELS.to_string()));
+}
+
+/// [`load`] for a command: the OBJ reader's warnings are printed as `warning:` lines on stderr
+/// (before an error, when the scene is refused: they often say why, e.g. a file with bare CR
+/// line endings has no faces).
+///
+/// # Errors
+/// As [`load`].
+pub fn load_warning(path: &Path) -> Result<Scene> {
+    let mut warnings = Vec::new();
+    let scene = load_with_warnings(path, &mut warnings);
+    for w in &warnings {
+        crate::errln!("warning: {w}");
+    }
+    Ok(scene?)
 }
 
 /// Checks the size of one output image, `width x height` PNG pixels, before anything is drawn.
@@ -153,7 +178,9 @@ fn check_output(scene: &Scene, scale: u32, width: u64, height: u64) -> Result<()
 /// # Errors
 /// Any failure, as a message for the `error:` line; an existing output is left as it was then.
 pub fn render(args: &RenderArgs) -> Result<()> {
-    let scene = load(&args.scene)?;
+    let to_stdout = goes_to_stdout(&args.output);
+    let scene = load_warning(&args.scene)?;
+    check_output_name(&args.output, &scene.inputs(), &["png"], "a PNG", "")?;
     let scale = args.scale.unwrap_or(scene.scale);
     check_output(
         &scene,
@@ -170,7 +197,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         buf.height(),
         &buf,
     )?;
-    outln!("wrote {}", args.output.display())?;
+    sayln!(to_stdout, "wrote {}", args.output.display())?;
     Ok(())
 }
 
@@ -188,7 +215,27 @@ enum FrameError {
 /// Any failure, as a message for the `error:` line; existing outputs are left as they were
 /// unless every frame rendered and was written.
 pub fn animate(args: &AnimateArgs) -> Result<()> {
-    let scene = load(&args.scene)?;
+    if args.png_sequence && is_stdout(&args.output) {
+        return Err(
+            "--png-sequence writes numbered files, which standard output cannot hold; \
+                    name them with -o NAME.png"
+                .into(),
+        );
+    }
+    let to_stdout = goes_to_stdout(&args.output);
+    let scene = load_warning(&args.scene)?;
+    if args.png_sequence {
+        let format = "PNG files (--png-sequence)";
+        check_output_name(&args.output, &scene.inputs(), &["png"], format, "")?;
+    } else {
+        check_output_name(
+            &args.output,
+            &scene.inputs(),
+            &["gif"],
+            "an animated GIF",
+            " (--png-sequence writes numbered PNG files)",
+        )?;
+    }
     let scale = args.scale.unwrap_or(scene.scale);
     let n = args.frames;
     if !(1..=MAX_FRAMES).contains(&n) {
@@ -201,6 +248,8 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
     check_output(&scene, scale, width, height)?;
     let turn = |k: u32| Angle((u64::from(k) * 65536 / u64::from(n)) as u16);
     let inputs = scene.inputs();
+    let progress = Progress::new(true);
+    progress.stage("frames", u64::from(n));
     if args.png_sequence {
         let stem = args
             .output
@@ -221,11 +270,13 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
                 return Err(out.error(e).into());
             }
             pending.push(out.finish()?);
+            progress.inc();
         }
+        progress.finish();
         for p in pending {
             p.commit()?;
         }
-        outln!(
+        crate::outln!(
             "wrote {n} frames to {}",
             dir.join(format!("{stem}_NNN.png")).display()
         )?;
@@ -259,15 +310,17 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
             };
             let frame = Frame::from_parts(rgba, 0, 0, Delay::from_numer_denom_ms(delay, 1));
             encoder.encode_frame(frame).map_err(FrameError::Encode)?;
+            progress.inc();
         }
         Ok(())
     })();
+    progress.finish();
     match result {
         Ok(()) => out.commit()?,
         Err(FrameError::Scene(e)) => return Err(e.into()),
         Err(FrameError::Encode(e)) => return Err(out.error(e).into()),
     }
-    outln!("wrote {} ({n} frames)", args.output.display())?;
+    sayln!(to_stdout, "wrote {} ({n} frames)", args.output.display())?;
     Ok(())
 }
 
@@ -329,7 +382,9 @@ pub fn difference(
 /// # Errors
 /// Any failure, as a message for the `error:` line.
 pub fn compare(args: &CompareArgs) -> Result<()> {
-    let scene = load(&args.scene)?;
+    let to_stdout = goes_to_stdout(&args.output);
+    let scene = load_warning(&args.scene)?;
+    check_output_name(&args.output, &scene.inputs(), &["png"], "a PNG", "")?;
     if scene.meshes.is_empty() {
         return Err(format!(
             "{}: the scene has no meshes to compare",
@@ -348,7 +403,8 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
     let fixed = render_3d::<Fx16>(&scene)?;
     let single = render_3d::<f32>(&scene)?;
     let double = render_3d::<F64>(&scene)?;
-    outln!(
+    sayln!(
+        to_stdout,
         "{}: 3D part, {w}x{h} = {} pixels, compared in Rgb888",
         scene.path.display(),
         u64::from(w) * u64::from(h)
@@ -359,7 +415,8 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
         ("f32   vs f64", &single, &double),
     ] {
         let d = difference(a, b, w, h);
-        outln!(
+        sayln!(
+            to_stdout,
             "  {name}: {} differing pixels ({:.3} %), max channel difference {}",
             d.pixels,
             d.percent(),
@@ -378,7 +435,8 @@ pub fn compare(args: &CompareArgs) -> Result<()> {
         image.height(),
         &image,
     )?;
-    outln!(
+    sayln!(
+        to_stdout,
         "wrote {} (16.16 | {} | differences: yellow 1 step .. red 8 or more)",
         args.output.display(),
         match args.reference {
