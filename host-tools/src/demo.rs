@@ -157,7 +157,8 @@ pub fn long_help() -> String {
          Their mesh (suzanne.obj) is read from --models.\n\n\
          The file names are fixed. The set is written all or nothing: every picture is rendered \
          into a temporary directory next to --out first and only then moved into place, so on \
-         any failure the files already in --out stay as they were and nothing partial is left.\n\n\
+         any failure the files already in --out stay as they were and nothing partial is left. \
+         A progress bar is shown on stderr when it is a terminal.\n\n\
          Example: cargo run --release -p host-tools -- demo --out /tmp/pictures",
         list(&mut SCENES.iter().map(|s| s.file)),
         demo3d::WIDTH,
@@ -217,7 +218,11 @@ pub fn run(
         .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
     let staging = out.with_file_name(format!(".{name}.demo-{}", std::process::id()));
     create(&staging)?;
-    let rendered = render_all(&staging, models).and_then(|()| install(&staging, out));
+    let rendered = {
+        let progress = host_tools::progress::Progress::new(true);
+        progress.stage("demo", (SCENES.len() + demo3d::SCENES.len()) as u64);
+        render_all(&staging, models, &progress).and_then(|()| install(&staging, out))
+    };
     let _ = std::fs::remove_dir_all(&staging);
     for file in rendered? {
         on_written(&file).map_err(DemoError::Stdout)?;
@@ -225,8 +230,12 @@ pub fn run(
     Ok(())
 }
 
-/// Renders every picture into `dir`.
-fn render_all(dir: &Path, models: &Path) -> Result<(), DemoError> {
+/// Renders every picture into `dir`, one step of `progress` each.
+fn render_all(
+    dir: &Path,
+    models: &Path,
+    progress: &host_tools::progress::Progress,
+) -> Result<(), DemoError> {
     let models = demo3d::Models::load(models)
         .map_err(|(path, message)| DemoError::Model { path, message })?;
     let save = |display: &Display, file: &str, scale: u32| {
@@ -241,6 +250,7 @@ fn render_all(dir: &Path, models: &Path) -> Result<(), DemoError> {
     };
     for scene in &SCENES {
         save(&render(scene)?, scene.file, SCALE)?;
+        progress.inc();
     }
     for scene in &demo3d::SCENES {
         let display = demo3d::render(scene, &models).map_err(|message| DemoError::Scene {
@@ -248,6 +258,7 @@ fn render_all(dir: &Path, models: &Path) -> Result<(), DemoError> {
             message,
         })?;
         save(&display, scene.file, demo3d::SCALE)?;
+        progress.inc();
     }
     Ok(())
 }

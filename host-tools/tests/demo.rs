@@ -51,6 +51,8 @@ fn demo_writes_every_picture() {
         FILES.len(),
         "one line per file:\n{stdout}"
     );
+    // Progress is for terminals only: a pipe or a log sees nothing on stderr.
+    assert_eq!(String::from_utf8_lossy(&run.stderr), "", "stderr of demo");
     for file in FILES {
         let path = out.join(file);
         let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

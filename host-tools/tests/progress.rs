@@ -1,4 +1,4 @@
-//! Progress of the long commands (`animate`, `accuracy`): a bar on a terminal's stderr, and
+//! Progress of the long commands (`animate`, `accuracy`, `demo`): a bar on a terminal's stderr, and
 //! nothing progress-like when stderr is a pipe or a log, where the command works as before.
 
 use std::fs;
@@ -93,4 +93,21 @@ fn animate_draws_a_bar_on_a_terminal() {
         "no bar on the terminal:\n{shown}"
     );
     assert!(fs::read(&gif).unwrap().starts_with(b"GIF89a"));
+}
+
+#[test]
+fn demo_draws_a_bar_on_a_terminal() {
+    let dir = scratch_in("progress", "demo");
+    let command = format!("'{BIN}' demo --out '{}'", s(&dir.join("images")));
+    let Some(shown) = on_a_terminal(&command) else {
+        println!("skipped: `script` (util-linux) is not installed or cannot open a terminal");
+        return;
+    };
+    assert!(
+        shown.contains("demo [") && shown.contains('%'),
+        "no bar on the terminal:\n{shown}"
+    );
+    assert!(fs::read(dir.join("images/polygons.png"))
+        .unwrap()
+        .starts_with(b"\x89PNG"));
 }
