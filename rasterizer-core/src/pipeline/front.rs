@@ -279,8 +279,15 @@ where
         if Sh::NEEDS_FACE {
             self.face(mesh, idx);
         }
+        // The clipped vertices are rounded, which can fold a sliver polygon: a fan triangle of
+        // the other winding then overlaps its neighbour, and their common pixels would be drawn
+        // twice. Such a fold is thinner than the rounding, so it is skipped.
+        let sign = area.signum();
         for k in 1..screen.len() - 1 {
-            self.raster(target, &[screen[0], screen[k], screen[k + 1]])?;
+            let fan = [screen[0], screen[k], screen[k + 1]];
+            if polygon_area(fan.iter().map(|v| v.p)).signum() == sign {
+                self.raster(target, &fan)?;
+            }
         }
         stats.drawn += 1;
         Ok(())
