@@ -206,7 +206,8 @@ fn figures(stdout: &str, pair: &str) -> (u64, f64, u32) {
 
 /// Measured on the M1 Suzanne (Gouraud, 320x240, the pipeline's 6 sub-pixel bits): 16.16 and
 /// f32 differ in 190 pixels (0.247 %), mostly single steps of lit colour plus a few silhouette
-/// pixels covered by one and not the other; f32 and f64 in 30 pixels (0.039 %), by at most 3
+/// pixels covered by one and not the other (max channel difference 177); 16.16 and f64 in 173
+/// (0.225 %, max 177); f32 and f64 in 30 pixels (0.039 %), by at most 3
 /// steps (with 4 bits: 3 pixels, one step; the finer grid puts more vertices near a rounding
 /// boundary, where f32 and f64 round apart and shift a triangle's gradients).
 #[test]
@@ -222,18 +223,22 @@ fn compare_suzanne_fixed_and_float_are_close() {
         .unwrap();
     let (stdout, stderr) = text(&o);
     assert!(o.status.success(), "{stdout}{stderr}");
-    let (px, share, _) = figures(&stdout, "16.16 vs f32");
+    // Bounds about twice the measurements (in the doc comment above: 0.247 %, 0.039 %, 0.225 %).
+    // The largest channel difference, 177 for both fixed-point pairs, is a silhouette pixel drawn
+    // by one and background in the other; twice that would exceed 255 and bound nothing, so the
+    // bound is the measurement with a little room (180).
+    let (px, share, max) = figures(&stdout, "16.16 vs f32");
     assert!(px > 0, "suspiciously identical: {stdout}");
     assert!(
-        share < 1.0,
-        "16.16 vs f32 differ in {share} % of the pixels"
+        share < 0.5 && max <= 180,
+        "16.16 vs f32 differ in {share} % of the pixels, max {max}"
     );
     let (_, share, max) = figures(&stdout, "f32   vs f64");
-    assert!(share < 0.1 && max <= 3, "f32 vs f64: {share} %, max {max}");
-    let (_, share, _) = figures(&stdout, "16.16 vs f64");
+    assert!(share < 0.08 && max <= 3, "f32 vs f64: {share} %, max {max}");
+    let (_, share, max) = figures(&stdout, "16.16 vs f64");
     assert!(
-        share < 1.0,
-        "16.16 vs f64 differ in {share} % of the pixels"
+        share < 0.45 && max <= 180,
+        "16.16 vs f64 differ in {share} % of the pixels, max {max}"
     );
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
 }

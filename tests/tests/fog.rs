@@ -225,7 +225,7 @@ fn draw_suzanne<Sh: Shading<Fx16, Color = Rgb565>>(
 
 /// Gouraud lighting in model space (the default for a rotation) and in world space (forced by a
 /// normal matrix other than the model matrix) fogs alike: the depths agree to within a few steps
-/// of 16.16, so at most a handful of pixels differ, by one step. With fog beyond the whole mesh,
+/// of 16.16, and on this scene no pixel differs at all (measured). With fog beyond the whole mesh,
 /// the picture is the unfogged one bit for bit; with fog before it, one flat colour.
 #[test]
 fn gouraud_fog_in_model_and_world_space_agree() {
@@ -252,8 +252,9 @@ fn gouraud_fog_in_model_and_world_space_agree() {
             )
         })
         .collect();
-    assert!(diff.len() < 40, "{} pixels differ", diff.len());
-    assert!(diff.iter().all(|&d| d <= 1), "{diff:?}");
+    // Measured: 0 pixels differ. The scene is fixed and the arithmetic integer-only, so that holds
+    // on every machine: the bound is exact 0, not an allowance.
+    assert!(diff.is_empty(), "{} pixels differ: {diff:?}", diff.len());
     let plain = draw_suzanne(model, |_| lit(), None);
     assert_ne!(plain, model_space, "fog changes the picture");
     let beyond = draw_suzanne(model, fogged(linear(Rgb888::BLACK, 10.0, 20.0)), None);

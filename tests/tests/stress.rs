@@ -1,9 +1,9 @@
 //! Stress: thousands of random scenes rendered whole-frame and in bands (which must agree to the
 //! bit; the bands with a full vertex scratch in every other scene, with none in the others), and
 //! compared with the independent f64 reference renderer, where every differing pixel must lie
-//! within one pixel of an edge or be a depth tie (the f64 depths of the two triangles within 64 of
-//! 65,535 steps, [`TIE`]). One pixel is the projection bound of `tests/pipeline.rs` for vertices
-//! just beyond the near plane (15/16 px); most differences are far closer (counted).
+//! within [`EDGE`] (0.02 px) of an edge or be a depth tie (the f64 depths of the two triangles
+//! within 64 of 65,535 steps, [`TIE`]), and at most 0.12 % of the pixels may differ at all. The
+//! bounds are about twice what 1,000 scenes measure (see each constant).
 //! `STRESS_SCENES` sets the count (CI: 1,000).
 
 use fixtures::reference3d::{self as r, color_id, f, FaceIds, FaceMesh, RefCull};
@@ -12,7 +12,18 @@ use rasterizer_core::prelude::*;
 /// Depths this close (in 1/65,535 of the depth range) are a tie: random soups have triangles that
 /// cut through each other, and along those lines the nearer one is decided by the vertex depths'
 /// rounding (a few steps, more for vertices just beyond the near plane; see tests/pipeline.rs).
+/// Measured (1,000 scenes, the CI count): the widest tie is 60.9 steps, so 64 is already about
+/// the measurement.
 const TIE: f64 = 64.0;
+
+/// How far from an edge (px, in f64) a differing pixel that is not a tie may lie. Measured (1,000
+/// scenes): 0.0087 px at worst, none beyond 0.1 px; the bound is about twice that. (The projection
+/// bound of tests/pipeline.rs allows 15/16 px, but these scenes come nowhere near it.)
+const EDGE: f64 = 0.02;
+
+/// Differing pixels allowed, in 1/10,000 of those compared. Measured (1,000 scenes): 1,007 of
+/// 1,728,000 (0.058 %); the bound, 0.12 %, is about twice that.
+const DIFFER_PER_10K: u64 = 12;
 
 const W: u32 = 48;
 const H: u32 = 36;
@@ -52,6 +63,8 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     let (mut compared, mut differing, mut near_edge, mut ties) = (0u64, 0u64, 0u64, 0u64);
     let mut beyond_tenth = 0u64;
+    // The largest edge distance of a non-tie differing pixel, and the largest depth gap of a tie.
+    let (mut worst_edge, mut worst_tie) = (0.0f64, 0.0f64);
     for scene in 0..scenes {
         // A soup of 4 to 24 triangles in a 4-unit box, some of them reaching behind the camera.
         let n = 4 + (rng.next() % 21) as usize;
@@ -155,7 +168,8 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
             differing += 1;
             if let (Some(a), Some(_)) = (ours, theirs) {
                 let near = rf.nearest_depth(i).unwrap();
-                if rf.depth_of(i, *a).is_some_and(|z| z - near <= TIE) {
+                if let Some(gap) = rf.depth_of(i, *a).map(|z| z - near).filter(|&g| g <= TIE) {
+                    worst_tie = worst_tie.max(gap);
                     ties += 1;
                     continue;
                 }
@@ -163,8 +177,9 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
             if rf.edge_dist[i] > 0.1 {
                 beyond_tenth += 1;
             }
+            worst_edge = worst_edge.max(rf.edge_dist[i]);
             assert!(
-                rf.edge_dist[i] <= 1.0,
+                rf.edge_dist[i] <= EDGE,
                 "scene {scene}: pixel ({}, {}) is {:?} but {:?} in f64, {:.3} px from an edge; f64 depths {:?}",
                 i as u32 % W,
                 i as u32 / W,
@@ -177,12 +192,11 @@ fn random_scenes_bands_equal_whole_and_match_f64() {
         }
     }
     eprintln!(
-        "{scenes} scenes, {compared} pixels: {differing} differ from f64 ({near_edge} within 1 px of an \
-         edge, {beyond_tenth} of them beyond 0.1 px; {ties} depth ties)"
+        "{scenes} scenes, {compared} pixels: {differing} differ from f64 ({near_edge} within {EDGE} px of an \
+         edge, {beyond_tenth} of them beyond 0.1 px; {ties} depth ties); worst {worst_edge:.4} px from an edge, worst tie {worst_tie:.2} steps"
     );
-    // Stated share: at most 0.5 % of pixels differ at all.
     assert!(
-        differing * 200 <= compared,
+        differing * 10_000 <= compared * DIFFER_PER_10K,
         "{differing} of {compared} pixels differ"
     );
 }

@@ -164,14 +164,20 @@ fn id_texture_error(cam: &Transforms<Fx16>, reps: f64) -> (usize, usize, f64) {
 }
 
 /// Nearest sampling, repeating, over a floor whose texture repeats twice: every pixel shows the
-/// texel the exact coordinates fall in, or one beside it where they lie within 1/1000 texel of
-/// its edge.
+/// texel the exact coordinates fall in (measured: all of them).
 #[test]
 fn nearest_texels_match_exact_perspective_coordinates() {
     let (n, off, worst) = id_texture_error(&camera(), 2.0);
     eprintln!("{n} pixels, {off} on a neighbouring texel, worst {worst:.5} texels");
     assert!(n > 2000, "the floor covers {n} pixels");
-    assert!(worst < 0.001, "worst texel coordinate error {worst}");
+    // Measured: 0 (every pixel on the exact texel). The scene is fixed and the pipeline integer-only,
+    // so the result is the same on every machine: exact 0, not an allowance. The random eyes of
+    // texels_match_f64_from_any_eye carry the allowance for pixels near a texel edge.
+    assert_eq!(
+        off, 0,
+        "{off} pixels on a neighbouring texel, worst {worst}"
+    );
+    assert_eq!(worst, 0.0);
 }
 
 /// The textured floor drawn into an embedded-graphics target (a mock that fails on any pixel
@@ -231,7 +237,8 @@ fn affine_coordinates_would_fail_the_check() {
                 continue;
             }
             let ty = i64::from(c & 31);
-            assert!(outside(ve, ty) < 0.001);
+            // Measured 0, as in nearest_texels_match_exact_perspective_coordinates (same camera).
+            assert_eq!(outside(ve, ty), 0.0, "({x}, {y})");
             n += 1;
             if outside(va, ty) > 1.0 {
                 far += 1;
@@ -405,7 +412,7 @@ fn texture_sizes_are_checked() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 
-    /// From random eye positions and texture repeats, every pixel's texel is within 1/1000 texel
+    /// From random eye positions and texture repeats, every pixel's texel is within 2/10,000 texel
     /// of the exact f64 perspective-correct coordinates.
     #[test]
     fn texels_match_f64_from_any_eye(
@@ -416,7 +423,9 @@ proptest! {
     ) {
         let (n, _, worst) = id_texture_error(&camera_at(x, y, z), reps);
         prop_assume!(n > 100);
-        prop_assert!(worst < 0.001, "worst {worst} over {n} pixels");
+        // Measured: 7.9e-5 texels at worst over about 2,000 random eyes (PROPTEST_CASES=2000);
+        // the bound is about twice that (pixels near a texel edge, where f64 and 16.16 round apart).
+        prop_assert!(worst < 2e-4, "worst {worst} over {n} pixels");
     }
 
     /// Any texture coordinates (i32 extremes included), any camera turn, a mesh without uvs, a

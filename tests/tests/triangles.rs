@@ -269,27 +269,27 @@ fn gouraud_vertex_pixels_get_vertex_colours() {
     ];
     let mut mock = StrictMock::<Rgb888>::new(32, 24);
     fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
-    // (1,1) is the top vertex: on two edges, a left one and the right one, so not covered; the others
-    // are covered (left vertex) or not (right) by the top-left rule. Check the ones that are.
-    let mut checked = 0;
+    // Which vertex pixels are covered is the top-left rule's call: the independent edge-function
+    // reference decides, and every covered one must carry its vertex's colour exactly.
+    let want = reference_set(v, 32, 24);
     for (p, col) in [
         ((1, 1), colors[0]),
         ((30, 4), colors[1]),
         ((6, 20), colors[2]),
     ] {
-        if let Some(got) = mock.get(p.0, p.1) {
-            assert_eq!(got, col, "vertex pixel {p:?}");
-            checked += 1;
+        let covered = want.contains(&p);
+        assert_eq!(mock.get(p.0, p.1).is_some(), covered, "vertex pixel {p:?}");
+        if covered {
+            assert_eq!(mock.get(p.0, p.1), Some(col), "vertex pixel {p:?}");
         }
     }
-    // Also, with a bigger triangle whose vertex pixels are interior-adjacent, test a vertex that is
-    // covered: a left vertex is kept.
+    // A bigger triangle with a covered left vertex: the reference covers (1, 10), and it keeps
+    // its vertex colour, so at least one vertex colour is really compared.
     let v = [c(10, 0), c(1, 10), c(20, 12)];
+    assert!(reference_set(v, 24, 16).contains(&(1, 10)));
     let mut mock2 = StrictMock::<Rgb888>::new(24, 16);
     fill_triangle_gouraud(&mut AnyTarget::new(&mut mock2), v, colors).unwrap();
     assert_eq!(mock2.get(1, 10), Some(colors[1]));
-    checked += 1;
-    assert!(checked >= 1);
 }
 
 #[test]
@@ -330,24 +330,45 @@ fn gouraud_same_pixels_as_flat_and_within_half_step_of_exact() {
 
 #[test]
 fn gouraud_sliver_with_huge_gradient_stays_in_range() {
+    // Measured: 0.5 steps, over the pixels of the long edge. Half a step is the rounding of the
+    // exact blend itself, so the bound is that and no more (as for the wide triangle above).
+    const SLIVER_BOUND: f64 = 0.5 + 1e-9;
+    // A sliver 1/16 pixel wide at its base whose long edge runs through the pixel centres
+    // (0.5 + 4k, 0.5 + 3k): blue goes from 0 to 31 across 1/16 pixel, and the top-left rule covers
+    // those centres on one of the long edges, so there are pixels to check.
     let v = [
-        SubPoint::new(0, 0),
-        SubPoint::new(40 * 16, 30 * 16),
-        SubPoint::new(40 * 16 + 1, 30 * 16),
+        SubPoint::new(8, 8),
+        SubPoint::new(40 * 16 + 8, 30 * 16 + 8),
+        SubPoint::new(40 * 16 + 9, 30 * 16 + 8),
     ];
     let colors = [
         Rgb565::new(31, 0, 0),
         Rgb565::new(0, 63, 0),
         Rgb565::new(0, 0, 31),
     ];
-    let mut buf = [0u16; 48 * 32];
-    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 48, 32).unwrap();
-    fill_triangle_gouraud(&mut fb, v, colors).unwrap();
     let mut mock = StrictMock::<Rgb565>::new(48, 32);
     fill_triangle_gouraud(&mut AnyTarget::new(&mut mock), v, colors).unwrap();
+    // Coverage from the independent edge-function reference, colour from the exact barycentric
+    // blend in f64: a gradient of up to 63 steps per 1/16 pixel across the sliver must not carry
+    // a pixel beyond the blend at its centre (an overflowing or unclamped gradient would).
+    assert_eq!(mock.written(), reference_set(v, 48, 32));
+    assert!(!mock.written().is_empty());
+    let f = v.map(|p| (p.x as f64 / 16.0, p.y as f64 / 16.0));
+    let area = (f[1].0 - f[0].0) * (f[2].1 - f[0].1) - (f[2].0 - f[0].0) * (f[1].1 - f[0].1);
+    let mut worst = 0.0f64;
     for (x, y) in mock.written() {
-        assert_eq!(fb.pixel(Point::new(x, y)), mock.get(x, y));
+        let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+        let l1 = ((cx - f[0].0) * (f[2].1 - f[0].1) - (f[2].0 - f[0].0) * (cy - f[0].1)) / area;
+        let l2 = ((f[1].0 - f[0].0) * (cy - f[0].1) - (cx - f[0].0) * (f[1].1 - f[0].1)) / area;
+        let l0 = 1.0 - l1 - l2;
+        let got = mock.get(x, y).unwrap();
+        let ch = |c: Rgb565, i: usize| [c.r(), c.g(), c.b()][i] as f64;
+        for i in 0..3 {
+            let exact = l0 * ch(colors[0], i) + l1 * ch(colors[1], i) + l2 * ch(colors[2], i);
+            worst = worst.max((ch(got, i) - exact).abs());
+        }
     }
+    assert!(worst <= SLIVER_BOUND, "worst channel error {worst} steps");
 }
 
 #[test]
