@@ -533,3 +533,38 @@ fn fx8_named_highlight() {
         );
     }
 }
+
+/// Regression: `FlatLit` lit each face with the plain 16.16 cross product of its edges. For a
+/// small triangle (M2's edges are about 0.03 long) its components are a few dozen units of 2^-16,
+/// and their rounding turned the normal by up to a degree: highlights were 14 steps off
+/// (`colors_f64.rs`). `Vec3::face_normal` doubles the edges first, which is exact.
+#[test]
+fn small_triangle_face_normal_keeps_direction() {
+    let p = |x: f64, y: f64, z: f64| Vec3::new(q::<16>(x), q::<16>(y), q::<16>(z));
+    let (a, b, c) = (
+        p(0.31, -0.12, 0.4),
+        p(0.331, -0.117, 0.392),
+        p(0.317, -0.101, 0.409),
+    );
+    let f = |v: Vec3<Fx16>| [v.x, v.y, v.z].map(|s| f64::from(s.to_bits()) / 65536.0);
+    let (fa, fb, fc) = (f(a), f(b), f(c));
+    let (u, v) = (sub(fb, fa), sub(fc, fa));
+    let exact = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let degrees = |n: Vec3<Fx16>| {
+        let cos = dot(unit(f(n)), unit(exact)).min(1.0);
+        cos.acos().to_degrees()
+    };
+    let plain = degrees((b - a).cross(c - a));
+    let face = degrees(Vec3::face_normal(a, b, c));
+    eprintln!("plain cross {plain:.4} degrees off, face_normal {face:.6}");
+    // Measured: the plain cross product 0.4764 degrees off, face_normal 0.000651.
+    assert!(
+        plain > 0.1,
+        "the case no longer shows the rounding ({plain} degrees)"
+    );
+    assert!(face < 0.01, "face normal {face} degrees off");
+}

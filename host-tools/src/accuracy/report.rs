@@ -311,19 +311,7 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
         for r in rows {
             match &r.errors[g] {
                 Ok(e) => {
-                    let _ = writeln!(
-                        s,
-                        "| {} | {:.4} | {:.4} | {} | {} | {} | {:.3} | {} | {} |",
-                        r.config.label,
-                        e.vertex_max,
-                        e.vertex_mean(),
-                        thousands(e.differing),
-                        pct(e.differing_share()),
-                        e.color_max,
-                        e.color_mean(),
-                        thousands(e.depth_mistakes),
-                        pct(e.wrong_share())
-                    );
+                    let _ = writeln!(s, "{}", error_row(r.config.label, e));
                 }
                 Err(why) => {
                     let _ = writeln!(s, "| {} | fails: {why} | | | | | | | |", r.config.label);
@@ -564,6 +552,41 @@ fn dithering(s: &mut String, sweep: &Sweep) {
     let _ = writeln!(s);
 }
 
+/// A configuration's row of an error table (one scene group).
+pub(crate) fn error_row(label: &str, e: &Errors) -> String {
+    format!(
+        "| {} | {:.4} | {:.4} | {} | {} | {} | {:.3} | {} | {} |",
+        label,
+        e.vertex_max,
+        e.vertex_mean(),
+        thousands(e.differing),
+        pct(e.differing_share()),
+        e.color_max,
+        e.color_mean(),
+        thousands(e.depth_mistakes),
+        pct(e.wrong_share())
+    )
+}
+
+/// The report's headline: the default configuration and its M1 errors `de`.
+pub(crate) fn default_headline(de: &Errors) -> String {
+    format!(
+        "The library's default is **16.16 geometry, 6 sub-pixel bits (26.6 screen coordinates), \
+         the 256-entry sine table, exact division in the perspective divide, 32-bit wrapping span \
+         planes (exact at an anchor pixel, 16 fractional bits for colour and depth), affine \
+         interpolation** (`rasterizer_core::numerics::Standard`). On M1 its vertices land within {:.3} px of \
+         their exact place (mean {:.4} px), {} of the covered pixels show another triangle than \
+         the f64 render, colours are off by at most {} steps (mean {:.3}), and {} of the pixels \
+         are wrong in all.",
+        de.vertex_max,
+        de.vertex_mean(),
+        pct(de.differing_share()),
+        de.color_max,
+        de.color_mean(),
+        pct(de.wrong_share())
+    )
+}
+
 fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
     let rows = &sweep.rows;
     let Some((di, d)) = rows
@@ -578,22 +601,7 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
         return;
     };
     let _ = writeln!(s, "## The default and why\n");
-    let _ = write!(
-        s,
-        "The library's default is **16.16 geometry, 6 sub-pixel bits (26.6 screen coordinates), \
-         the 256-entry sine table, exact division in the perspective divide, 32-bit wrapping span \
-         planes (exact at an anchor pixel, 16 fractional bits for colour and depth), affine \
-         interpolation** (`rasterizer_core::numerics::Standard`). On M1 its vertices land within {:.3} px of \
-         their exact place (mean {:.4} px), {} of the covered pixels show another triangle than \
-         the f64 render, colours are off by at most {} steps (mean {:.3}), and {} of the pixels \
-         are wrong in all.",
-        de.vertex_max,
-        de.vertex_mean(),
-        pct(de.differing_share()),
-        de.color_max,
-        de.color_mean(),
-        pct(de.wrong_share())
-    );
+    let _ = write!(s, "{}", default_headline(&de));
     if let (true, Some(dc)) = (counted, cost(d)) {
         let _ = write!(
             s,
@@ -931,5 +939,52 @@ mod tests {
         assert_eq!(thousands(968), "968");
         assert_eq!(scale_fmt(256.0), "2^8");
         assert_eq!(scale_fmt(0.25), "2^-2");
+    }
+
+    /// The rows of `group`'s error table in the committed report.
+    fn section<'d>(doc: &'d str, group: &str) -> &'d str {
+        let start = doc
+            .find(&format!("### {group} ("))
+            .unwrap_or_else(|| panic!("docs/ACCURACY.md has no {group} table"));
+        let rest = &doc[start..];
+        let end = rest[4..].find("\n#").map_or(rest.len(), |e| e + 4);
+        &rest[..end]
+    }
+
+    /// The committed report's headline and its M1 and M2 rows of the default and the
+    /// perspective-correct configurations, recomputed from the code now (the errors only: the
+    /// instruction counts need callgrind and a release build, and M3, the random scenes and the
+    /// limit sweeps are minutes of work in a debug build). A change that moves these figures
+    /// fails here until the report is regenerated, so the report cannot drift from the code.
+    #[test]
+    fn report_headline_matches_the_code() {
+        use crate::accuracy::{config, load, m1, scene};
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/ACCURACY.md");
+        let doc = std::fs::read_to_string(path).unwrap();
+        let dirs = scene::default_model_dirs();
+        let m2 = load(&dirs, "M2", "stanford-bunny-res3.obj", true).unwrap();
+        let registry = config::registry();
+        for (group, def) in [("M1", m1(&dirs).unwrap()), ("M2", m2)] {
+            let prepared = scene::Prepared::new(def, true);
+            let table = section(&doc, group);
+            for label in [DEFAULT, "perspective"] {
+                let c = registry.iter().find(|c| c.label == label).unwrap();
+                let e = (c.measure)(&prepared).unwrap();
+                let row = error_row(label, &e);
+                assert!(
+                    table.lines().any(|l| l == row),
+                    "docs/ACCURACY.md's {group} row of {label} is not what the code measures \
+                     now ({row}); regenerate the report"
+                );
+                if group == "M1" && label == DEFAULT {
+                    let headline = default_headline(&e);
+                    assert!(
+                        doc.contains(&headline),
+                        "docs/ACCURACY.md's headline is not what the code measures now:\n\
+                         {headline}\nregenerate the report"
+                    );
+                }
+            }
+        }
     }
 }

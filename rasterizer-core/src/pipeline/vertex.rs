@@ -247,7 +247,7 @@ where
             model_space: self.model_space,
         };
         let p = [0, 1, 2].map(|k| space.position(mesh, idx[k]));
-        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+        let normal = Vec3::face_normal(p[0], p[1], p[2]);
         // A mirroring model matrix turns the cross product of world-space edges inwards.
         let normal = if self.flip_faces { -normal } else { normal };
         let mut out = [Sh::Varyings::default(); 3];

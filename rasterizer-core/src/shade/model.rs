@@ -339,7 +339,7 @@ pub(super) fn flat_face_sums<S: Scalar, C, const N: usize>(
     flat: &FlatLit<S, C, N>,
     v: &[VertexIn<S>; 3],
 ) -> [u64; 3] {
-    let normal = (v[1].position - v[0].position).cross(v[2].position - v[0].position);
+    let normal = Vec3::face_normal(v[0].position, v[1].position, v[2].position);
     // The centroid, for point lights and the specular term.
     let third = S::from_ratio(1, 3);
     let centre = (v[0].position + v[1].position + v[2].position).scale(third);
