@@ -78,6 +78,17 @@ impl<S: Scalar> Vec3<S> {
         let mut m = bigger(largest(a), largest(b));
         // Components below one half, doubled: at most one, so the product's are at most two.
         // Sixteen doublings reach one half from 2^-17; a smaller (or zero) edge is left there.
+        if let Some(raw) = m.raw_bits() {
+            // Fixed point: the same doublings as one shift of the raw integers.
+            let k = match u64::try_from(raw) {
+                Ok(r) if r > 0 => (i64::from(S::RAW_FRAC) - 1 - i64::from(r.ilog2())).clamp(0, 16),
+                _ => 16,
+            } as u32;
+            // Every component is at most m, so shifted it stays below one: no saturation.
+            let shift = |x: S| S::from_raw(x.raw_bits().unwrap_or(0) << k);
+            let up = |v: Self| Self::new(shift(v.x), shift(v.y), shift(v.z));
+            return up(a).cross(up(b));
+        }
         for _ in 0..16 {
             if m >= half {
                 break;
