@@ -115,37 +115,12 @@ fn every_shared_model_converts_and_renders() {
     }
 }
 
-/// Whether `UPDATE_REFERENCE` asks to rewrite the reference pictures: only `1` does. Any other
-/// value set is an error rather than a comparison: `UPDATE_REFERENCE=0`, `=true` or `=yes` show an
-/// intent the test cannot read, and silently rewriting (or silently not) would hide that.
-fn update_requested(value: Option<&std::ffi::OsStr>) -> Result<bool, String> {
-    match value {
-        None => Ok(false),
-        Some(v) if v == "1" => Ok(true),
-        Some(v) => Err(format!(
-            "UPDATE_REFERENCE={} is not understood: set it to 1 to rewrite the reference \
-             pictures, or unset it to compare with them",
-            v.to_string_lossy()
-        )),
-    }
-}
-
-#[test]
-fn update_reference_is_only_one() {
-    use std::ffi::OsStr;
-    assert_eq!(update_requested(None), Ok(false));
-    assert_eq!(update_requested(Some(OsStr::new("1"))), Ok(true));
-    for v in ["0", "", "true", "yes", " 1", "01"] {
-        let e = update_requested(Some(OsStr::new(v))).unwrap_err();
-        assert!(e.contains("set it to 1"), "{v:?}: {e}");
-    }
-}
-
 #[test]
 fn reference_pictures_of_three_models() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/images/models");
-    let update = update_requested(std::env::var_os("UPDATE_REFERENCE").as_deref())
-        .unwrap_or_else(|e| panic!("{e}"));
+    let update =
+        fixtures::update_reference_requested(std::env::var_os("UPDATE_REFERENCE").as_deref())
+            .unwrap_or_else(|e| panic!("{e}"));
     for name in ["teapot", "spot_triangulated", "icosphere"] {
         let (buf, _) = render(&shared_models().join(format!("{name}.obj")));
         let file = dir.join(format!("{name}.png"));

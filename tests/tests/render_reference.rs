@@ -253,39 +253,14 @@ fn diff_image(reference: &[u8], actual: &[u8]) -> (usize, Vec<u8>) {
     (differing, out)
 }
 
-/// Whether `UPDATE_REFERENCE` asks to rewrite the reference pictures: only `1` does. Any other
-/// value set is an error, not a comparison: `UPDATE_REFERENCE=0` or `=true` show an intent the
-/// test cannot read (the same rule as host-tools' models_render.rs).
-fn update_requested(value: Option<&std::ffi::OsStr>) -> Result<bool, String> {
-    match value {
-        None => Ok(false),
-        Some(v) if v == "1" => Ok(true),
-        Some(v) => Err(format!(
-            "UPDATE_REFERENCE={} is not understood: set it to 1 to rewrite the reference \
-             pictures, or unset it to compare with them",
-            v.to_string_lossy()
-        )),
-    }
-}
-
-#[test]
-fn update_reference_is_only_one() {
-    use std::ffi::OsStr;
-    assert_eq!(update_requested(None), Ok(false));
-    assert_eq!(update_requested(Some(OsStr::new("1"))), Ok(true));
-    for v in ["0", "", "true", "yes", " 1", "01"] {
-        let e = update_requested(Some(OsStr::new(v))).unwrap_err();
-        assert!(e.contains("set it to 1"), "{v:?}: {e}");
-    }
-}
-
 /// Compares a case with its reference picture (or writes it, with `UPDATE_REFERENCE=1`).
 fn check(model: Model, style: Style) {
     let case = format!("{}_{}", model.name(), style.name());
     let rgb = render(model, style);
     let path = root().join(format!("tests/images/pipeline/{case}.png"));
-    let update = update_requested(std::env::var_os("UPDATE_REFERENCE").as_deref())
-        .unwrap_or_else(|e| panic!("{e}"));
+    let update =
+        fixtures::update_reference_requested(std::env::var_os("UPDATE_REFERENCE").as_deref())
+            .unwrap_or_else(|e| panic!("{e}"));
     if update {
         write_png(&path, &rgb);
         println!("UPDATE_REFERENCE=1: wrote {}", path.display());
