@@ -89,33 +89,30 @@ impl<S: Scalar> Mat4<S> {
     /// Whether the transform mirrors: its upper 3x3 (the linear part of an affine transform) has
     /// a negative determinant, as a reflection ([`Mat4::reflect_xy`] and friends) or a negative
     /// scale on one or three axes has. Mirroring reverses the winding of every triangle it
-    /// carries. Exact for the fixed-point formats (the determinant of the raw integers, in
-    /// `i128`); a transform that flattens (determinant zero) does not mirror.
+    /// carries. Exact for the fixed-point formats (the determinant of the raw integers); a transform that flattens (determinant zero) does not mirror.
     pub fn mirrors(&self) -> bool {
         let m = &self.m;
-        // Entries below 2^40 keep each product of three below 2^120 and the sum of six in i128.
         let raw = |r: usize, c: usize| {
             m[r][c]
                 .raw_bits()
-                .filter(|b| b.unsigned_abs() < 1 << 40)
-                .map(i128::from)
+                .filter(|b| (i64::from(i32::MIN)..=i64::from(i32::MAX)).contains(b))
         };
-        let mut exact = [[0i128; 3]; 3];
-        let mut all = true;
-        for (r, row) in exact.iter_mut().enumerate() {
+        let mut e = [[0i64; 3]; 3];
+        let mut exact = true;
+        for (r, row) in e.iter_mut().enumerate() {
             for (c, v) in row.iter_mut().enumerate() {
                 match raw(r, c) {
                     Some(b) => *v = b,
-                    None => all = false,
+                    None => exact = false,
                 }
             }
         }
-        if all {
-            let e = &exact;
-            let det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1])
-                - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0])
-                + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-            return det < 0;
+        if exact {
+            // i32 entries: each 2x2 minor is exact in i64 (no difference of two products reaches
+            // 2^63), and each entry times its minor in i128.
+            let minor = |a: usize, b: usize| e[1][a] * e[2][b] - e[1][b] * e[2][a];
+            let term = |c: usize, minor: i64| i128::from(e[0][c]) * i128::from(minor);
+            return term(0, minor(1, 2)) - term(1, minor(0, 2)) + term(2, minor(0, 1)) < 0;
         }
         // A floating-point format: its own arithmetic (NaN mirrors nothing).
         let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])

@@ -62,33 +62,42 @@ impl<S: Scalar> Vec3<S> {
     }
 
     /// A normal of the triangle `p0`, `p1`, `p2` (counter-clockwise seen from its front), of no
-    /// particular length: the cross product of its edges, with both edges first doubled until the
-    /// larger's largest component reaches one half.
+    /// particular length (its largest component between one and two): the cross product of its
+    /// edges, without the rounding of small products.
     ///
-    /// Only the direction is wanted, and doubling is exact in every format, so this is the plain
-    /// cross product's direction without most of its rounding: for a small triangle (edges of a
-    /// few hundredths, as in a mesh of some thousand triangles scaled to the unit sphere) the
-    /// plain product has components of a few dozen units of 2^-16 in 16.16, and rounding them
-    /// turns the normal by up to a degree.
+    /// Only the direction is wanted. For a small triangle (edges of a few hundredths, as in a
+    /// mesh of some thousand triangles scaled to the unit sphere) the plain product has
+    /// components of a few dozen units of 2^-16 in 16.16, and rounding them turns the normal by up
+    /// to a degree. A fixed-point format takes the product of the raw edges exactly (in `i64`) and
+    /// keeps its leading bits; a floating-point one doubles both edges (exactly) until the larger
+    /// one's largest component reaches one half.
     pub fn face_normal(p0: Self, p1: Self, p2: Self) -> Self {
         let (mut a, mut b) = (p1 - p0, p2 - p0);
+        let raw = |v: S| {
+            v.raw_bits()
+                .filter(|r| (i64::from(i32::MIN)..=i64::from(i32::MAX)).contains(r))
+        };
+        if let (Some(ax), Some(ay), Some(az), Some(bx), Some(by), Some(bz)) =
+            (raw(a.x), raw(a.y), raw(a.z), raw(b.x), raw(b.y), raw(b.z))
+        {
+            // i32 factors: each product lies in (-2^62, 2^62] and no difference of two reaches
+            // 2^63, so the components are exact.
+            let c = [ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx];
+            let m = c.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+            if m == 0 {
+                return Self::default();
+            }
+            // The largest component's leading bit at 2^F: a value in [1, 2).
+            let lead = i64::from(m.ilog2()) - i64::from(S::RAW_FRAC);
+            let scale = |v: i64| S::from_raw(if lead >= 0 { v >> lead } else { v << -lead });
+            return Self::new(scale(c[0]), scale(c[1]), scale(c[2]));
+        }
         let half = S::from_ratio(1, 2);
         let bigger = |x: S, y: S| if y > x { y } else { x };
         let largest = |v: Self| bigger(bigger(v.x.abs(), v.y.abs()), v.z.abs());
         let mut m = bigger(largest(a), largest(b));
         // Components below one half, doubled: at most one, so the product's are at most two.
         // Sixteen doublings reach one half from 2^-17; a smaller (or zero) edge is left there.
-        if let Some(raw) = m.raw_bits() {
-            // Fixed point: the same doublings as one shift of the raw integers.
-            let k = match u64::try_from(raw) {
-                Ok(r) if r > 0 => (i64::from(S::RAW_FRAC) - 1 - i64::from(r.ilog2())).clamp(0, 16),
-                _ => 16,
-            } as u32;
-            // Every component is at most m, so shifted it stays below one: no saturation.
-            let shift = |x: S| S::from_raw(x.raw_bits().unwrap_or(0) << k);
-            let up = |v: Self| Self::new(shift(v.x), shift(v.y), shift(v.z));
-            return up(a).cross(up(b));
-        }
         for _ in 0..16 {
             if m >= half {
                 break;

@@ -48,6 +48,12 @@ impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for ShaderCol
     }
 }
 
+/// A screen vertex's position: one named function, so that every area taken over screen
+/// vertices shares one copy of [`polygon_area`].
+fn position<V, const BITS: u32>(v: &ScreenVertex<V, BITS>) -> SubPoint<BITS> {
+    v.p
+}
+
 /// The signed doubled area of a convex polygon of screen points, saturated to `±i64::MAX` (its sign
 /// and whether it is zero are exact).
 pub(super) fn polygon_area<const BITS: u32>(
@@ -271,7 +277,7 @@ where
             });
         }
         // The clipped polygon is convex: its total signed area decides its facing.
-        let area = polygon_area(screen.iter().map(|v| v.p));
+        let area = polygon_area(screen.iter().map(position));
         if area == 0 || !self.keeps(area) {
             stats.culled += 1;
             return Ok(());
@@ -285,7 +291,7 @@ where
         let sign = area.signum();
         for k in 1..screen.len() - 1 {
             let fan = [screen[0], screen[k], screen[k + 1]];
-            if polygon_area(fan.iter().map(|v| v.p)).signum() == sign {
+            if polygon_area(fan.iter().map(position)).signum() == sign {
                 self.raster(target, &fan)?;
             }
         }
