@@ -23,9 +23,7 @@ use proptest::prelude::*;
 use rasterizer_core::clip::polygon::{clip_triangle, outcode, ClipVertex};
 use rasterizer_core::math::Vec4;
 use rasterizer_core::prelude::*;
-use serde_json::Value;
 use std::collections::BTreeSet;
-use std::path::PathBuf;
 use tests::StrictMock;
 
 /// The target: a small window somewhere inside (or across the edge of) a huge viewport.
@@ -310,79 +308,9 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 // llvmpipe's conformance cases through the pipeline.
 
-fn conformance_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("conformance/triangles")
-}
-
-struct Case {
-    name: String,
-    width: u32,
-    height: u32,
-    /// Vertices in 1/16 pixel, the cases' own grid.
-    triangles: Vec<[(i64, i64); 3]>,
-    ids: Vec<Vec<i64>>,
-}
-
-fn sixteenths(v: &Value) -> i64 {
-    let raw = v.as_f64().expect("coordinate is a number") * 16.0;
-    assert_eq!(raw, raw.round(), "vertex off the 1/16 grid");
-    raw as i64
-}
-
-fn load_cases() -> Vec<Case> {
-    let text = std::fs::read_to_string(conformance_dir().join("INDEX.json")).unwrap();
-    let index: Value = serde_json::from_str(&text).unwrap();
-    let names = index["cases"].as_array().unwrap();
-    assert_eq!(names.len(), 60, "the conformance set has 60 cases");
-    names
-        .iter()
-        .map(|n| {
-            let name = n.as_str().unwrap().to_string();
-            let path = conformance_dir().join(format!("{name}.json"));
-            let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-            let triangles = v["triangles"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|t| {
-                    let p: Vec<(i64, i64)> = t
-                        .as_array()
-                        .unwrap()
-                        .iter()
-                        .map(|xy| (sixteenths(&xy[0]), sixteenths(&xy[1])))
-                        .collect();
-                    [p[0], p[1], p[2]]
-                })
-                .collect();
-            let ids = v["ids"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|row| {
-                    let row = row.as_array().unwrap();
-                    row.iter().map(|i| i.as_i64().unwrap()).collect()
-                })
-                .collect();
-            Case {
-                name,
-                width: v["width"].as_u64().unwrap() as u32,
-                height: v["height"].as_u64().unwrap() as u32,
-                triangles,
-                ids,
-            }
-        })
-        .collect()
-}
-
-/// Triangle `i` is drawn in colour `i + 1` spread over 24 bits; 0 means uncovered.
-fn id_color(i: usize) -> Rgb888 {
-    let v = i as u32 + 1;
-    Rgb888::new((v >> 16) as u8, (v >> 8) as u8, v as u8)
-}
-
-fn color_id(c: Rgb888) -> i64 {
-    i64::from(u32::from(c.r()) << 16 | u32::from(c.g()) << 8 | u32::from(c.b())) - 1
-}
+#[path = "common/conformance_cases.rs"]
+mod cases;
+use cases::{color_id, id_color, load_cases, Case};
 
 /// The mesh positions of a case's triangle at `B` bits (`B >= 4`: the cases' 1/16 grid is then
 /// exact), viewport at the origin; asserts that the pipeline projects them onto the case's
