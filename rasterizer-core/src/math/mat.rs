@@ -89,7 +89,8 @@ impl<S: Scalar> Mat4<S> {
     /// Whether the transform mirrors: its upper 3x3 (the linear part of an affine transform) has
     /// a negative determinant, as a reflection ([`Mat4::reflect_xy`] and friends) or a negative
     /// scale on one or three axes has. Mirroring reverses the winding of every triangle it
-    /// carries. Exact for the fixed-point formats (the determinant of the raw integers); a transform that flattens (determinant zero) does not mirror.
+    /// carries. Exact for the fixed-point formats (the determinant of the raw integers); a
+    /// transform that flattens (determinant zero) does not mirror.
     pub fn mirrors(&self) -> bool {
         let m = &self.m;
         let raw = |r: usize, c: usize| {

@@ -175,7 +175,8 @@ where
             height: viewport.height.min(max),
             ..viewport
         };
-        let mirrored = transforms.model.mirrors() != transforms.view.mirrors();
+        let model_mirrors = transforms.model.mirrors();
+        let mirrored = model_mirrors != transforms.view.mirrors();
         Self {
             raw: RawMvp::new(&mvp),
             mvp,
@@ -183,7 +184,7 @@ where
             normal_matrix: transforms.model,
             mirrored,
             facing: -i64::from(mirrored && !C::WINDOW_SPACE),
-            model_mirrors: transforms.model.mirrors(),
+            model_mirrors,
             flip_faces: false,
             viewport,
             area: PixelRect::from_rectangle(&viewport.rectangle()),
