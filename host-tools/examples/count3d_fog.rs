@@ -2,30 +2,30 @@
 //! fog from depth 2 to 4 towards grey-blue) for callgrind to count: `count3d_fog`. A binary of its
 //! own, so that adding it leaves `count3d`'s code, and so its figures, as they were.
 //!
-//! The mesh is loaded, the pipeline built and one warm frame drawn outside the counted function;
-//! then exactly one call of `frame_m1_fog` draws the counted frame, and the same line as
-//! `count3d m1` is printed (`drawn=.. covered=.. checksum=..`).
+//! The mesh is loaded, the pipeline built and one warm frame drawn outside the counted function
+//! (`support/m1_fog.rs`, shared with the other fogged count); then exactly one call of
+//! `frame_m1_fog` draws the counted frame, and the same line as `count3d m1` is printed
+//! (`drawn=.. covered=.. checksum=..`).
 
 use embedded_graphics::pixelcolor::Rgb565;
-use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
-use fixtures::scenes3d::{lighting, transforms, Scene};
 use rasterizer_core::pipeline::RenderStats;
 use rasterizer_core::prelude::*;
-use rasterizer_core::shade::{Fog, FogCurve, FogSettings};
 use std::hint::black_box;
 use std::process::ExitCode;
 
-type Fogged = Fog<Fx16, GouraudLit<Fx16, Rgb565, 1>>;
-type Pipe<'z> = Pipeline<Fx16, CullClockwise, DepthBuffer<'z>, Fogged, 6>;
-type Slots = [VertexSlot<[u16; 3]>];
+#[path = "support/m1_fog.rs"]
+mod m1_fog;
+use m1_fog::{Pipe, Slots};
+
+type Lit = GouraudLit<Fx16, Rgb565, 1>;
 
 /// M1 fogged: the `m1` pipeline with the shading wrapped in fog.
 #[inline(never)]
 fn frame_m1_fog(
-    p: &mut Pipe<'_>,
+    p: &mut Pipe<'_, Lit>,
     fb: &mut Framebuffer<'_, Rgb565>,
     mesh: &Mesh<'_, Fx16, u32>,
-    scratch: &mut Slots,
+    scratch: &mut Slots<Lit>,
 ) -> RenderStats {
     black_box("frame_m1_fog");
     p.draw(fb, mesh, scratch)
@@ -33,52 +33,5 @@ fn frame_m1_fog(
 }
 
 fn main() -> ExitCode {
-    let loaded = match Scene::M1.load() {
-        Ok(m) => m,
-        Err(e) => {
-            eprintln!("count3d_fog: {}: {e}", Scene::M1.path().display());
-            return ExitCode::FAILURE;
-        }
-    };
-    let mesh = loaded.mesh();
-    let xf = transforms();
-    let mut buf = vec![0u16; PIXELS].into_boxed_slice();
-    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, WIDTH, HEIGHT).expect("320 x 240 buffer");
-    let mut zbuf = vec![u16::MAX; PIXELS].into_boxed_slice();
-    let settings = FogSettings {
-        color: Rgb888::new(128, 144, 160),
-        start: Fx16::from_int(2),
-        end: Fx16::from_int(4),
-        curve: FogCurve::Linear,
-    };
-    let shading = Fog::new(GouraudLit::new(lighting()), settings, &xf.view);
-    let depth = DepthBuffer::new(&mut zbuf, WIDTH, HEIGHT, Compare::Less).expect("depth buffer");
-    let mut p = Pipeline::new(
-        &xf,
-        Viewport::new(WIDTH, HEIGHT),
-        CullClockwise,
-        depth,
-        shading,
-    );
-    let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
-    // The warm frame, outside the counted function.
-    let _ = p.draw(&mut fb, &mesh, &mut scratch);
-    let Ok(()) = fb.clear(Rgb565::BLACK);
-    p.depth.clear(u16::MAX);
-    let stats = frame_m1_fog(
-        &mut p,
-        black_box(&mut fb),
-        black_box(&mesh),
-        black_box(&mut scratch),
-    );
-    let px = fb.as_slice();
-    let covered = px.iter().filter(|&&w| w != 0).count();
-    let checksum = px
-        .iter()
-        .fold(0u32, |s, &w| s.rotate_left(5) ^ u32::from(w));
-    println!(
-        "m1_fog scene=M1 triangles={} drawn={} culled={} covered={covered} checksum={checksum:08x}",
-        stats.triangles, stats.drawn, stats.culled
-    );
-    ExitCode::SUCCESS
+    m1_fog::run("count3d_fog", "m1_fog", GouraudLit::new, frame_m1_fog)
 }
