@@ -285,3 +285,52 @@ pub fn reference_line_on_screen(
     }
     want
 }
+
+/// Draws `mesh` through `pipeline` in bands of `rows` (Rgb565, a black background, depth cleared
+/// to the far value) into one `width` x `height` frame, checking that every band comes once, top
+/// to bottom. The scratch has a slot per vertex and the bins are as many as any mesh needs.
+pub fn draw_banded_rgb565<S, C, D, Sh, const BITS: u32, N, M>(
+    pipeline: &mut Pipeline<S, C, D, Sh, BITS, N>,
+    mesh: &M,
+    width: u32,
+    height: u32,
+    rows: u32,
+) -> (Vec<u16>, rasterizer_core::pipeline::RenderStats)
+where
+    S: rasterizer_core::math::Scalar,
+    C: rasterizer_core::cull::Cull,
+    D: rasterizer_core::depth::DepthTest,
+    Sh: rasterizer_core::shade::Shading<S, Color = Rgb565>,
+    N: rasterizer_core::numerics::Numerics,
+    M: rasterizer_core::mesh::MeshSource<S>,
+{
+    let mut band = vec![0u16; (width * rows.min(height)) as usize];
+    // A bin per triangle, and a filler for each gap of 255 (at most one per 255 triangles).
+    let triangles = mesh.triangle_count();
+    let mut bins = vec![BinEntry::default(); triangles + triangles / 255];
+    let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+    let mut frame = vec![0u16; (width * height) as usize];
+    let banding = Banding {
+        width,
+        height,
+        rows,
+        background: Rgb565::BLACK,
+        clear_depth: u16::MAX,
+    };
+    let mut next_row = 0;
+    let stats = pipeline
+        .draw_banded(mesh, &banding, &mut band, &mut bins, &mut scratch, |b| {
+            assert_eq!(b.y0(), next_row, "bands come top to bottom");
+            let y0 = b.y0() as usize * width as usize;
+            let data = b.framebuffer().as_slice();
+            frame[y0..y0 + data.len()].copy_from_slice(data);
+            next_row += rows as i32;
+        })
+        .unwrap();
+    assert_eq!(
+        next_row as u32,
+        height.div_ceil(rows) * rows,
+        "every band handed on once"
+    );
+    (frame, stats)
+}

@@ -351,11 +351,7 @@ fn mirrored_mesh_is_the_mirror_image() {
 /// The whole frame of `scene` (Gouraud, culled, depth), and the same in bands of `rows`.
 fn whole_and_banded<M: MeshSource<Fx16>>(mesh: &M, scene: &Scene, rows: u32) -> (Frame, Vec<u16>) {
     let whole = frame(mesh, scene, CullClockwise, Shade::Gouraud);
-    let mut band = vec![0u16; (W * rows) as usize];
     let mut depth = vec![u16::MAX; (W * rows) as usize];
-    let mut bins = vec![BinEntry::default(); mesh.triangle_count() + mesh.triangle_count() / 255];
-    let mut slots = vec![VertexSlot::EMPTY; mesh.vertex_count()];
-    let mut out = vec![0u16; (W * H) as usize];
     let db = DepthBuffer::new(&mut depth, W, rows, Compare::Less).unwrap();
     let shading = GouraudLit::<_, Rgb565, 1>::new(scene.lighting());
     let mut p = Pipeline::new(
@@ -368,20 +364,7 @@ fn whole_and_banded<M: MeshSource<Fx16>>(mesh: &M, scene: &Scene, rows: u32) -> 
     if let Some(n) = scene.normal_matrix {
         p.set_normal_matrix(n);
     }
-    let banding = Banding {
-        width: W,
-        height: H,
-        rows,
-        background: Rgb565::BLACK,
-        clear_depth: u16::MAX,
-    };
-    let stats = p
-        .draw_banded(mesh, &banding, &mut band, &mut bins, &mut slots, |b| {
-            let y0 = b.y0() as usize * W as usize;
-            let data = b.framebuffer().as_slice();
-            out[y0..y0 + data.len()].copy_from_slice(data);
-        })
-        .unwrap();
+    let (out, stats) = tests::draw_banded_rgb565(&mut p, mesh, W, H, rows);
     assert_eq!(stats, whole.stats);
     (whole, out)
 }

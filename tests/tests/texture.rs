@@ -357,10 +357,6 @@ fn bands_equal_the_whole_frame() {
         let shader = TexturedLit::new(full_white_light(), texture).with_filter(filter);
         let whole = draw(shader.clone(), &mesh);
         for rows in [1u32, 7, 16, 72] {
-            let mut frame = vec![0u16; (W * H) as usize];
-            let mut band = vec![0u16; (W * rows) as usize];
-            let mut bins = vec![BinEntry::default(); 4];
-            let mut scratch = vec![VertexSlot::<[i32; 6]>::EMPTY; positions.len()];
             let mut p = Pipeline::new(
                 &camera(),
                 Viewport::new(W, H),
@@ -368,19 +364,7 @@ fn bands_equal_the_whole_frame() {
                 NoDepth,
                 shader.clone(),
             );
-            let banding = Banding {
-                width: W,
-                height: H,
-                rows,
-                background: Rgb565::BLACK,
-                clear_depth: u16::MAX,
-            };
-            p.draw_banded(&mesh, &banding, &mut band, &mut bins, &mut scratch, |b| {
-                let y0 = b.y0() as usize * W as usize;
-                let data = b.framebuffer().as_slice();
-                frame[y0..y0 + data.len()].copy_from_slice(data);
-            })
-            .unwrap();
+            let (frame, _) = tests::draw_banded_rgb565(&mut p, &mesh, W, H, rows);
             assert_eq!(frame, whole, "{filter:?}, bands of {rows}");
         }
     }
