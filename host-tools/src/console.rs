@@ -45,6 +45,40 @@ pub fn out(args: fmt::Arguments<'_>) -> Result<(), StdoutError> {
     }
 }
 
+/// Standard output as a writer for data (an image written to `-o -`). Once its reader has gone
+/// (a closed pipe) the rest is dropped and the command carries on, as [`out`] does for messages:
+/// both share one flag, so neither writes on after the other has found the pipe closed.
+pub struct Stdout;
+
+impl Stdout {
+    /// `r`, with a closed pipe taken as success (`none`) and remembered.
+    fn closed<T>(r: io::Result<T>, none: T) -> io::Result<T> {
+        match r {
+            Err(e) if e.kind() == io::ErrorKind::BrokenPipe => {
+                STDOUT_CLOSED.store(true, Ordering::Relaxed);
+                Ok(none)
+            }
+            r => r,
+        }
+    }
+}
+
+impl Write for Stdout {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        if STDOUT_CLOSED.load(Ordering::Relaxed) {
+            return Ok(buf.len());
+        }
+        Self::closed(io::stdout().lock().write(buf), buf.len())
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        if STDOUT_CLOSED.load(Ordering::Relaxed) {
+            return Ok(());
+        }
+        Self::closed(io::stdout().lock().flush(), ())
+    }
+}
+
 /// Writes to stderr, ignoring failures. Use [`errln!`](crate::errln).
 pub fn err(args: fmt::Arguments<'_>) {
     let mut lock = io::stderr().lock();

@@ -17,7 +17,7 @@ use std::fmt;
 use std::fs::{self, File, OpenOptions, Permissions};
 use std::io::{self, BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Why an output could not be written: `cannot write PATH: CAUSE`.
 #[derive(Debug)]
@@ -59,40 +59,6 @@ pub fn is_stdout(path: &Path) -> bool {
 /// stdout is redirected to): messages must then go to stderr, or they would corrupt the data.
 pub fn goes_to_stdout(path: &Path) -> bool {
     is_stdout(path) || same_file(path, Path::new("/dev/stdout"))
-}
-
-/// Standard output as an output file. Once its reader has gone (a closed pipe) the rest is
-/// dropped and the command carries on, as `console::out` does: there is no one left to tell.
-struct Stdout;
-
-static STDOUT_GONE: AtomicBool = AtomicBool::new(false);
-
-impl Stdout {
-    fn gone<T>(r: io::Result<T>, none: T) -> io::Result<T> {
-        match r {
-            Err(e) if e.kind() == io::ErrorKind::BrokenPipe => {
-                STDOUT_GONE.store(true, Ordering::Relaxed);
-                Ok(none)
-            }
-            r => r,
-        }
-    }
-}
-
-impl Write for Stdout {
-    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        if STDOUT_GONE.load(Ordering::Relaxed) {
-            return Ok(buf.len());
-        }
-        Self::gone(io::stdout().lock().write(buf), buf.len())
-    }
-
-    fn flush(&mut self) -> io::Result<()> {
-        if STDOUT_GONE.load(Ordering::Relaxed) {
-            return Ok(());
-        }
-        Self::gone(io::stdout().lock().flush(), ())
-    }
 }
 
 /// Checks an output before the work: it must not be one of `inputs`, and its extension must
@@ -231,7 +197,9 @@ impl OutputFile {
             }
             return Ok(Self {
                 shown: path.to_path_buf(),
-                sink: Some(Sink::Direct(BufWriter::new(Box::new(Stdout)))),
+                sink: Some(Sink::Direct(BufWriter::new(Box::new(
+                    crate::console::Stdout,
+                )))),
                 first_error: None,
             });
         }
