@@ -487,13 +487,11 @@ fn load_mesh(
             MeshData::Packed(bytes)
         }
     } else {
-        // Read here rather than through `RawMesh::load`, which drops the reader's warnings.
         let shown = file.display().to_string();
         let mut found = Vec::new();
-        let obj = fixtures::obj::read(&shown, &bytes, file.parent(), true, &mut found, &());
+        let raw = RawMesh::from_bytes(&shown, &bytes, file.parent(), &mut found);
         warnings.extend(found.iter().map(|w| w.display(&shown)));
-        let obj = obj.map_err(|e| format!("mesh {shown}: {}", LoadError::Obj(e)))?;
-        let raw = RawMesh::from_obj(&obj);
+        let raw = raw.map_err(|e| format!("mesh {shown}: {}", LoadError::Obj(e)))?;
         if def.normals == NormalsMode::File && raw.normals.is_none() {
             return Err(format!(
                 "mesh {}: normals = \"file\" but it has none",
@@ -582,17 +580,21 @@ fn check_stages_apply(def: &MeshDef, render: &RenderOptions, textured: bool) -> 
     } else {
         None
     };
+    // `key`, set on the mesh (`own`) or inherited from [render], does not apply to `what`.
+    let refuse = |key: &str, own: bool, what: &str, takes: &str| {
+        Err(format!(
+            "mesh {name}: {key}{} does not apply to {what}; remove it{}",
+            from(own),
+            if own {
+                String::new()
+            } else {
+                format!(" from [render] and give each mesh that takes {takes} its own `{key}`")
+            }
+        ))
+    };
     if def.fog.is_some() || render.fog.is_some() {
         if let Some(what) = &no_colour {
-            return Err(format!(
-                "mesh {name}: fog{} does not apply to {what}; remove it{}",
-                from(def.fog.is_some()),
-                if def.fog.is_some() {
-                    ""
-                } else {
-                    " from [render] and give each mesh that takes fog its own `fog`"
-                }
-            ));
+            return refuse("fog", def.fog.is_some(), what, "fog");
         }
     }
     let dither = def.dither.unwrap_or(render.dither);
@@ -610,15 +612,7 @@ fn check_stages_apply(def: &MeshDef, render: &RenderOptions, textured: bool) -> 
             _ => None,
         });
         if let Some(what) = what {
-            return Err(format!(
-                "mesh {name}: dither{} does not apply to {what}; remove it{}",
-                from(def.dither.is_some()),
-                if def.dither.is_some() {
-                    ""
-                } else {
-                    " from [render] and give each mesh that takes dithering its own `dither`"
-                }
-            ));
+            return refuse("dither", def.dither.is_some(), &what, "dithering");
         }
     }
     let unlit = wireframe || matches!(shading, ShadingModel::None | ShadingModel::VertexColors);
