@@ -164,6 +164,7 @@ pub mod shade;
 pub mod surface;
 pub mod texture;
 pub mod transform;
+mod wide;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]
