@@ -356,6 +356,36 @@ if wanted M1 && [ "$QUICK" = 0 ]; then
     emit_count M1 ours-fog covered "$(field "$OUT/3d-M1-fog.stdout" covered)"
 fi
 
+# --- 64-bit divisions per frame (count-wide build) ---
+
+# The same frames from binaries built with host-tools' `count-wide` feature, which keeps every
+# 64-bit (and wider) division of the core out of line in rasterizer-core's `wide` module: the calls
+# to it are the divisions a Cortex-M pays a library call for. Its instruction counts are not figures.
+DIV64_JOBS=(
+    "M1 count3d m1 --scene M1 m1"
+    "M2 count3d m1 --scene M2 m1"
+    "M4 count3d_tex m4 --scene M4 m4"
+    "G1 count2d ours_gouraud G1 ours"
+)
+WIDE_DIV='^rasterizer_core::wide::div'
+declare -A WIDE_BIN=()
+for job in "${DIV64_JOBS[@]}"; do
+    read -r scene program frame args <<<"$job"
+    wanted "$scene" || continue
+    if [ -z "${WIDE_BIN[$program]:-}" ]; then
+        build_example_with count-wide "$program"
+        WIDE_BIN[$program]="$BIN"
+    fi
+    echo "counting $scene div64..." >&2
+    base="$OUT/div64-$scene"
+    # shellcheck disable=SC2086 # the arguments are words
+    callgrind_count "$base" "*frame_${frame}*" "${WIDE_BIN[$program]}" $args >/dev/null
+    calls="$(callgrind_calls "$base.out" "$WIDE_DIV")"
+    # Zero is the goal, so it is a valid figure; the routing itself is checked by the count
+    # of a scene that still divides (M4's textured pixels) coming out non-zero.
+    emit "$scene" ours div64 "$calls"
+done
+
 # --- RAM and code size of M1 (stack test, nostd-check) ---
 
 if wanted M1; then

@@ -34,6 +34,26 @@ pub(crate) fn div_floor_i128(n: i128, d: i128) -> i128 {
     n.div_euclid(d)
 }
 
+/// `(floor(n / d), n mod d)` for `d > 0`, the remainder in `0..d`; `(0, 0)` for `d <= 0`.
+#[cfg_attr(feature = "count-wide", inline(never))]
+#[cfg_attr(not(feature = "count-wide"), inline(always))]
+pub(crate) fn divmod_floor_i64(n: i64, d: i64) -> (i64, i64) {
+    if d <= 0 {
+        return (0, 0);
+    }
+    (n.div_euclid(d), n.rem_euclid(d))
+}
+
+/// [`divmod_floor_i64`] in `i128`.
+#[cfg_attr(feature = "count-wide", inline(never))]
+#[cfg_attr(not(feature = "count-wide"), inline(always))]
+pub(crate) fn divmod_floor_i128(n: i128, d: i128) -> (i128, i128) {
+    if d <= 0 {
+        return (0, 0);
+    }
+    (n.div_euclid(d), n.rem_euclid(d))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -51,5 +71,9 @@ mod tests {
         assert_eq!(div_floor_i128(-7, 2), -4);
         assert_eq!(div_floor_i128(i128::MIN, 3), i128::MIN.div_euclid(3));
         assert_eq!(div_floor_i128(1, 0), 0);
+        assert_eq!(divmod_floor_i64(-7, 2), (-4, 1));
+        assert_eq!(divmod_floor_i64(7, 0), (0, 0));
+        assert_eq!(divmod_floor_i128(-7, 3), (-3, 2));
+        assert_eq!(divmod_floor_i128(7, -3), (0, 0));
     }
 }

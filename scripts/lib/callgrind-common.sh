@@ -22,6 +22,35 @@ build_example() {
     BIN="$TARGET_DIR/release/examples/$1"
 }
 
+# build_example_with FEATURES NAME: build_example with host-tools features FEATURES, into a target
+# directory of their own ($TARGET_DIR/features-FEATURES) so that the plain build is untouched;
+# sets BIN.
+build_example_with() {
+    local dir="$TARGET_DIR/features-${1//,/-}"
+    echo "building $2 with $1 (release)..." >&2
+    RUSTFLAGS="" CARGO_TARGET_DIR="$dir" cargo build --quiet --release -p host-tools --features "$1" --example "$2"
+    # shellcheck disable=SC2034 # read by the scripts that source this file
+    BIN="$dir/release/examples/$2"
+}
+
+# callgrind_calls FILE REGEX: the calls callgrind's output FILE records to the functions whose
+# (demangled) names match REGEX, summed over every caller. Names are compressed in the file: the
+# first mention of a function gives `(id) name`, later ones only `(id)`.
+callgrind_calls() {
+    awk -v re="$2" '
+        function id_of(s,   m) { if (match(s, /^\([0-9]+\)/)) return substr(s, 2, RLENGTH - 2); return "" }
+        /^c?fn=/ {
+            v = substr($0, index($0, "=") + 1)
+            id = id_of(v)
+            if (id != "" && length(v) > RLENGTH) names[id] = substr(v, RLENGTH + 2)
+            if ($0 ~ /^cfn=/) { callee = (id != "" ? names[id] : v) } 
+            next
+        }
+        /^calls=/ { split(substr($0, 7), f, " "); if (callee ~ re) total += f[1]; next }
+        END { printf "%d\n", total }
+    ' "$1"
+}
+
 # callgrind_count BASE PATTERN COMMAND...: runs COMMAND under callgrind, collecting only inside the
 # functions PATTERN matches (--toggle-collect), and prints the instructions collected. Writes
 # BASE.out (callgrind's file), BASE.stdout and BASE.log; with ANNOTATE=1 also

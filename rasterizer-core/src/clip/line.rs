@@ -9,6 +9,7 @@
 
 use crate::geom::line::{Line, LinePoints};
 use crate::geom::PixelRect;
+use crate::wide;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::primitives::Rectangle;
 
@@ -138,7 +139,7 @@ impl Line {
 /// `ceil(n / d)` for `d > 0`.
 #[inline]
 fn ceil_div_i128(n: i128, d: i128) -> i128 {
-    let q = n.div_euclid(d);
+    let q = wide::div_floor_i128(n, d);
     if q * d == n {
         q
     } else {

@@ -13,6 +13,7 @@ use crate::numerics::{frac, Numerics, Perspective, SpanStart, Standard};
 use crate::raster::edge::row_at_or_below;
 use crate::raster::triangle::setup::{misses_every_centre, walk_spans, Sorted, SpanSink};
 use crate::surface::Surface;
+use crate::wide;
 
 /// A vertex in screen space: sub-pixel position, depth and the shader's values.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,13 +47,13 @@ const Z: usize = MAX_VARYINGS;
 fn divmod(n: i128, d: i64) -> (i64, i64) {
     // 64-bit division when the numerator fits (small triangles): a 128-bit one is a library call.
     if let Ok(n) = i64::try_from(n) {
-        return (n.div_euclid(d), n.rem_euclid(d));
+        return wide::divmod_floor_i64(n, d);
     }
-    let d = i128::from(d);
-    let q = n
-        .div_euclid(d)
-        .clamp(i128::from(i64::MIN), i128::from(i64::MAX));
-    (q as i64, n.rem_euclid(d) as i64)
+    let (q, r) = wide::divmod_floor_i128(n, i128::from(d));
+    (
+        q.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64,
+        r as i64,
+    )
 }
 
 /// A plane's value at a span start, exactly: `v0 2^16 + floor(N / den2)` with
@@ -183,8 +184,9 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, N: Numeric
                     e.q += 1;
                 }
             } else {
-                e.q += e.r / den2;
-                e.r %= den2;
+                let (q, r) = wide::divmod_floor_i64(e.r, den2);
+                e.q += q;
+                e.r = r;
             }
         } else if e.r < 0 {
             if e.r >= -2 * den2 {
@@ -195,8 +197,9 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, N: Numeric
                     e.q -= 1;
                 }
             } else {
-                e.q += e.r.div_euclid(den2);
-                e.r = e.r.rem_euclid(den2);
+                let (q, r) = wide::divmod_floor_i64(e.r, den2);
+                e.q += q;
+                e.r = r;
             }
         }
     }
@@ -250,8 +253,8 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, N: Numeric
                 if N::PERSPECTIVE {
                     // The barycentrics divided by w, over 1/w: one division each per pixel.
                     let q = acc[0].max(1);
-                    let l1 = (acc[1].max(0) << frac::<N>()) / q;
-                    let l2 = (acc[2].max(0) << frac::<N>()) / q;
+                    let l1 = wide::div_floor_i64(acc[1].max(0) << frac::<N>(), q);
+                    let l2 = wide::div_floor_i64(acc[2].max(0) << frac::<N>(), q);
                     for (i, out) in v.as_mut_slice().iter_mut().enumerate().take(count) {
                         let mix = l1 * d1[i] + l2 * d2[i];
                         *out = (base[i] + ((mix + (1 << (frac::<N>() - 1))) >> frac::<N>())) as i32;
@@ -383,7 +386,7 @@ where
     let mut gradient =
         N::SPANS == SpanStart::Gradient && (0..used).all(fits) && (!D::ENABLED || fits(Z));
     if gradient {
-        let round = |n: i64| (n + den2 / 2).div_euclid(den2);
+        let round = |n: i64| wide::div_floor_i64(n + den2 / 2, den2);
         let mut grad = |i: usize| {
             let p = planes[i];
             steps[i] = round((p.a * 2 * s) << frac::<N>());

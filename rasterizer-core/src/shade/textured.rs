@@ -21,6 +21,8 @@ use crate::color::ShadeColor;
 use crate::geom::MAX_VARYINGS;
 use crate::math::{Mat4, Scalar};
 use crate::texture::{Filter, Texture, Wrap};
+use crate::wide;
+use core::num::NonZeroU64;
 
 /// Values per vertex: light r g b (8.23, half a step added), u, v (16.16 texture units) and
 /// `1 / w`.
@@ -229,18 +231,18 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     #[inline(always)]
     fn pixel(&self, v: &Values) -> C {
         let q = v[5].max(1) as i64;
-        let tu = (i64::from(v[3].max(0)) << self.current.shift[0]) / q;
-        let tv = (i64::from(v[4].max(0)) << self.current.shift[1]) / q;
+        let tu = wide::div_floor_i64(i64::from(v[3].max(0)) << self.current.shift[0], q);
+        let tv = wide::div_floor_i64(i64::from(v[4].max(0)) << self.current.shift[1], q);
         let light = [0, 1, 2].map(|c| (v[c].max(0) as u32) >> 23);
         self.shade(tu, tv, light)
     }
 
     #[inline(always)]
     fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
-        let q = u64::from(acc[5].max(1));
+        let q = NonZeroU64::new(u64::from(acc[5])).unwrap_or(NonZeroU64::MIN);
         let [su, sv] = self.current.shift;
-        let u = ((u64::from(acc[3]) << su) / q) as i64;
-        let v = ((u64::from(acc[4]) << sv) / q) as i64;
+        let u = wide::div_u64(u64::from(acc[3]) << su, q) as i64;
+        let v = wide::div_u64(u64::from(acc[4]) << sv, q) as i64;
         self.shade(u, v, [acc[0] >> 23, acc[1] >> 23, acc[2] >> 23])
     }
 }
