@@ -386,6 +386,21 @@ for job in "${DIV64_JOBS[@]}"; do
     emit "$scene" ours div64 "$calls"
 done
 
+if wanted M1; then
+    # M1 with perspective-correct colours (numerics::Perspective), counted by a binary of its own
+    # (count3d_perspective) so count3d stays as it was.
+    build_example count3d_perspective
+    echo "counting M1 ours-perspective..." >&2
+    n="$(callgrind_count "$OUT/3d-M1-perspective" "*frame_m1_perspective*" "$BIN")"
+    emit_count M1 ours-perspective instructions "$n"
+    emit_count M1 ours-perspective per_primitive "$(div "$n" "$(field "$OUT/3d-M1-perspective.stdout" triangles)" 1)"
+    emit_count M1 ours-perspective covered "$(field "$OUT/3d-M1-perspective.stdout" covered)"
+    m1="$(awk -F'\t' '$1 == "M1" && $2 == "ours" && $3 == "instructions" { print $4 }' "$ROWS")"
+    if [ -n "$m1" ]; then
+        emit_count M1 ours-perspective/ours ratio "$(div "$n" "$m1" 4)"
+    fi
+fi
+
 # --- RAM and code size of M1 (stack test, nostd-check) ---
 
 if wanted M1; then

@@ -814,8 +814,9 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
     );
     knob_line(
         s,
-        "Perspective-correct interpolation (drawn by the general span engine with exact span \
-         starts, not the fused wrapping loop)",
+        "Perspective-correct interpolation (through the fused wrapping loop: 1/w and two \
+         barycentrics over w as planes, two 32-bit divisions per pixel that passes the depth \
+         test)",
         &["perspective"],
     );
     knob_line(

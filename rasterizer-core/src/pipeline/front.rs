@@ -2,6 +2,7 @@
 //! when it faces away or lies outside the view, clip what crosses the guard band, and hand what is
 //! left to the rasterizer.
 
+use super::perspective::{self, PerspectiveColor};
 use super::vertex::OUTSIDE;
 use super::{Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::{clip_triangle, outcode, trivially_outside, ClipVertex, Outcode};
@@ -353,6 +354,8 @@ where
         if Self::FUSED {
             let fv = sv.map(|v| (v.p, v.z, v.var));
             self.raster_fused(target, &fv)
+        } else if Self::FUSED_PERSPECTIVE {
+            self.raster_perspective(target, sv)
         } else {
             let mut sv = *sv;
             if Sh::NEEDS_TRIANGLE {
@@ -371,4 +374,40 @@ where
 
     /// Whether visible triangles take the fused span loop ([`SpanStart::Wrapping`], affine).
     const FUSED: bool = matches!(N::SPANS, SpanStart::Wrapping) && !N::PERSPECTIVE;
+    /// Whether they take it perspective-correctly ([`SpanStart::Wrapping`] with
+    /// [`Numerics::PERSPECTIVE`]): see [`super::perspective`].
+    const FUSED_PERSPECTIVE: bool = matches!(N::SPANS, SpanStart::Wrapping) && N::PERSPECTIVE;
+
+    /// Rasterizes one screen triangle through the fused span loop with perspective-correct
+    /// values.
+    #[inline(always)]
+    fn raster_perspective<T>(
+        &mut self,
+        target: &mut T,
+        sv: &[ScreenVertex<Sh::Varyings, BITS>; 3],
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+    {
+        if self.area.is_empty() {
+            return Ok(());
+        }
+        let mut sv = *sv;
+        if Sh::NEEDS_TRIANGLE {
+            let mut values = [sv[0].var, sv[1].var, sv[2].var];
+            self.shading.triangle(&mut values);
+            for (v, values) in sv.iter_mut().zip(values) {
+                v.var = values;
+            }
+        }
+        let (fv, color) = PerspectiveColor::<S, Sh, N>::new(&self.shading, &sv);
+        fill_fused::<_, _, _, _, BITS>(
+            target,
+            &mut self.depth,
+            &fv,
+            &self.area,
+            perspective::PRECISION,
+            color,
+        )
+    }
 }

@@ -17,6 +17,7 @@
 
 mod band;
 mod front;
+mod perspective;
 mod vertex;
 
 pub use band::{BandError, Banding, BinEntry};
