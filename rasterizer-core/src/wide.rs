@@ -7,6 +7,8 @@
 //! line and a profiler counts their calls. Without the feature they inline as before.
 
 /// `n / d`, unsigned, rounded down; `d` is never zero (the callers make sure).
+// Kept for the stages that still need it; the vertex projection no longer does.
+#[allow(dead_code)]
 #[cfg_attr(feature = "count-wide", inline(never))]
 #[cfg_attr(not(feature = "count-wide"), inline(always))]
 pub(crate) fn div_u64(n: u64, d: core::num::NonZeroU64) -> u64 {
@@ -25,6 +27,7 @@ pub(crate) fn div_floor_i64(n: i64, d: i64) -> i64 {
 }
 
 /// `floor(n / d)` for `d > 0` in `i128`; 0 for `d <= 0`, as [`div_floor_i64`].
+#[allow(dead_code)]
 #[cfg_attr(feature = "count-wide", inline(never))]
 #[cfg_attr(not(feature = "count-wide"), inline(always))]
 pub(crate) fn div_floor_i128(n: i128, d: i128) -> i128 {
