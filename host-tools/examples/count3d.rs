@@ -28,6 +28,7 @@
 //! | `m1_depth_always` | `GouraudLit` | `DepthBuffer` (`Always`) | `CullClockwise` | `draw` |
 //! | `m1_cull_keepall` | `GouraudLit` | `DepthBuffer` (`Less`) | `KeepAll` (runtime "keep") | `draw` |
 //! | `m1_band8` ... `m1_band240`, `m1_band16_noscratch` | `GouraudLit` | band `DepthBuffer` | `CullClockwise` | `draw_banded` |
+//! | `m1_recip`, `m1_newton` | `GouraudLit` | `DepthBuffer` (`Less`) | `CullClockwise` | `draw` with `Divide::Reciprocal` / `Divide::Newton` |
 //! | `euc` | euc 0.5.3, Gouraud in `f32` | `f32` buffer | back faces | `euc::Pipeline::draw` |
 //!
 //! `m1_depth_always` and `m1_cull_keepall` are the controls for "an effect turned off costs no more
@@ -64,6 +65,7 @@ use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
 use fixtures::scenes3d::{lighting, transforms, Scene, DIFFUSE};
 use rasterizer_core::cull::Cull;
 use rasterizer_core::depth::DepthTest;
+use rasterizer_core::numerics::{Divide, Numerics, Standard};
 use rasterizer_core::pipeline::RenderStats;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
@@ -72,7 +74,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 /// Every combination, in the order the script reports them.
-const COMBINATIONS: [&str; 17] = [
+const COMBINATIONS: [&str; 19] = [
     "m1",
     "m1_noscratch",
     "m1_nodepth",
@@ -89,6 +91,8 @@ const COMBINATIONS: [&str; 17] = [
     "m1_band32",
     "m1_band240",
     "m1_band16_noscratch",
+    "m1_recip",
+    "m1_newton",
     "euc",
 ];
 
@@ -109,13 +113,17 @@ type Pipe<C, D, Sh> = Pipeline<Fx16, C, D, Sh, 6>;
 /// The vertex scratch of a shading model.
 type Scratch<'a, Sh> = &'a mut [VertexSlot<<Sh as Shading<Fx16>>::Stored>];
 /// A counted frame function.
-type FrameFn<C, D, Sh> =
-    for<'a> fn(&mut Pipe<C, D, Sh>, &mut Fb<'_>, &Mesh3<'_>, Scratch<'a, Sh>) -> RenderStats;
+type FrameFn<C, D, Sh, N = Standard> = for<'a> fn(
+    &mut Pipeline<Fx16, C, D, Sh, 6, N>,
+    &mut Fb<'_>,
+    &Mesh3<'_>,
+    Scratch<'a, Sh>,
+) -> RenderStats;
 
 /// The drawing of one frame, shared by the warm frame and the counted `frame_*` functions.
 #[inline(always)]
-fn draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>>(
-    p: &mut Pipeline<Fx16, C, D, Sh, 6>,
+fn draw<C: Cull, D: DepthTest, Sh: Shading<Fx16, Color = Rgb565>, N: Numerics>(
+    p: &mut Pipeline<Fx16, C, D, Sh, 6, N>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
     scratch: Scratch<'_, Sh>,
@@ -164,6 +172,33 @@ frame!(frame_m1_wireframe: CullClockwise, NoDepth, Unlit<Rgb565>, |p, fb, mesh, 
 });
 frame!(frame_m1_depth_always: CullClockwise, DepthBuffer<'_>, Gouraud);
 frame!(frame_m1_cull_keepall: KeepAll, DepthBuffer<'_>, Gouraud);
+
+/// `m1` with the divider-free divide methods.
+struct RecipDivide;
+impl Numerics for RecipDivide {
+    const DIVIDE: Divide = Divide::Reciprocal;
+}
+struct NewtonDivide;
+impl Numerics for NewtonDivide {
+    const DIVIDE: Divide = Divide::Newton;
+}
+
+macro_rules! divide_frame {
+    ($name:ident, $numerics:ty) => {
+        #[inline(never)]
+        fn $name(
+            p: &mut Pipeline<Fx16, CullClockwise, DepthBuffer<'_>, Gouraud, 6, $numerics>,
+            fb: &mut Fb<'_>,
+            mesh: &Mesh3<'_>,
+            scratch: Scratch<'_, Gouraud>,
+        ) -> RenderStats {
+            black_box(stringify!($name));
+            draw(p, fb, mesh, scratch)
+        }
+    };
+}
+divide_frame!(frame_m1_recip, RecipDivide);
+divide_frame!(frame_m1_newton, NewtonDivide);
 
 type BandPipeline<'a> = Pipe<CullClockwise, DepthBuffer<'a>, Gouraud>;
 
@@ -228,16 +263,17 @@ band_frame!(frame_m1_band16_noscratch, 16);
 
 /// Builds a pipeline, draws the warm frame (not counted), clears both buffers (not counted) and
 /// calls `frame` once for the counted frame.
-fn run<C, D, Sh>(
-    mut p: Pipeline<Fx16, C, D, Sh, 6>,
+fn run<C, D, Sh, N>(
+    mut p: Pipeline<Fx16, C, D, Sh, 6, N>,
     fb: &mut Fb<'_>,
     mesh: &Mesh3<'_>,
-    frame: FrameFn<C, D, Sh>,
+    frame: FrameFn<C, D, Sh, N>,
 ) -> RenderStats
 where
     C: Cull,
     D: DepthTest + Clear,
     Sh: Shading<Fx16, Color = Rgb565>,
+    N: Numerics,
 {
     // One slot per mesh vertex, allocated outside the counted frame (the caller's RAM).
     let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
@@ -488,6 +524,20 @@ fn main() -> ExitCode {
             count!(CullClockwise, z, gouraud(), frame_m1_depth_always)
         }
         "m1_cull_keepall" => count!(KeepAll, less(&mut zbuf), gouraud(), frame_m1_cull_keepall),
+        "m1_recip" => run(
+            Pipeline::new(&xf, vp, CullClockwise, less(&mut zbuf), gouraud())
+                .with_numerics::<RecipDivide>(),
+            &mut fb,
+            &mesh,
+            frame_m1_recip,
+        ),
+        "m1_newton" => run(
+            Pipeline::new(&xf, vp, CullClockwise, less(&mut zbuf), gouraud())
+                .with_numerics::<NewtonDivide>(),
+            &mut fb,
+            &mesh,
+            frame_m1_newton,
+        ),
         band if band.starts_with("m1_band") => {
             let noscratch = band.ends_with("_noscratch");
             let rows: u32 = band

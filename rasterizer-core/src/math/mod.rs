@@ -161,7 +161,7 @@ impl<const F: u32> Scalar for Fx<F> {
             return 0;
         }
         // floor((n + floor(d/2)) / d) rounds halves up: an exact half needs an even d.
-        (n + d / 2).div_euclid(d)
+        crate::wide::div_floor_i64(n + (d >> 1), d)
     }
 
     fn lerp_ratio(a: Self, b: Self, num: Self, den: Self) -> Self {

@@ -405,8 +405,9 @@ impl<'a> PackedMesh<'a> {
         let b = self.normals.filter(|_| i < self.vertices)?;
         Some([0, 1, 2].map(|k| {
             let q = i32::from(u16_at(b, 6 * i + 2 * k) as i16);
-            // q / 32767 in 16.16, rounded half up.
-            ((i64::from(q) * 65536 + 16383).div_euclid(32767)) as i32
+            // q / 32767 in 16.16, rounded half up; |q 65536 + 16383| <= 2^31 - 16385 fits i32, so
+            // the division is a 32-bit one (by a constant: a multiplication).
+            (q * 65536 + 16383).div_euclid(32767)
         }))
     }
 

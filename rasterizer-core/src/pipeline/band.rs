@@ -234,15 +234,18 @@ where
         if first.size.width > 0 && first.size.height > 0 && !self.depth.covers(&first) {
             return Err(BandError::DepthTooSmall { needed: first });
         }
-        self.begin(mesh, scratch);
+        let scratch = self.begin(mesh, scratch);
         let mut stats = RenderStats {
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
         let bands = height.div_ceil(rows);
         // Bands per unit of an entry's first and last, so that four bits hold any band.
-        let group = i64::from(bands.div_ceil(16));
-        let band_rows = i64::from(rows) * group;
+        let group = bands.div_ceil(16);
+        // Rows per unit, for 32-bit divisions (rows are below 2^32; a unit beyond them all
+        // gives the same quotients, zero).
+        let band_rows = u32::try_from(u64::from(rows) * u64::from(group)).unwrap_or(u32::MAX);
+        let band_rows = core::num::NonZeroU32::new(band_rows).unwrap_or(core::num::NonZeroU32::MIN);
         let mut count = 0usize;
         let mut wanted = 0usize;
         let mut prev = 0usize;
@@ -265,6 +268,8 @@ where
                 push(BinEntry::FILLER);
                 prev += usize::from(u8::MAX);
             }
+            // 0 <= top < bottom <= height.
+            let (top, bottom) = (top as u32, bottom as u32);
             let (first, last) = ((top / band_rows) as u8, ((bottom - 1) / band_rows) as u8);
             push(BinEntry {
                 step: (t - prev) as u8,
@@ -284,7 +289,7 @@ where
         let (mut lo, mut lo_t) = (0usize, 0usize);
         let mut scratch_stats = RenderStats::default();
         for b in 0..bands {
-            let unit = (i64::from(b) / group) as u8;
+            let unit = (b / group) as u8;
             while let Some(e) = bins
                 .get(lo)
                 .filter(|e| e.last() < unit || e.first() > e.last())

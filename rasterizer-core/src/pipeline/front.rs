@@ -3,7 +3,7 @@
 //! left to the rasterizer.
 
 use super::perspective::{self, PerspectiveColor};
-use super::vertex::OUTSIDE;
+use super::vertex::{Projected, OUTSIDE};
 use super::{Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::{clip_triangle, outcode, trivially_outside, ClipVertex, Outcode};
 use crate::cull::Cull;
@@ -32,6 +32,12 @@ pub(super) enum Front<S, const BITS: u32> {
         clip: [Vec4<S>; 3],
         codes: [Outcode; 3],
     },
+}
+
+/// Whether a corner lies outside the guard band ([`OUTSIDE`] in its slot).
+#[inline(always)]
+pub(super) fn outside(v: &[Projected; 3]) -> bool {
+    v[0].0 == OUTSIDE || v[1].0 == OUTSIDE || v[2].0 == OUTSIDE
 }
 
 /// A shader as the fused span loop's colour source, dithered as `N` says.
@@ -98,19 +104,75 @@ where
         keep_flat: bool,
     ) -> Front<S, BITS> {
         let idx = mesh.triangle(t);
-        let n = mesh.vertex_count();
-        if idx[0] >= n || idx[1] >= n || idx[2] >= n {
+        let Some(v) = self.fetch(mesh, idx, scratch) else {
             stats.invalid += 1;
             return Front::Skip;
-        }
-        let a = self.slot_geometry(mesh, idx[0], scratch);
-        let b = self.slot_geometry(mesh, idx[1], scratch);
-        let c = self.slot_geometry(mesh, idx[2], scratch);
-        if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
+        };
+        if outside(&v) {
             return self.front_clip(mesh, idx, stats);
         }
-        let xs = [a.0, b.0, c.0].map(i64::from);
-        let ys = [a.1, b.1, c.1].map(i64::from);
+        if !self.visible(&v, stats, keep_flat) {
+            return Front::Skip;
+        }
+        Front::Inside {
+            idx,
+            v: v.map(|(x, y, z)| (SubPoint::raw(x, y), z)),
+        }
+    }
+
+    /// The projected corners of a triangle, from their slots: one bounds check per corner, which
+    /// also validates its index when the scratch has a slot for every vertex (`scratch` is cut to
+    /// the mesh's vertex count). `None` for an index out of range.
+    #[inline(always)]
+    pub(super) fn fetch<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        idx: [usize; 3],
+        scratch: &[VertexSlot<Sh::Stored>],
+    ) -> Option<[Projected; 3]> {
+        match (
+            scratch.get(idx[0]),
+            scratch.get(idx[1]),
+            scratch.get(idx[2]),
+        ) {
+            (Some(a), Some(b), Some(c)) => {
+                Some([(a.x, a.y, a.z), (b.x, b.y, b.z), (c.x, c.y, c.z)])
+            }
+            _ => self.fetch_unslotted(mesh, idx, scratch),
+        }
+    }
+
+    /// [`Pipeline::fetch`] for a triangle with a corner beyond the scratch (a short scratch, or
+    /// an index out of range): the rare path, out of line.
+    #[inline(never)]
+    fn fetch_unslotted<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        idx: [usize; 3],
+        scratch: &[VertexSlot<Sh::Stored>],
+    ) -> Option<[Projected; 3]> {
+        let n = mesh.vertex_count();
+        if idx[0] >= n || idx[1] >= n || idx[2] >= n {
+            return None;
+        }
+        Some(idx.map(|i| match scratch.get(i) {
+            Some(s) => (s.x, s.y, s.z),
+            None => self.geometry_cold(mesh.position(i)),
+        }))
+    }
+
+    /// The front end's tests on a triangle whose corners are all inside the guard band: it faces
+    /// the right way (a zero area only with `keep_flat`) and reaches the viewport. Counts why
+    /// not in `stats`.
+    #[inline(always)]
+    pub(super) fn visible(
+        &self,
+        v: &[Projected; 3],
+        stats: &mut RenderStats,
+        keep_flat: bool,
+    ) -> bool {
+        let xs = [v[0].0, v[1].0, v[2].0].map(i64::from);
+        let ys = [v[0].1, v[1].1, v[2].1].map(i64::from);
         let area = (xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0]);
         let keep = if area == 0 {
             keep_flat
@@ -119,7 +181,7 @@ where
         };
         if !keep {
             stats.culled += 1;
-            return Front::Skip;
+            return false;
         }
         // Off the viewport on one side (the screen planes are stricter than the guard band).
         let [l, top, r, bottom] = self.edges;
@@ -127,16 +189,9 @@ where
         let (y_lo, y_hi) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
         if x_hi < l || x_lo > r || y_hi < top || y_lo > bottom {
             stats.outside += 1;
-            return Front::Skip;
+            return false;
         }
-        Front::Inside {
-            idx,
-            v: [
-                (SubPoint::raw(a.0, a.1), a.2),
-                (SubPoint::raw(b.0, b.1), b.2),
-                (SubPoint::raw(c.0, c.1), c.2),
-            ],
-        }
+        true
     }
 
     /// The front end's rare path, a triangle with a vertex outside the guard band: its
@@ -171,20 +226,16 @@ where
         scratch: &mut [VertexSlot<Sh::Stored>],
     ) -> Front<S, BITS> {
         let idx = mesh.triangle(t);
-        let a = self.slot_geometry(mesh, idx[0], scratch);
-        let b = self.slot_geometry(mesh, idx[1], scratch);
-        let c = self.slot_geometry(mesh, idx[2], scratch);
-        if a.0 == OUTSIDE || b.0 == OUTSIDE || c.0 == OUTSIDE {
+        let Some(v) = self.fetch(mesh, idx, scratch) else {
+            return Front::Skip;
+        };
+        if outside(&v) {
             let mut ignored = RenderStats::default();
             return self.front_clip(mesh, idx, &mut ignored);
         }
         Front::Inside {
             idx,
-            v: [
-                (SubPoint::raw(a.0, a.1), a.2),
-                (SubPoint::raw(b.0, b.1), b.2),
-                (SubPoint::raw(c.0, c.1), c.2),
-            ],
+            v: v.map(|(x, y, z)| (SubPoint::raw(x, y), z)),
         }
     }
 
@@ -205,30 +256,80 @@ where
         match front {
             Front::Skip => Ok(()),
             Front::Inside { idx, v } => {
-                if Sh::NEEDS_FACE {
-                    self.face(mesh, idx);
-                }
-                let var = self.face_values(mesh, idx, scratch);
-                stats.drawn += 1;
-                if Self::FUSED {
-                    let fv = [
-                        (v[0].0, v[0].1, var[0]),
-                        (v[1].0, v[1].1, var[1]),
-                        (v[2].0, v[2].1, var[2]),
-                    ];
-                    return self.raster_fused(target, &fv);
-                }
-                let sv = [0, 1, 2].map(|k| ScreenVertex {
-                    p: v[k].0,
-                    z: v[k].1,
-                    var: var[k],
-                    q: Self::q(&self.mvp.transform_point(mesh.position(idx[k]))),
-                });
-                self.raster(target, &sv)
+                let v = v.map(|(p, z)| (p.x, p.y, z));
+                self.draw_visible(target, mesh, idx, v, scratch, stats)
             }
             Front::Clip { idx, clip, codes } => {
                 self.draw_clipped(target, mesh, idx, clip, codes, scratch, stats)
             }
+        }
+    }
+
+    /// Draws a triangle that passed the front end's tests, counting it as drawn: its shader
+    /// values (from the slots, shading a vertex the first time a visible triangle uses it) and
+    /// the raster stage.
+    #[inline(always)]
+    pub(super) fn draw_visible<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        idx: [usize; 3],
+        v: [Projected; 3],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        if Sh::NEEDS_FACE {
+            self.face(mesh, idx);
+        }
+        stats.drawn += 1;
+        let p = v.map(|(x, y, _)| SubPoint::raw(x, y));
+        if Self::FUSED {
+            let fv = if Sh::NEEDS_WORLD && !mesh.has_normals() {
+                let var = self.face_normal_values(mesh, idx);
+                [0, 1, 2].map(|k| (p[k], v[k].2, var[k]))
+            } else {
+                [
+                    (p[0], v[0].2, self.slot_values(mesh, idx[0], scratch)),
+                    (p[1], v[1].2, self.slot_values(mesh, idx[1], scratch)),
+                    (p[2], v[2].2, self.slot_values(mesh, idx[2], scratch)),
+                ]
+            };
+            return self.raster_fused(target, &fv);
+        }
+        let var = self.face_values(mesh, idx, scratch);
+        let sv = [0, 1, 2].map(|k| ScreenVertex {
+            p: p[k],
+            z: v[k].2,
+            var: var[k],
+            q: Self::q(&self.mvp.transform_point(mesh.position(idx[k]))),
+        });
+        self.raster(target, &sv)
+    }
+
+    /// Draws a triangle with a corner outside the guard band (the front end's rare path): clipped,
+    /// or counted as outside.
+    #[inline(never)]
+    pub(super) fn draw_outside<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        idx: [usize; 3],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        match self.front_clip(mesh, idx, stats) {
+            Front::Clip { idx, clip, codes } => {
+                self.draw_clipped(target, mesh, idx, clip, codes, scratch, stats)
+            }
+            _ => Ok(()),
         }
     }
 

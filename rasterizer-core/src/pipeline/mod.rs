@@ -38,7 +38,7 @@ use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::primitives::Rectangle;
 use front::{polygon_area, Front};
-use vertex::{viewport_edges, RawMvp};
+use vertex::{viewport_edges, RawMvp, ScreenMap};
 
 /// The sub-pixel bits of screen coordinates a [`Pipeline`] has unless told otherwise: 6, so
 /// 26.6 (`docs/ACCURACY.md` measures the choice).
@@ -124,6 +124,8 @@ pub struct Pipeline<S, C, D, Sh, const BITS: u32 = DEFAULT_BITS, N = Standard> {
     /// The viewport's pixels, and its edges in sub-pixel units (left, top, right, bottom).
     area: PixelRect,
     edges: [i64; 4],
+    /// The viewport's mapping for the projection's fast path.
+    map: ScreenMap,
     /// The shader takes model-space positions and normals this frame.
     model_space: bool,
     /// The model-view matrix mirrors: winding on screen is the reverse of the mesh's.
@@ -190,6 +192,7 @@ where
             viewport,
             area: PixelRect::from_rectangle(&viewport.rectangle()),
             edges: viewport_edges::<DEFAULT_BITS>(&viewport),
+            map: ScreenMap::new::<DEFAULT_BITS>(&viewport),
             model_space: false,
             cull,
             depth,
@@ -234,6 +237,7 @@ where
             viewport: self.viewport,
             area: self.area,
             edges: viewport_edges::<B>(&self.viewport),
+            map: ScreenMap::new::<B>(&self.viewport),
             model_space: false,
             cull: self.cull,
             depth: self.depth,
@@ -295,14 +299,22 @@ where
         if needed.size.width > 0 && needed.size.height > 0 && !self.depth.covers(&needed) {
             return Err(DrawError::DepthTooSmall { needed });
         }
-        self.begin(mesh, scratch);
+        let scratch = self.begin(mesh, scratch);
         let mut stats = RenderStats {
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
         for t in 0..mesh.triangle_count() {
-            let front = self.front(mesh, t, scratch, &mut stats, false);
-            self.draw_front(target, mesh, front, scratch, &mut stats)?;
+            let idx = mesh.triangle(t);
+            let Some(v) = self.fetch(mesh, idx, scratch) else {
+                stats.invalid += 1;
+                continue;
+            };
+            if front::outside(&v) {
+                self.draw_outside(target, mesh, idx, scratch, &mut stats)?;
+            } else if self.visible(&v, &mut stats, false) {
+                self.draw_visible(target, mesh, idx, v, scratch, &mut stats)?;
+            }
         }
         Ok(stats)
     }
@@ -322,7 +334,7 @@ where
         M: MeshSource<S>,
     {
         let target = &mut ClipTo::new(target, self.viewport.rectangle());
-        self.begin(mesh, scratch);
+        let scratch = self.begin(mesh, scratch);
         let mut stats = RenderStats {
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()

@@ -14,14 +14,18 @@ use crate::depth::DepthTest;
 use crate::geom::SubPoint;
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
 use crate::mesh::MeshSource;
-use crate::numerics::{reciprocal, Divide, Numerics};
+use crate::numerics::{reciprocal_u32, Divide, Numerics};
 use crate::shade::{Packed, Shading, VertexIn};
 use crate::transform::Viewport;
+use crate::wide::div_floor_i64;
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::RgbColor;
 
 /// Marks a slot whose vertex lies outside the clip volume's guard band (its outcode is in `y`).
 pub(crate) const OUTSIDE: i32 = i32::MIN + 1;
+/// A vertex's screen position (sub-pixels) and depth, as its slot holds them.
+pub(super) type Projected = (i32, i32, u16);
+
 /// The smallest screen x a projected vertex keeps, above the mark (far outside the guard band, so
 /// it never draws anyway).
 pub(crate) const X_MIN: i32 = i32::MIN + 2;
@@ -75,67 +79,58 @@ where
         }
     }
 
-    /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`.
-    #[inline]
-    pub(super) fn geometry(&self, p: Vec3<S>) -> (i32, i32, u16) {
+    /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`. Inlined
+    /// into the loop of [`Pipeline::begin`]; the other callers take [`Pipeline::geometry_cold`].
+    #[inline(always)]
+    pub(super) fn geometry(&self, p: Vec3<S>) -> Projected {
         if let (Some(raw), Some(px), Some(py), Some(pz)) =
             (&self.raw, p.x.raw_bits(), p.y.raw_bits(), p.z.raw_bits())
         {
-            // The same sums and rounding as `Mat4::transform_point`, without its overflow checks.
-            let f = S::RAW_FRAC;
-            let row = |r: &[i64; 4]| {
-                (r[0] * px + r[1] * py + r[2] * pz + (r[3] << f) + ((1 << f) >> 1)) >> f
+            // The same sums and rounding as `Mat4::transform_point` (the rounding half and the
+            // translation are in `bias`), without its overflow checks.
+            let row = |r: usize| {
+                let m = &raw.m[r];
+                (i64::from(m[0]) * px + i64::from(m[1]) * py + i64::from(m[2]) * pz + raw.bias[r])
+                    >> S::RAW_FRAC
             };
-            let [x, y, z, w] = [
-                row(&raw.m[0]),
-                row(&raw.m[1]),
-                row(&raw.m[2]),
-                row(&raw.m[3]),
-            ];
+            let [x, y, z, w] = [row(0), row(1), row(2), row(3)];
+            // Inside the clipper's guard band and below 2^29 (larger results take the checked
+            // path, the clipper's, so both agree on every vertex they share): w in
+            // [w_min, 2^29), |z| <= w, |x|, |y| <= GUARD w and below 2^29. Each two-sided test is
+            // one unsigned compare; |z| < 2^29 follows from w < 2^29.
             let g = i64::from(crate::clip::polygon::GUARD);
-            let big = 1 << 29;
-            let inside = x.abs() < big
-                && y.abs() < big
-                && z.abs() < big
-                && w < big
-                && w >= raw.w_min
-                && z + w >= 0
-                && w - z >= 0
-                && x + g * w >= 0
-                && g * w - x >= 0
-                && y + g * w >= 0
-                && g * w - y >= 0;
+            let big = 1i64 << 29;
+            let within = |v: i64, lim: i64| (v + lim) as u64 <= 2 * lim as u64;
+            let inside = ((w - raw.w_min) as u64) < (big - raw.w_min) as u64
+                && within(z, w)
+                && within(x, g * w)
+                && within(y, g * w)
+                && within(x, big - 1)
+                && within(y, big - 1);
             if !inside {
                 // The outcode itself is only needed by the clipper, which computes its own.
                 return (OUTSIDE, 1, 0);
             }
-            if N::DIVIDE == Divide::Exact {
-                // Pipeline::project's exact divide, the same roundings, for a point known to be
-                // inside: w > 0, x + w and w - y in [-3w, 5w], z + w in [0, 2w]. A numerator made
-                // non-negative by whole multiples of 2w takes an unsigned division.
-                let d = 2 * w;
-                let vp = &self.viewport;
-                let ratio = |n: i64, scale: i64| {
-                    let lift = (3 * scale + 1) / 2;
-                    ((n * scale + w + d * lift) as u64 / d as u64) as i64 - lift
-                };
-                let scale_x = i64::from(vp.width) << BITS;
-                let scale_y = i64::from(vp.height) << BITS;
-                let clamp = |v: i64| v.clamp(i64::from(X_MIN), i64::from(i32::MAX)) as i32;
-                let sx = clamp(ratio(x + w, scale_x) + (i64::from(vp.x) << BITS));
-                let sy = clamp(ratio(w - y, scale_y) + (i64::from(vp.y) << BITS));
-                let z = (((z + w) * 65535 + w) as u64 / d as u64).min(65535) as u16;
-                return (sx, sy, z);
+            let (sx, sy, z) = project_inside(&self.map, x, y, z, w, N::DIVIDE);
+            if self.map.unclamped {
+                return (sx as i32, sy as i32, z);
             }
-            let clip = Vec4::new(
-                S::from_raw(x),
-                S::from_raw(y),
-                S::from_raw(z),
-                S::from_raw(w),
-            );
-            let (s, z) = self.project(&clip);
-            return (s.x.max(X_MIN), s.y, z);
+            let clamp = |v: i64| v.clamp(i64::from(X_MIN), i64::from(i32::MAX)) as i32;
+            return (clamp(sx), clamp(sy), z);
         }
+        self.geometry_checked(p)
+    }
+
+    /// [`Pipeline::geometry`] out of line, for the rare callers (a vertex beyond the scratch).
+    #[inline(never)]
+    pub(super) fn geometry_cold(&self, p: Vec3<S>) -> Projected {
+        self.geometry(p)
+    }
+
+    /// [`Pipeline::geometry`] through the checked transform: a matrix or a format without the
+    /// raw fast path.
+    #[inline(never)]
+    fn geometry_checked(&self, p: Vec3<S>) -> Projected {
         let clip = self.mvp.transform_point(p);
         let code = outcode(&clip);
         if code != 0 {
@@ -143,21 +138,6 @@ where
         }
         let (s, z) = self.project(&clip);
         (s.x.max(X_MIN), s.y, z)
-    }
-
-    /// Vertex `i`'s [`Pipeline::geometry`], from its slot when the scratch has one (filled when
-    /// the frame began).
-    #[inline(always)]
-    pub(super) fn slot_geometry<M: MeshSource<S>>(
-        &self,
-        mesh: &M,
-        i: usize,
-        scratch: &mut [VertexSlot<Sh::Stored>],
-    ) -> (i32, i32, u16) {
-        match scratch.get(i) {
-            Some(s) => (s.x, s.y, s.z),
-            None => self.geometry(mesh.position(i)),
-        }
     }
 
     /// Vertex `i`'s shader values, from its slot when the scratch has one (always through their
@@ -259,12 +239,14 @@ where
     }
 
     /// Starts a frame: the shader learns the space it lights in, and the scratch's slots for the
-    /// mesh's vertices are marked unused.
-    pub(super) fn begin<M: MeshSource<S>>(
+    /// mesh's vertices are filled with their geometry and marked unshaded. Returns the scratch cut
+    /// to the mesh's vertices, so that a corner's bounds check also validates its index
+    /// ([`Pipeline::fetch`]).
+    pub(super) fn begin<'s, M: MeshSource<S>>(
         &mut self,
         mesh: &M,
-        scratch: &mut [VertexSlot<Sh::Stored>],
-    ) {
+        scratch: &'s mut [VertexSlot<Sh::Stored>],
+    ) -> &'s mut [VertexSlot<Sh::Stored>] {
         // Model-space lighting needs normals carried by the model matrix itself.
         let model = (self.normal_matrix == self.model).then_some(&self.model);
         self.model_space = self.shading.begin_frame(model);
@@ -272,18 +254,22 @@ where
         // Every vertex with a slot is transformed now, in one tight loop: the triangles then only
         // read their slots.
         let n = scratch.len().min(mesh.vertex_count());
-        for (i, s) in scratch[..n].iter_mut().enumerate() {
+        let scratch = &mut scratch[..n];
+        for (i, s) in scratch.iter_mut().enumerate() {
             (s.x, s.y, s.z) = self.geometry(mesh.position(i));
             s.st = <Sh::Stored as Packed>::EMPTY;
         }
+        scratch
     }
 
     /// Projects a clip-space point (w > 0) to sub-pixel screen coordinates and depth: the divide and
     /// the viewport in one rounding per coordinate (error at most half a sub-pixel unit and half a
-    /// depth step, beyond the error already in the clip-space coordinates). With a reciprocal
-    /// divide method ([`Divide::Reciprocal`], [`Divide::Newton`]) and a fixed-point format, a point
-    /// inside the view volume takes one reciprocal of `w` and three multiplications instead, and
-    /// may be one unit off; other points and floating-point formats divide exactly.
+    /// depth step, beyond the error already in the clip-space coordinates). A fixed-point point
+    /// inside the clipper's guard band (`|x|, |y| <= 4 w`, `|z| <= w`, `w` below `2^29` raw)
+    /// takes one reciprocal of `w` and a multiplication per coordinate, corrected to the exactly
+    /// rounded result with [`Divide::Exact`], within one unit below it with the divider-free
+    /// methods ([`Divide::Reciprocal`], [`Divide::Newton`]); other points and floating-point
+    /// formats divide exactly.
     #[inline]
     pub fn project(&self, p: &Vec4<S>) -> (SubPoint<BITS>, u16) {
         let vp = &self.viewport;
@@ -296,38 +282,19 @@ where
             p.z.raw_bits(),
             p.w.raw_bits(),
         ) {
+            let g = i64::from(crate::clip::polygon::GUARD);
+            let within = |v: i64, lim: i64| (v + lim) as u64 <= 2 * lim as u64;
+            if (1..1 << 29).contains(&w) && within(z, w) && within(x, g * w) && within(y, g * w) {
+                let (sx, sy, z) = project_inside(&self.map, x, y, z, w, N::DIVIDE);
+                return (SubPoint::raw(clamp(sx), clamp(sy)), z);
+            }
             // Fixed point: x_s = (x + w) W 2^BITS / 2w, y flipped, depth (z + w) 65535 / 2w, on the
             // raw integers in i64 (the sums would saturate in the format for |w| near its limit).
+            // |n| < 2^33 and scale < 2^24: the product fits i64. Rounds halves up (w = d / 2); 0
+            // for w <= 0.
             let (nx, ny, nz, d) = (x + w, w - y, z + w, 2 * w);
-            let (sx, sy, z) = if N::DIVIDE != Divide::Exact
-                && w > 0
-                && [nx, ny, nz].iter().all(|n| (0..=d).contains(n))
-            {
-                // One reciprocal of d (r / 2^k ≈ 1 / d, r in [2^30, 2^31], k >= 31), then per
-                // coordinate t = n / d in 0.32 (n r < 2^63 as n <= d < 2^32) and
-                // round(t scale / 2^32) (t <= 2^32 + 2 and scale < 2^24 keep it below 2^57).
-                let (r, k) = reciprocal(d as u64, N::DIVIDE);
-                let ratio = |n: i64, scale: i64| {
-                    let prod = n as u64 * r;
-                    let t = (if k >= 32 {
-                        prod >> (k - 32)
-                    } else {
-                        prod << (32 - k)
-                    }) as i64;
-                    (t * scale + (1 << 31)) >> 32
-                };
-                (ratio(nx, scale_x), ratio(ny, scale_y), ratio(nz, 65535))
-            } else {
-                // |n| < 2^33 and scale < 2^24: the product fits i64. Rounds halves up.
-                let ratio = |n: i64, scale: i64| {
-                    if d <= 0 {
-                        0
-                    } else {
-                        (n * scale + d / 2).div_euclid(d)
-                    }
-                };
-                (ratio(nx, scale_x), ratio(ny, scale_y), ratio(nz, 65535))
-            };
+            let ratio = |n: i64, scale: i64| div_floor_i64(n * scale + w, d);
+            let (sx, sy, z) = (ratio(nx, scale_x), ratio(ny, scale_y), ratio(nz, 65535));
             let z = z.clamp(0, 65535) as u16;
             return (SubPoint::raw(clamp(sx + ox), clamp(sy + oy)), z);
         }
@@ -339,27 +306,122 @@ where
     }
 }
 
+/// The viewport's mapping for [`project_inside`], fixed per pipeline: in sub-pixel units,
+/// `x_s = floor((x + w) W / 2w + 1/2) + x0` with `x + w = u - 3w` for `u = x + 4w >= 0`, so that
+/// `x_s = floor((u W + h) / 2w) + base` where `h` is `w` when `3 W` is even (the lift `3 W / 2` is
+/// whole and the half stays in the numerator) and 0 when it is odd (the lift's half cancels it);
+/// y likewise with `u = 4w - y`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ScreenMap {
+    /// Width and height in sub-pixel units, below `2^23`.
+    scale: [u32; 2],
+    /// All ones where the half stays in the numerator (`h = w`), else zero.
+    half: [u32; 2],
+    /// The viewport's corner in sub-pixel units less the lift `floor(3 W / 2)`.
+    base: [i64; 2],
+    /// Every result `[0, 4 W + 1] + base` lies within `[X_MIN, i32::MAX]`: no clamping.
+    pub(super) unclamped: bool,
+}
+
+impl ScreenMap {
+    pub(super) fn new<const BITS: u32>(vp: &Viewport) -> Self {
+        let g = crate::clip::polygon::GUARD as u32;
+        let mut map = Self {
+            scale: [0; 2],
+            half: [0; 2],
+            base: [0; 2],
+            unclamped: true,
+        };
+        for (k, (size, corner)) in [(vp.width, vp.x), (vp.height, vp.y)]
+            .into_iter()
+            .enumerate()
+        {
+            // The viewport is at most 32767 pixels and BITS at most 8.
+            let scale = size.min(crate::surface::MAX_DIMENSION) << BITS;
+            let lift = u64::from(g - 1) * u64::from(scale);
+            map.scale[k] = scale;
+            map.half[k] = if lift % 2 == 0 { u32::MAX } else { 0 };
+            map.base[k] = (i64::from(corner) << BITS) - (lift / 2) as i64;
+            let hi = map.base[k] + i64::from(g) * i64::from(scale) + 1;
+            map.unclamped &= map.base[k] >= i64::from(X_MIN) && hi <= i64::from(i32::MAX);
+        }
+        map
+    }
+}
+
+/// The perspective divide and viewport of a raw fixed-point point inside the guard band
+/// (`1 <= w < 2^29`, `|x|, |y| <= 4 w`, `|z| <= w`): screen x and y in sub-pixels (not yet clamped
+/// to `i32`) and depth, with one reciprocal of `2w` instead of three divisions.
+///
+/// The reciprocal `r <= 2^(32 + sh) / 2w` is at most `2^-27` below it ([`reciprocal_u32`]), so
+/// each quotient `floor((u scale + h) / 2w)` (`u <= 8w < 2^32`, `scale < 2^23`) is estimated as
+/// `floor((floor(u r / 2^sh) scale + h 2^32 / 2w) / 2^32)` from below by less than one
+/// (`4 2^32 2^-27 + 1` units of `u / 2w` in 0.32, times `scale < 2^23`, is below `1/4`): the
+/// estimate is the quotient or one less. [`Divide::Exact`] settles it with the remainder, in
+/// wrapping 32-bit arithmetic (the remainder lies in `[0, 4w)`, below `2^31`); the divider-free
+/// methods keep the estimate.
+#[inline(always)]
+fn project_inside(
+    map: &ScreenMap,
+    x: i64,
+    y: i64,
+    z: i64,
+    w: i64,
+    divide: Divide,
+) -> (i64, i64, u16) {
+    let g = i64::from(crate::clip::polygon::GUARD);
+    let d = (2 * w) as u32;
+    let (r, sh) = reciprocal_u32(d, divide);
+    // `half` is all ones when h = w (h / 2w is one half: 2^31 in 0.32), zero when h = 0.
+    let quotient = |u: i64, scale: u32, half: u32| {
+        let t = (u as u64 * r) >> sh;
+        let q = (t * u64::from(scale) + u64::from(half & 1 << 31)) >> 32;
+        if divide != Divide::Exact {
+            return q;
+        }
+        let rem = (u as u32)
+            .wrapping_mul(scale)
+            .wrapping_add(half & w as u32)
+            .wrapping_sub((q as u32).wrapping_mul(d));
+        q + u64::from(rem >= d)
+    };
+    let qx = quotient(x + g * w, map.scale[0], map.half[0]);
+    let qy = quotient(g * w - y, map.scale[1], map.half[1]);
+    let qz = quotient(z + w, 65535, u32::MAX);
+    (qx as i64 + map.base[0], qy as i64 + map.base[1], qz as u16)
+}
+
 /// A fixed-point MVP as raw integers, for the vertex transform's fast path: with every entry
 /// below `2^29` in magnitude and every coordinate below `2^31`, each sum of products stays below
-/// `2^62`, so a vertex is transformed without overflow checks or saturation. Results of `2^29` or
-/// more take the checked path (the clipper's), so both paths agree on every vertex they share.
+/// `2^62`, so a vertex is transformed without overflow checks or saturation. The entries fit
+/// `i32`, so each product is one 32 x 32 -> 64-bit multiply (one instruction on a Cortex-M3/M4,
+/// `SMLAL` with the sum). Results of `2^29` or more take the checked path (the clipper's), so
+/// both paths agree on every vertex they share.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct RawMvp {
-    m: [[i64; 4]; 4],
+    /// The linear part, row by row.
+    m: [[i32; 3]; 4],
+    /// Per row, the translation shifted to the products' fractional bits plus the rounding half.
+    bias: [i64; 4],
     /// The clipper's smallest `w`, raw.
     w_min: i64,
 }
 
 impl RawMvp {
     pub(super) fn new<S: Scalar>(mvp: &Mat4<S>) -> Option<Self> {
-        let mut m = [[0i64; 4]; 4];
-        for (row, out) in mvp.m.iter().zip(&mut m) {
-            for (v, o) in row.iter().zip(out.iter_mut()) {
+        let mut m = [[0i32; 3]; 4];
+        let mut bias = [0i64; 4];
+        let half = (1i64 << S::RAW_FRAC) >> 1;
+        for (r, row) in mvp.m.iter().enumerate() {
+            let mut raw = [0i64; 4];
+            for (v, o) in row.iter().zip(raw.iter_mut()) {
                 *o = v.raw_bits().filter(|b| b.unsigned_abs() < 1 << 29)?;
             }
+            m[r] = [raw[0] as i32, raw[1] as i32, raw[2] as i32];
+            bias[r] = (raw[3] << S::RAW_FRAC) + half;
         }
         let w_min = S::from_fx16_bits(1 << (16 - crate::clip::polygon::W_MIN_SHIFT)).raw_bits()?;
-        Some(Self { m, w_min })
+        Some(Self { m, bias, w_min })
     }
 }
 
@@ -495,4 +557,93 @@ fn shade_vertex_w<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
     let w = mvp.transform_point(mesh.position(i)).w;
     shading.project(&mut values, w);
     Sh::Stored::pack(&values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The exactly rounded projection, `floor((n scale + w) / 2w)` in i128: the reference.
+    fn reference(vp: &Viewport, bits: u32, [x, y, z, w]: [i64; 4]) -> (i64, i64, i64) {
+        let ratio = |n: i64, scale: i64| {
+            (i128::from(n) * i128::from(scale) + i128::from(w)).div_euclid(i128::from(2 * w)) as i64
+        };
+        let (sx, sy) = (i64::from(vp.width) << bits, i64::from(vp.height) << bits);
+        (
+            ratio(x + w, sx) + (i64::from(vp.x) << bits),
+            ratio(w - y, sy) + (i64::from(vp.y) << bits),
+            ratio(z + w, 65535),
+        )
+    }
+
+    /// A point of the guard band: `1 <= w < 2^29`, `|x|, |y| <= 4w`, `|z| <= w`, from random bits
+    /// (half of them at the band's and the view volume's edges).
+    fn point(bits: [u32; 4]) -> [i64; 4] {
+        let w = 1 + i64::from(bits[0] >> (bits[0] & 31).min(3)) % ((1 << 29) - 1);
+        let w = w >> (bits[1] % 29);
+        let w = w.max(1);
+        let pick = |b: u32, lim: i64| match b % 8 {
+            0 => lim,
+            1 => -lim,
+            2 => lim - 1,
+            3 => -lim + 1,
+            _ => i64::from(b as i32) % (lim + 1),
+        };
+        [
+            pick(bits[1], 4 * w),
+            pick(bits[2], 4 * w),
+            pick(bits[3], w),
+            w,
+        ]
+    }
+
+    #[test]
+    fn fast_projection_is_exact() {
+        let viewports = [
+            (Viewport::new(320, 240), 6),
+            (Viewport::new(32767, 32767), 8),
+            (Viewport::new(1, 3), 0),
+            (Viewport::new(33, 17), 3),
+            (
+                Viewport {
+                    x: -1000,
+                    y: 77,
+                    width: 641,
+                    height: 479,
+                },
+                4,
+            ),
+        ];
+        let mut s = 0x9e37_79b9u32;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            s
+        };
+        for (vp, bits) in viewports {
+            let map = match bits {
+                0 => ScreenMap::new::<0>(&vp),
+                3 => ScreenMap::new::<3>(&vp),
+                4 => ScreenMap::new::<4>(&vp),
+                6 => ScreenMap::new::<6>(&vp),
+                _ => ScreenMap::new::<8>(&vp),
+            };
+            assert!(map.unclamped);
+            for _ in 0..100_000 {
+                let p = point([next(), next(), next(), next()]);
+                let (rx, ry, rz) = reference(&vp, bits, p);
+                let [x, y, z, w] = p;
+                let exact = project_inside(&map, x, y, z, w, Divide::Exact);
+                assert_eq!(exact, (rx, ry, rz as u16), "{vp:?} {bits} {p:?}");
+                for method in [Divide::Reciprocal, Divide::Newton] {
+                    let (sx, sy, sz) = project_inside(&map, x, y, z, w, method);
+                    // One unit below at most, never above.
+                    assert!((rx - 1..=rx).contains(&sx), "{method:?} {p:?}");
+                    assert!((ry - 1..=ry).contains(&sy), "{method:?} {p:?}");
+                    assert!((rz - 1..=rz).contains(&i64::from(sz)), "{method:?} {p:?}");
+                }
+            }
+        }
+    }
 }
