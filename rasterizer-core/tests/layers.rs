@@ -10,6 +10,8 @@ use std::path::{Path, PathBuf};
 
 /// The layers, lowest first. A module may use modules of lower layers only.
 const LAYERS: &[&[&str]] = &[
+    // The 64-bit divisions every layer may need (math's exact ratios among them).
+    &["wide"],
     &["math", "numerics", "color"],
     &["geom", "texture"],
     &["surface"],

@@ -157,7 +157,7 @@ where
         }
         Some(idx.map(|i| match scratch.get(i) {
             Some(s) => (s.x, s.y, s.z),
-            None => self.geometry_cold(mesh.position(i)),
+            None => self.geometry(mesh.position(i)),
         }))
     }
 

@@ -79,9 +79,10 @@ where
         }
     }
 
-    /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`. Inlined
-    /// into the loop of [`Pipeline::begin`]; the other callers take [`Pipeline::geometry_cold`].
-    #[inline(always)]
+    /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`. One copy,
+    /// called from the loop of [`Pipeline::begin`] and for vertices beyond the scratch (inlining
+    /// it into the loop saves a call per vertex but costs a second copy in flash).
+    #[inline]
     pub(super) fn geometry(&self, p: Vec3<S>) -> Projected {
         if let (Some(raw), Some(px), Some(py), Some(pz)) =
             (&self.raw, p.x.raw_bits(), p.y.raw_bits(), p.z.raw_bits())
@@ -119,12 +120,6 @@ where
             return (clamp(sx), clamp(sy), z);
         }
         self.geometry_checked(p)
-    }
-
-    /// [`Pipeline::geometry`] out of line, for the rare callers (a vertex beyond the scratch).
-    #[inline(never)]
-    pub(super) fn geometry_cold(&self, p: Vec3<S>) -> Projected {
-        self.geometry(p)
     }
 
     /// [`Pipeline::geometry`] through the checked transform: a matrix or a format without the
