@@ -75,10 +75,11 @@ pub trait DepthTest {
     ) -> Result<(), E>
     where
         F: FnMut(u32, u32) -> Result<(), E>;
-    /// The stored depths of row `y`, columns `x ..`: at most `len` of them, fewer (or none)
-    /// where the buffer ends. The fused span loop of the 3D pipeline tests and stores through it.
-    fn depth_row(&mut self, _y: i32, _x: i32, _len: u32) -> &mut [u16] {
-        &mut []
+    /// The stored depths, for the fused span loop of the 3D pipeline, which tests and stores
+    /// through them: it checks once per triangle that they cover the pixels it draws, and then
+    /// indexes them directly. `None` for a test without a buffer (nothing is drawn then).
+    fn depth_rows(&mut self) -> Option<DepthRows<'_>> {
+        None
     }
     /// The comparison a new depth must pass against the stored one.
     fn comparison(&self) -> Compare {
@@ -88,6 +89,20 @@ pub trait DepthTest {
     fn covers(&self, _area: &Rectangle) -> bool {
         true
     }
+}
+
+/// A depth buffer's entries as [`DepthTest::depth_rows`] hands them out: `width` entries a row,
+/// rows top to bottom, the first standing for screen row `origin_y`.
+#[derive(Debug)]
+pub struct DepthRows<'a> {
+    /// The entries, at least `width * height` of them.
+    pub depths: &'a mut [u16],
+    /// Entries a row.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// The screen row of the first row.
+    pub origin_y: i32,
 }
 
 /// No depth test: every pixel passes and no depth is computed.
@@ -202,16 +217,13 @@ impl DepthTest for DepthBuffer<'_> {
     }
 
     #[inline(always)]
-    fn depth_row(&mut self, y: i32, x: i32, len: u32) -> &mut [u16] {
-        // Pixels outside the buffer are never drawn (a buffer smaller than the target clips); a
-        // negative row or column wraps to a large one.
-        let (row, col) = (y.wrapping_sub(self.origin_y) as u32, x as u32);
-        if row >= self.height || col >= self.width {
-            return &mut [];
-        }
-        let len = len.min(self.width - col) as usize;
-        let start = row as usize * self.width as usize + col as usize;
-        self.buf.get_mut(start..start + len).unwrap_or_default()
+    fn depth_rows(&mut self) -> Option<DepthRows<'_>> {
+        Some(DepthRows {
+            depths: self.buf,
+            width: self.width,
+            height: self.height,
+            origin_y: self.origin_y,
+        })
     }
 
     #[inline(always)]
@@ -305,8 +317,8 @@ impl DepthTest for DepthReadOnly<'_> {
     }
 
     #[inline(always)]
-    fn depth_row(&mut self, y: i32, x: i32, len: u32) -> &mut [u16] {
-        self.0.depth_row(y, x, len)
+    fn depth_rows(&mut self) -> Option<DepthRows<'_>> {
+        self.0.depth_rows()
     }
 
     #[inline(always)]

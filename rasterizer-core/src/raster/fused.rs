@@ -218,13 +218,17 @@ impl<C, P: FusedColor<C>, V: Varyings, D: DepthTest, const LESS: bool> DepthSpan
 /// The span sink of one triangle.
 struct Fused<'a, S: Surface, D, V, P> {
     surface: &'a mut S,
-    depth: &'a mut D,
+    /// The depth buffer's entries, checked to cover the clip area (empty without depth).
+    zbuf: &'a mut [u16],
+    /// Entries a row, and the screen row of the first.
+    zwidth: usize,
+    zorigin: i32,
     pixel: P,
     values: [Plane32; MAX_VARYINGS],
     z: Plane32,
     less: bool,
     compare: Compare,
-    _v: core::marker::PhantomData<V>,
+    _v: core::marker::PhantomData<(D, V)>,
 }
 
 impl<S, D, V, P> SpanSink for Fused<'_, S, D, V, P>
@@ -272,10 +276,11 @@ where
                 c
             });
         }
-        let zrow = self.depth.depth_row(row, x0, len);
-        if zrow.is_empty() {
+        // In range (the buffer covers the clip area): the check never fails.
+        let start = row.wrapping_sub(self.zorigin) as u32 as usize * self.zwidth + x0 as usize;
+        let Some(zrow) = self.zbuf.get_mut(start..start + len as usize) else {
             return Ok(());
-        }
+        };
         let (z, dz, compare) = (self.z.at(x0, row), self.z.gx, self.compare);
         macro_rules! depth_span {
             ($less:literal) => {{
@@ -398,9 +403,30 @@ where
         Plane32::default()
     };
     let compare = depth.comparison();
+    // The depth entries of the whole clip area, checked here once rather than per span. The
+    // pipeline refuses to draw with a depth buffer that does not cover the viewport, so a
+    // triangle is never dropped here in practice.
+    let (zbuf, zwidth, zorigin) = if D::ENABLED {
+        let Some(rows) = depth.depth_rows() else {
+            return Ok(());
+        };
+        let y0 = i64::from(rows.origin_y);
+        let covered = clip.x0 >= 0
+            && clip.x1 <= i64::from(rows.width)
+            && clip.y0 >= y0
+            && clip.y1 <= y0 + i64::from(rows.height);
+        if !covered {
+            return Ok(());
+        }
+        (rows.depths, rows.width as usize, rows.origin_y)
+    } else {
+        (&mut [][..], 0, 0)
+    };
     let mut sink = Fused::<S, D, V, P> {
         surface,
-        depth,
+        zbuf,
+        zwidth,
+        zorigin,
         pixel,
         values,
         z,
