@@ -68,7 +68,7 @@
 //! similarity, [`Lighting::in_model_space`] moves the eye and the lights into model space once,
 //! so that a mesh's positions and normals are lit as they are stored.
 
-use crate::math::fx::rsqrt_u64;
+use crate::math::fx::{rsqrt_fast, rsqrt_u64};
 use crate::math::{Mat4, Scalar, Vec3};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use heapless::Vec;
@@ -363,7 +363,8 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
     pub fn shade(&self, position: Vec3<S>, normal: Vec3<S>) -> Rgb888 {
         // Round half up: sum / (255 · 2^16), below 2^32 after the clamp.
         let sum = self.sum(position, normal);
-        let ch = |c: usize| ((sum[c] + 255 * (1 << 15)) / (255 * (1 << 16))) as u8;
+        // The divisor's 2^16 first (nested floors), then a quotient of u32s.
+        let ch = |c: usize| ((((sum[c] + 255 * (1 << 15)) >> 16) as u32) / 255) as u8;
         Rgb888::new(ch(0), ch(1), ch(2))
     }
 
@@ -372,7 +373,8 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// rounding them to 8 bits first.
     pub fn shade_fine(&self, position: Vec3<S>, normal: Vec3<S>) -> [u32; 3] {
         let sum = self.sum(position, normal);
-        let ch = |c: usize| ((sum[c] + 255 * (1 << 7)) / (255 * (1 << 8))) as u32;
+        // As in `shade`: sum >> 8 stays below 255² 2^8 < 2^32.
+        let ch = |c: usize| (((sum[c] + 255 * (1 << 7)) >> 8) as u32) / 255;
         [ch(0), ch(1), ch(2)]
     }
 
@@ -513,6 +515,301 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             }
         }
         clamp(sum)
+    }
+}
+
+/// A per-draw plan for the common case: a fixed-point format, directional lights only, and no
+/// specular term or Blinn-Phong's. It lights a point with about a third of the work of
+/// [`Lighting::shade_sums`]: the normal's length is applied to the cosines instead of to its
+/// components, Blinn-Phong's `N·H` comes from the cosines as `(N·L + N·V) / sqrt(2 + 2 L·V)`
+/// (no half vector is built), and the colour products are scaled once to the caller's unit so
+/// that a channel is a multiply-add and a shift.
+///
+/// Its results differ from [`Lighting::shade_sums`]' only by rounding (the cosines are rounded
+/// at other points, within a few `2^-30`): see [`Lighting::directional_plan`].
+#[derive(Debug, Clone)]
+pub(crate) struct DirectionalPlan<const N: usize> {
+    /// The eye, raw.
+    eye: [i64; 3],
+    /// Unit direction in 2.30 and the scaled colour products of each light.
+    lights: Vec<PlanLight, N>,
+    /// The ambient term per channel, in units of `2^-out_bits` of the caller's scale, plus
+    /// the caller's bias.
+    ambient: [u64; 3],
+    /// Each channel's largest value (the caller's scale, in the same units), plus the bias.
+    full: [u64; 3],
+    /// A Blinn-Phong term with a positive shininess is computed.
+    specular: bool,
+    /// With `shininess = 0` the specular factor is 1 wherever the light reaches the surface.
+    spec_one: bool,
+    /// `shininess = odd · 2^twos`.
+    odd: u16,
+    twos: u32,
+}
+
+/// A light of a [`DirectionalPlan`].
+#[derive(Debug, Clone, Copy)]
+struct PlanLight {
+    l: [i64; 3],
+    /// `Md Lc` and `Ms Lc` per channel in units of `2^(16 - out_bits)` of the caller's scale
+    /// over `255²`: times a 0.16 factor, in the units of the plan's sums.
+    kd: [u64; 3],
+    ks: [u64; 3],
+}
+
+/// `round(num / 255²)` for `num < 2^48`, once per draw for each colour product.
+fn per_255_squared(num: u64) -> u64 {
+    const D: u64 = 255 * 255;
+    let d = core::num::NonZeroU64::new(D).unwrap_or(core::num::NonZeroU64::MIN);
+    crate::wide::div_u64(num + D / 2, d)
+}
+
+impl<S: Scalar, const N: usize> Lighting<S, N> {
+    /// The lighting as a [`DirectionalPlan`] whose sums are each channel's lit value times
+    /// `scale[c] · 2^out_bits`, clamped to full intensity (`scale[c] << out_bits`), plus
+    /// `bias[c]` (a caller's rounding offset, added for free), or `None` when the plan does not
+    /// apply: a floating-point format, a point light, or Phong highlights.
+    /// `16 <= out_bits <= 32`, `scale[c] < 2^16` and `bias[c] < 2^48`.
+    pub(crate) fn directional_plan(
+        &self,
+        scale: [u32; 3],
+        out_bits: u32,
+        bias: [u64; 3],
+    ) -> Option<DirectionalPlan<N>> {
+        let eye = raw3(self.eye)?;
+        let frac = S::RAW_FRAC;
+        // Up to 23 bits, the normal's range checks below stay within u64.
+        if !(8..=23).contains(&frac) || self.specular == Specular::Phong {
+            return None;
+        }
+        let m = &self.material;
+        // min(s, full) + bias = min(s + bias, full + bias): the bias rides in the ambient term.
+        let full = [0, 1, 2].map(|c| (u64::from(scale[c]) << out_bits) + bias[c]);
+        let (ma, la) = (channels(m.ambient), channels(self.ambient));
+        // The ambient term rounded as the other products are (to 2^16 units), within 2^-17 of
+        // the caller's unit.
+        let per = |t: u32, c: usize| {
+            per_255_squared((u64::from(t) * u64::from(scale[c])) << (out_bits - 16))
+        };
+        let ambient = [0, 1, 2].map(|c| (per(ma[c] * la[c], c) << 16) + bias[c]);
+        let mut lights = Vec::new();
+        for (light, terms) in self.lights.iter().zip(&self.terms) {
+            let Light::Directional { .. } = light else {
+                return None;
+            };
+            let k = |t: [u32; 3]| [0, 1, 2].map(|c| per(t[c], c));
+            let _ = lights.push(PlanLight {
+                l: terms.direction,
+                kd: k(terms.diffuse),
+                ks: k(terms.specular),
+            });
+        }
+        let shininess = m.shininess;
+        let any = self.specular == Specular::BlinnPhong && !lights.is_empty();
+        let twos = shininess.trailing_zeros().min(15);
+        Some(DirectionalPlan {
+            eye,
+            lights,
+            ambient,
+            full,
+            specular: any && shininess != 0,
+            spec_one: any && shininess == 0,
+            odd: shininess >> twos,
+            twos,
+        })
+    }
+}
+
+impl<const N: usize> DirectionalPlan<N> {
+    /// The lit sums (see [`Lighting::directional_plan`]) of the point `position` with normal
+    /// `normal` (raw integers of the format), or `None` where the plan's shortcuts do not hold
+    /// (a normal shorter than 2^-8 or longer than 2^8, an eye `2^30` raw units or more away
+    /// along an axis): the caller then takes [`Lighting::shade_sums`].
+    #[inline(always)]
+    pub(crate) fn sums<S: Scalar>(&self, position: Vec3<S>, normal: Vec3<S>) -> Option<[u64; 3]> {
+        let (position, normal) = (raw3(position)?, raw3(normal)?);
+        // The format's, a constant: the plan is made only for it.
+        let f = S::RAW_FRAC;
+        let n = normal;
+        // Raw components are i32s: each square below 2^62, the sum below 2^64.
+        let sq = |c: i64| (c * c) as u64;
+        let nn = sq(n[0]) + sq(n[1]) + sq(n[2]);
+        let one = 1u64 << (2 * f);
+        // 1 / |n| in 2.30: a normal of unit length within 2^-12 (a mesh's) takes one Newton
+        // step from 1, within 2^-25; any other of length 2^-8 to 2^8 a reciprocal square root.
+        let rn = if nn.abs_diff(one) < one >> 12 {
+            (1i64 << 30) - shr(nn as i64 - one as i64, 2 * f as i32 - 29)
+        } else if nn >= one >> 16 && nn >> 16 < one {
+            let (r, k) = rsqrt_fast(nn);
+            // 2^f / sqrt(nn) in 2.30 = r 2^(f + 30 - k), below 2^39.
+            shr(r as i64, k as i32 - f as i32 - 30)
+        } else {
+            return None;
+        };
+        // N·X in 2.30 for a 2.30 vector x: n·x is below 2^(f + 40) (|n| < 2^8), and n·x / 2^f
+        // is |n| N·X in 2.30, so that times rn (2^30 / |n|) it stays below 2^62.
+        let cos =
+            |x: [i64; 3]| (((n[0] * x[0] + n[1] * x[1] + n[2] * x[2]) >> f) * rn + (1 << 29)) >> 30;
+        let mut sum = self.ambient;
+        let e = &self.eye;
+        let w = [e[0] - position[0], e[1] - position[1], e[2] - position[2]];
+        // The eye at the point (no highlight there) and an eye far away along an axis take the
+        // general path.
+        let big = w[0].unsigned_abs() | w[1].unsigned_abs() | w[2].unsigned_abs();
+        if self.specular && big.wrapping_sub(1) >= (1 << 30) - 1 {
+            return None;
+        }
+        // V in 2.30 and N·V, for a specular power, made when a light first reaches the point.
+        let (mut view, mut nv, mut seen) = ([0i64; 3], 0i64, false);
+        for light in &self.lights {
+            let nl = cos(light.l);
+            if nl <= 0 {
+                continue;
+            }
+            if self.specular && !seen {
+                seen = true;
+                // Not zero (tested above), each square below 2^60.
+                let ww = sq(w[0]) + sq(w[1]) + sq(w[2]);
+                // c / |w| = c r / 2^k, in 2.30: |c r| < 2^61.
+                let (r, k) = rsqrt_fast(ww);
+                let r = r as i64;
+                let unit = |c: i64| (c * r + (1 << (k - 31))) >> (k - 30);
+                view = [unit(w[0]), unit(w[1]), unit(w[2])];
+                nv = cos(view);
+            }
+            let diffuse = ((nl + (1 << 13)) >> 14).min(i64::from(ONE16)) as u64;
+            let specular = if self.specular {
+                // N·H = N·h / |h| with h = L + V: N·h = N·L + N·V, and |h|² from h's
+                // components (L is unit only to the format's step, so not 2 + 2 L·V).
+                let l = light.l;
+                let h = [l[0] + view[0], l[1] + view[1], l[2] + view[2]];
+                let a = nl + nv;
+                // Components below 2^31: each square below 2^62.
+                let hh = sq(h[0]) + sq(h[1]) + sq(h[2]);
+                if a <= 0 || hh == 0 {
+                    0
+                } else {
+                    // 1 / |h| = 2^30 / sqrt(hh) = r 2^(30 - k); a r below 2^62.
+                    let (r, k) = rsqrt_fast(hh);
+                    let nh = ((a as u64 * r) >> (k - 30)).min(u64::from(ONE30)) as u32;
+                    u64::from(self.power(nh))
+                }
+            } else if self.spec_one {
+                u64::from(ONE16)
+            } else {
+                0
+            };
+            let (kd, ks) = (&light.kd, &light.ks);
+            sum[0] += kd[0] * diffuse + ks[0] * specular;
+            sum[1] += kd[1] * diffuse + ks[1] * specular;
+            sum[2] += kd[2] * diffuse + ks[2] * specular;
+        }
+        Some([
+            sum[0].min(self.full[0]),
+            sum[1].min(self.full[1]),
+            sum[2].min(self.full[2]),
+        ])
+    }
+}
+
+impl<const N: usize> DirectionalPlan<N> {
+    /// What a Phong pixel interpolates under the plan: the unit normal and the unit view
+    /// vector `V = normalize(eye - position)` at the vertex, both in signed 2.30 (zero for a
+    /// zero normal, or with the eye at the vertex).
+    pub(crate) fn phong_vertex<S: Scalar>(&self, position: Vec3<S>, normal: Vec3<S>) -> [i32; 6] {
+        let unit = |v: Option<[i64; 3]>| v.and_then(unit30).unwrap_or_default();
+        let n = unit(raw3(normal));
+        let v = unit(raw3(position).map(|p| [0, 1, 2].map(|i| self.eye[i] - p[i])));
+        // Unit components in 2.30 are within [-2^30, 2^30] (up to rounding): i32s.
+        [n[0], n[1], n[2], v[0], v[1], v[2]].map(|c| c.clamp(-(1 << 30), 1 << 30) as i32)
+    }
+
+    /// The lit sums of a Phong pixel from its interpolated [`DirectionalPlan::phong_vertex`]
+    /// values. The normal is normalised again; so is `L + V` (as `N·H = N·h / |h|`), while
+    /// `V` itself is the interpolation of the vertices' unit vectors: within a triangle that
+    /// subtends a small angle at the eye, it is the true view vector turned by a second-order
+    /// angle and shortened by `1 - cos` of half the angle between its vertices' (measured
+    /// against `f64` in `docs/ACCURACY.md` and bounded in `tests/tests/lighting.rs`).
+    #[inline(always)]
+    pub(crate) fn phong_pixel(&self, v: &[i32; 6]) -> [u64; 3] {
+        let mut sum = self.ambient;
+        let n = [v[0], v[1], v[2]].map(i64::from);
+        // Squares of i32s are below 2^62, so their sum is below 2^64.
+        let sq = |c: i64| (c * c) as u64;
+        let nn = sq(n[0]) + sq(n[1]) + sq(n[2]);
+        if nn == 0 {
+            return sum;
+        }
+        // 1 / |n| in 2.30: near unit length (within 2^-12) one Newton step from 1, else the
+        // reciprocal square root, 2^30 / sqrt(nn) = r 2^(60 - k).
+        let rn = if nn.abs_diff(1 << 60) < 1 << 48 {
+            (1i64 << 30) - ((nn as i64 - (1 << 60)) >> 31)
+        } else {
+            let (r, k) = rsqrt_fast(nn);
+            shr(r as i64, k as i32 - 60)
+        };
+        // N·x in 2.30 for x in 2.30 (|x| <= 2): n·x / 2^30 is below 2^31, times rn.
+        let cos = |x: [i64; 3]| {
+            (((n[0] * x[0] + n[1] * x[1] + n[2] * x[2]) >> 30) * rn + (1 << 29)) >> 30
+        };
+        for light in &self.lights {
+            let l = light.l;
+            let nl = cos(l);
+            if nl <= 0 {
+                continue;
+            }
+            let diffuse = ((nl + (1 << 13)) >> 14).min(i64::from(ONE16)) as u64;
+            let specular = if self.specular {
+                let h = [
+                    l[0] + i64::from(v[3]),
+                    l[1] + i64::from(v[4]),
+                    l[2] + i64::from(v[5]),
+                ];
+                let a = cos(h);
+                let hh = sq(h[0]) + sq(h[1]) + sq(h[2]);
+                if a <= 0 || hh == 0 {
+                    0
+                } else {
+                    // 1 / |h| = 2^30 / sqrt(hh) = r 2^(30 - k); a r below 2^62.
+                    let (r, k) = rsqrt_fast(hh);
+                    let nh = ((a as u64 * r) >> (k - 30)).min(u64::from(ONE30)) as u32;
+                    u64::from(self.power(nh))
+                }
+            } else if self.spec_one {
+                u64::from(ONE16)
+            } else {
+                0
+            };
+            let (kd, ks) = (&light.kd, &light.ks);
+            sum[0] += kd[0] * diffuse + ks[0] * specular;
+            sum[1] += kd[1] * diffuse + ks[1] * specular;
+            sum[2] += kd[2] * diffuse + ks[2] * specular;
+        }
+        [
+            sum[0].min(self.full[0]),
+            sum[1].min(self.full[1]),
+            sum[2].min(self.full[2]),
+        ]
+    }
+
+    /// `x^shininess` in 0.16 from `x` in 0.30.
+    #[inline(always)]
+    fn power(&self, x: u32) -> u32 {
+        let mut p = if self.odd == 1 { x } else { pow30(x, self.odd) };
+        for _ in 0..self.twos {
+            p = mul30(p, p);
+        }
+        to_q16(p)
+    }
+}
+
+/// `x / 2^sh` rounded down for `sh >= 0`, `x 2^-sh` for `sh < 0` (a signed shift count).
+#[inline(always)]
+fn shr(x: i64, sh: i32) -> i64 {
+    if sh >= 0 {
+        x >> sh
+    } else {
+        x << -sh
     }
 }
 
