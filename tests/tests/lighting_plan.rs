@@ -244,8 +244,9 @@ fn phong(count: usize, size: f64) -> (Errors, Errors) {
 }
 
 // Measured (8-bit steps, worst channel, against the unrounded reference), over the cases below:
-// Gouraud plan max 0.0xx, mean 0.0xx; general (`shade_fine`) max 0.0xx, mean 0.0xx.
-// Phong, triangles 0.1 across: plan max x.xx, mean 0.2xx; general max x.xx, mean 0.2xx.
+// Gouraud plan max 0.0271, mean 0.0016 (general `shade_fine`: max 0.0163, mean 0.0016); Phong
+// in triangles 0.1 across, Rgb888 (whose rounding alone gives up to 0.5): plan max 0.5082, mean
+// 0.3704 (general: max 0.5016, mean 0.3704).
 
 #[test]
 fn gouraud_plan_matches_f64() {
@@ -257,8 +258,8 @@ fn gouraud_plan_matches_f64() {
         general.max,
         general.mean()
     );
-    assert!(plan.max <= 1.0, "{}", plan.max);
-    assert!(plan.mean() <= 0.1, "{}", plan.mean());
+    assert!(plan.max <= 0.06, "{}", plan.max);
+    assert!(plan.mean() <= 0.004, "{}", plan.mean());
 }
 
 #[test]
@@ -271,6 +272,7 @@ fn phong_plan_matches_f64() {
         general.max,
         general.mean()
     );
-    assert!(plan.max <= 2.0, "{}", plan.max);
-    assert!(plan.mean() <= 0.5, "{}", plan.mean());
+    // The rounding to 8 bits dominates: bounds a little above it rather than twice.
+    assert!(plan.max <= 0.75, "{}", plan.max);
+    assert!(plan.mean() <= 0.45, "{}", plan.mean());
 }

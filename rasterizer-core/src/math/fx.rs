@@ -233,7 +233,8 @@ pub(crate) const fn rsqrt_u64(x: u64) -> (u64, u32) {
 }
 
 /// [`rsqrt_u64`] with one Newton step from a finer table, for lighting: `r` within `2^-17` of
-/// `2^k / sqrt(x)` relatively (always below it), with `k >= 31` and `r <= 2^31`.
+/// `2^k / sqrt(x)` relatively (below it, up to the truncations' few units), with `k >= 31`
+/// and `r <= 2^31`; `x` must not be zero.
 ///
 /// The table of the top nine bits gives the root within `2^-9`; Newton's step squares that
 /// error (`y' = y (3 - x y²) / 2` leaves `1.5 ε²` below the root). Half the work of
@@ -395,8 +396,8 @@ mod tests {
 
     #[test]
     fn rsqrt_fast_is_close() {
-        // r below 2^k / sqrt(v) by at most 2^-17 of it: r² v within 2^-16 below 2^2k (and r
-        // never above the root). Measured over these values: at most 1.4e-5 = 2^-16.1 (r² v).
+        // r below 2^k / sqrt(v) by at most 2^-17 of it: r² v within 2^-16 below 2^2k (and
+        // above it by truncation only, 1e-9 at most here).
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         let mut worst = 0f64;
         for i in 0..300_000u64 {
@@ -412,9 +413,10 @@ mod tests {
             assert!(r <= 1 << 31 && k >= 31, "{v}: {r} {k}");
             let product = u128::from(r) * u128::from(r) * u128::from(v);
             let exact = 1u128 << (2 * k);
-            assert!(product <= exact, "{v}: {r} {k}");
-            assert!(exact - product <= exact >> 16, "{v}: {r} {k}");
-            worst = worst.max((exact - product) as f64 / exact as f64);
+            // Newton's step lands below the root; its truncations may lift it by a few units.
+            assert!(product <= exact + (exact >> 28), "{v}: {r} {k}");
+            assert!(exact.saturating_sub(product) <= exact >> 16, "{v}: {r} {k}");
+            worst = worst.max(exact.saturating_sub(product) as f64 / exact as f64);
         }
         assert!(worst > 0.0);
     }

@@ -315,6 +315,8 @@ pub struct FlatLit<S, C, const N: usize> {
     pub lighting: Lighting<S, N>,
     /// This frame's lighting in model space, when the model matrix allows it.
     frame: Option<Lighting<S, N>>,
+    /// This frame's lighting as a directional plan in `shade_sums`' units, when it applies.
+    plan: Option<DirectionalPlan<N>>,
     color: C,
 }
 
@@ -324,6 +326,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> FlatLit<S, C, N> {
         Self {
             lighting,
             frame: None,
+            plan: None,
             color: C::from_shade([0; 3]),
         }
     }
@@ -344,6 +347,9 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
     }
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        // 255² 2^16 is full intensity in `shade_sums`' units: the products are then exact.
+        self.plan = lighting.directional_plan([255 * 255; 3], 16, [0; 3]);
         self.frame.is_some()
     }
     #[inline(always)]
@@ -363,6 +369,9 @@ pub(super) fn flat_face_sums<S: Scalar, C, const N: usize>(
     // The centroid, for point lights and the specular term.
     let third = S::from_ratio(1, 3);
     let centre = (v[0].position + v[1].position + v[2].position).scale(third);
+    if let Some(sums) = flat.plan.as_ref().and_then(|p| p.sums(centre, normal)) {
+        return sums;
+    }
     let lighting = flat.frame.as_ref().unwrap_or(&flat.lighting);
     lighting.shade_sums(centre, normal)
 }
@@ -456,6 +465,12 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
 
 /// Lit per pixel: the normal and the world position are interpolated (in 16.16) and lit at every
 /// pixel (Phong shading).
+///
+/// For a fixed-point format whose lights are all directional (Blinn-Phong or no highlight), a
+/// draw interpolates the unit normal and the unit view vector instead (2.30) and lights each
+/// pixel with two reciprocal square roots and no division: the view vector is then the
+/// interpolation of its vertices' (its error against the exact one, which grows with a
+/// triangle's angle at the eye, is in `docs/ACCURACY.md`).
 #[derive(Debug, Clone)]
 pub struct PhongLit<S, C, const N: usize> {
     /// The lights, material and eye.
