@@ -5,8 +5,7 @@
 //! Gouraud: one lit vertex, its channel values (8 fractional bits for Rgb888) against the
 //! unrounded reference. Phong: a pixel inside a small triangle, from the vertices' values
 //! interpolated as the pipeline does (integer weights), against the reference lit with the
-//! exact interpolated position and the renormalised interpolated unit normal: this includes the
-//! error of interpolating the view vector instead of the position.
+//! exact interpolated position and the renormalised interpolated unit normal.
 
 use fixtures::reference3d::{lit, RefLight};
 use rasterizer_core::prelude::*;
@@ -245,8 +244,8 @@ fn phong(count: usize, size: f64) -> (Errors, Errors) {
 
 // Measured (8-bit steps, worst channel, against the unrounded reference), over the cases below:
 // Gouraud plan max 0.0271, mean 0.0016 (general `shade_fine`: max 0.0163, mean 0.0016); Phong
-// in triangles 0.1 across, Rgb888 (whose rounding alone gives up to 0.5): plan max 0.5082, mean
-// 0.3704 (general: max 0.5016, mean 0.3704).
+// in triangles 0.1 across, Rgb888 (whose rounding alone gives up to 0.5): plan max 0.5016, mean
+// 0.3704 (general: the same).
 
 #[test]
 fn gouraud_plan_matches_f64() {

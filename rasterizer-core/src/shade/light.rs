@@ -724,23 +724,21 @@ impl<const N: usize> DirectionalPlan<N> {
 }
 
 impl<const N: usize> DirectionalPlan<N> {
-    /// What a Phong pixel interpolates under the plan: the unit normal and the unit view
-    /// vector `V = normalize(eye - position)` at the vertex, both in signed 2.30 (zero for a
-    /// zero normal, or with the eye at the vertex).
+    /// What a Phong pixel interpolates under the plan: the unit normal in signed 2.30 (zero
+    /// for a zero normal) and the position's raw integers.
     pub(crate) fn phong_vertex<S: Scalar>(&self, position: Vec3<S>, normal: Vec3<S>) -> [i32; 6] {
-        let unit = |v: Option<[i64; 3]>| v.and_then(unit30).unwrap_or_default();
-        let n = unit(raw3(normal));
-        let v = unit(raw3(position).map(|p| [0, 1, 2].map(|i| self.eye[i] - p[i])));
-        // Unit components in 2.30 are within [-2^30, 2^30] (up to rounding): i32s.
-        [n[0], n[1], n[2], v[0], v[1], v[2]].map(|c| c.clamp(-(1 << 30), 1 << 30) as i32)
+        let n = raw3(normal).and_then(unit30).unwrap_or_default();
+        let p = raw3(position).unwrap_or_default();
+        // Unit components in 2.30 are within [-2^30, 2^30] (up to rounding); a fixed-point
+        // format's raw integers are i32s.
+        let n = n.map(|c| c.clamp(-(1 << 30), 1 << 30) as i32);
+        let p = p.map(|c| c.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32);
+        [n[0], n[1], n[2], p[0], p[1], p[2]]
     }
 
     /// The lit sums of a Phong pixel from its interpolated [`DirectionalPlan::phong_vertex`]
-    /// values. The normal is normalised again; so is `L + V` (as `N·H = N·h / |h|`), while
-    /// `V` itself is the interpolation of the vertices' unit vectors: within a triangle that
-    /// subtends a small angle at the eye, it is the true view vector turned by a second-order
-    /// angle and shortened by `1 - cos` of half the angle between its vertices' (measured
-    /// against `f64` in `docs/ACCURACY.md` and bounded in `tests/tests/lighting.rs`).
+    /// values: the normal is normalised again, the view vector comes from the position, and
+    /// `N·H = N·h / |h|` with `h = L + V`, each length from [`rsqrt_fast`].
     #[inline(always)]
     pub(crate) fn phong_pixel(&self, v: &[i32; 6]) -> [u64; 3] {
         let mut sum = self.ambient;
@@ -768,6 +766,8 @@ impl<const N: usize> DirectionalPlan<N> {
                 .wrapping_add(n[2].wrapping_mul(x[2]));
             (d >> 30).wrapping_mul(rn).wrapping_add(1 << 29) >> 30
         };
+        // V in 2.30, made when a light first reaches the pixel (None: the eye at the point).
+        let mut view: Option<Option<[i64; 3]>> = None;
         for light in &self.lights {
             let l = light.l;
             let nl = cos(l);
@@ -775,12 +775,19 @@ impl<const N: usize> DirectionalPlan<N> {
                 continue;
             }
             let diffuse = (nl.wrapping_add(1 << 13) >> 14).min(i64::from(ONE16)) as u64;
-            let specular = if self.specular {
-                let h = [
-                    l[0] + i64::from(v[3]),
-                    l[1] + i64::from(v[4]),
-                    l[2] + i64::from(v[5]),
-                ];
+            let view = *view.get_or_insert_with(|| {
+                if !self.specular {
+                    return None;
+                }
+                let e = &self.eye;
+                unit30_fast([
+                    e[0] - i64::from(v[3]),
+                    e[1] - i64::from(v[4]),
+                    e[2] - i64::from(v[5]),
+                ])
+            });
+            let specular = if let (true, Some(view)) = (self.specular, view) {
+                let h = [l[0] + view[0], l[1] + view[1], l[2] + view[2]];
                 let a = cos(h);
                 let hh = sq(h[0]).wrapping_add(sq(h[1])).wrapping_add(sq(h[2]));
                 if a <= 0 || hh == 0 {
@@ -816,6 +823,24 @@ impl<const N: usize> DirectionalPlan<N> {
         }
         to_q16(p)
     }
+}
+
+/// [`unit30`] with [`rsqrt_fast`]: within `2^-17` of unit length.
+#[inline(always)]
+fn unit30_fast(v: [i64; 3]) -> Option<[i64; 3]> {
+    let big = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
+    if big == 0 {
+        return None;
+    }
+    // Components below 2^31 keep the sum of the squares within u64.
+    let shift = (64 - big.leading_zeros()).saturating_sub(31);
+    let (x, y, z) = (v[0] >> shift, v[1] >> shift, v[2] >> shift);
+    // Each square below 2^62: their sum below 2^64 in u64.
+    let sq = |c: i64| c.unsigned_abs() * c.unsigned_abs();
+    let (r, k) = rsqrt_fast(sq(x) + sq(y) + sq(z));
+    let r = r as i64;
+    let unit = |c: i64| (c * r + (1 << (k - 31))) >> (k - 30);
+    Some([unit(x), unit(y), unit(z)])
 }
 
 /// `x / 2^sh` rounded down for `sh >= 0`, `x 2^-sh` for `sh < 0` (a signed shift count).

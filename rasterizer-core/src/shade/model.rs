@@ -467,10 +467,9 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
 /// pixel (Phong shading).
 ///
 /// For a fixed-point format whose lights are all directional (Blinn-Phong or no highlight), a
-/// draw interpolates the unit normal and the unit view vector instead (2.30) and lights each
-/// pixel with two reciprocal square roots and no division: the view vector is then the
-/// interpolation of its vertices' (its error against the exact one, which grows with a
-/// triangle's angle at the eye, is in `docs/ACCURACY.md`).
+/// draw interpolates the unit normal in 2.30 instead, and lights each pixel with three
+/// reciprocal square roots of one Newton step (normal, view vector, `L + V`) and no division
+/// (its error against `f64` is in `docs/ACCURACY.md`).
 #[derive(Debug, Clone)]
 pub struct PhongLit<S, C, const N: usize> {
     /// The lights, material and eye.
