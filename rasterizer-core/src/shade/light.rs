@@ -1016,7 +1016,7 @@ mod tests {
     fn plan_never_overflows() {
         let l = lighting();
         let plan = l.directional_plan([255 * 255; 3], 16, [0; 3]).unwrap();
-        let full = 255 * 255 << 16;
+        let full = (255 * 255) << 16;
         let edges = [i32::MIN, -(1 << 30), -1, 0, 1, 1 << 16, 1 << 30, i32::MAX];
         for a in edges {
             for b in edges {
