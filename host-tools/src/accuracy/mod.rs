@@ -7,13 +7,15 @@
 //! Files: [`config`] (the registry of pipeline types), [`blending`] (blending and
 //! anti-aliased lines), [`scene`] (the scenes on both sides),
 //! [`metrics`] (the error measures and the Pareto front), [`count`] (callgrind), [`breakdown`]
-//! (the limit sweeps), [`plot`] and [`report`] (the output).
+//! (the limit sweeps), [`lighting`] (the shaders' directional-light plan), [`plot`] and
+//! [`report`] (the output).
 
 pub mod blending;
 pub mod breakdown;
 pub mod config;
 pub mod count;
 pub mod fog;
+pub mod lighting;
 pub mod metrics;
 pub mod plot;
 pub mod report;

@@ -232,6 +232,42 @@ pub(crate) const fn rsqrt_u64(x: u64) -> (u64, u32) {
     (y, (61 - half_e) as u32)
 }
 
+/// [`rsqrt_u64`] with one Newton step from a finer table, for lighting: `r` within `2^-17` of
+/// `2^k / sqrt(x)` relatively (below it, up to the truncations' few units), with `k >= 31`
+/// and `r <= 2^31`; `x` must not be zero.
+///
+/// The table of the top nine bits gives the root within `2^-9`; Newton's step squares that
+/// error (`y' = y (3 - x y²) / 2` leaves `1.5 ε²` below the root). Half the work of
+/// [`rsqrt_u64`], for a cosine that a specular power of 16 turns into a colour error of about
+/// `16 · 255 · 2^-17`, 0.03 of an 8-bit step.
+#[inline(always)]
+pub(crate) fn rsqrt_fast(x: u64) -> (u64, u32) {
+    // m = x 2^e in [2^62, 2^64) with e even; X = m / 2^64 in [1/4, 1).
+    let e = x.leading_zeros() & !1;
+    let m = x << e;
+    // y ≈ 2^30 / sqrt(X) in (2^30, 2^31), from the top nine bits of m (128 ..= 511).
+    let y = u64::from(RSQRT9_TABLE[(m >> 55) as usize - 128]) << 15;
+    // t = X y² in 2.30 (y² >> 32 below 2^30, times X 2^32 below 2^62); y (3 - t) below 2^63.
+    let t = ((m >> 32) * ((y * y) >> 32)) >> 30;
+    let y = (y * ((3 << 30) - t)) >> 31;
+    // 1 / sqrt(x) = 2^(e/2) / (sqrt(X) 2^32) = y 2^(e/2 - 62).
+    (y, 62 - e / 2)
+}
+
+/// `2^15 / sqrt((t + 1/2) / 512)` for `128 <= t < 512` (entry `t - 128`), rounded: the
+/// reciprocal root at the middle of each interval of [`rsqrt_fast`]'s top nine bits.
+const RSQRT9_TABLE: [u16; 384] = {
+    let mut out = [0u16; 384];
+    let mut t = 128;
+    while t < 512 {
+        // 2^15 sqrt(1024 / (2t + 1)) = 2^40 / sqrt((2t + 1) 2^40).
+        let root = isqrt_u64((2 * t as u64 + 1) << 40);
+        out[t - 128] = (((1u64 << 40) + root / 2) / root) as u16;
+        t += 1;
+    }
+    out
+};
+
 /// `2^46 / sqrt((t + 1/2) 2^54)` for `64 <= t < 256` (entry `t - 64`), rounded down so that
 /// Newton's steps start below the root: the reciprocal root at the middle of each interval of
 /// the top eight bits, with 16 significant bits.
@@ -356,6 +392,34 @@ mod tests {
             }
         }
         lo as u64
+    }
+
+    #[test]
+    fn rsqrt_fast_is_close() {
+        // r below 2^k / sqrt(v) by at most 2^-17 of it: r² v within 2^-16 below 2^2k (and
+        // above it by truncation only, 1e-9 at most here).
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut worst = 0u128;
+        for i in 0..300_000u64 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = if i < 200 {
+                i + 1
+            } else {
+                (x >> (x % 64)).max(1)
+            };
+            let (r, k) = super::rsqrt_fast(v);
+            assert!(r <= 1 << 31 && k >= 31, "{v}: {r} {k}");
+            let product = u128::from(r) * u128::from(r) * u128::from(v);
+            let exact = 1u128 << (2 * k);
+            // Newton's step lands below the root; its truncations may lift it by a few units.
+            assert!(product <= exact + (exact >> 28), "{v}: {r} {k}");
+            assert!(exact.saturating_sub(product) <= exact >> 16, "{v}: {r} {k}");
+            worst = worst.max(exact.saturating_sub(product) >> (2 * k - 40));
+        }
+        // Below the root somewhere by more than 2^-40: the Newton step is doing the work.
+        assert!(worst > 0);
     }
 
     #[test]

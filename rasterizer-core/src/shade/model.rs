@@ -5,6 +5,7 @@
 //! triangle; [`GouraudLit`] once per vertex and interpolates the colour; [`PhongLit`] interpolates the
 //! normal and the position and lights every pixel.
 
+use super::light::DirectionalPlan;
 use super::Lighting;
 use crate::color::ShadeColor;
 use crate::geom::{Varyings, MAX_VARYINGS};
@@ -177,6 +178,10 @@ const fn channel_frac(max: u8) -> u32 {
 
 /// A colour's three channels at the target's depth, each with [`channel_frac`] fractional bits
 /// and half a step added (so the fused loop's shift rounds), from `num[c] / den` 8-bit steps.
+///
+/// `den` is 1 (8-bit colours) or `255 · 2^16` (lit sums) at every caller, and `num <= 255 den`:
+/// both are then quotients of `u32`s (a single instruction, or a multiply by a constant, on a
+/// 32-bit core) with the same round-half-up result as one `u64` division.
 #[inline(always)]
 pub(super) fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3] {
     let mut out = [0i32; 3];
@@ -184,8 +189,19 @@ pub(super) fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3
         let f = channel_frac(C::MAX[c]);
         // num <= 255 den, so the product stays below 2^40 den.
         let n = (num[c] * u64::from(C::MAX[c])) << f;
-        let d = den * 255;
-        out[c] = ((n + d / 2) / d) as i32 + (1 << (f - 1));
+        let q = if den == 1 {
+            // n <= 255 · max 2^f < 2^24.
+            (n as u32 + 127) / 255
+        } else if den == 255 << 16 {
+            // floor((n + d/2) / d) with d = 255² 2^16: the low 16 bits drop first (nested floors),
+            // leaving a quotient of u32s, as n < 255³ 2^16 max 2^f / 255 < 2^48.
+            (((n + 255 * 255 * (1 << 15)) >> 16) as u32) / (255 * 255)
+        } else {
+            let d = den * 255;
+            let nz = core::num::NonZeroU64::new(d).unwrap_or(core::num::NonZeroU64::MIN);
+            crate::wide::div_u64(n + d / 2, nz) as u32
+        };
+        out[c] = q as i32 + (1 << (f - 1));
     }
     out
 }
@@ -193,9 +209,13 @@ pub(super) fn target_channels<C: ShadeColor>(num: [u64; 3], den: u64) -> [i32; 3
 /// A lit colour from [`Lighting::shade_sums`] at the target's depth, rounded once.
 #[inline(always)]
 pub(super) fn from_sums<C: ShadeColor>(sums: [u64; 3]) -> C {
-    // sums[c] / (255 · 2^16) 8-bit steps, times max / 255, rounded half up.
-    let d = 255 * 255 * (1u64 << 16);
-    let ch = |c: usize| ((sums[c] * u64::from(C::MAX[c]) + d / 2) / d) as u8;
+    // sums[c] / (255 · 2^16) 8-bit steps, times max / 255, rounded half up: the low 16 bits of
+    // the divisor first (nested floors), then a quotient of u32s (sums <= 255² 2^16, so
+    // sums · max < 2^48).
+    let ch = |c: usize| {
+        let n = sums[c] * u64::from(C::MAX[c]) + 255 * 255 * (1 << 15);
+        (((n >> 16) as u32) / (255 * 255)) as u8
+    };
     C::from_shade([ch(0), ch(1), ch(2)])
 }
 
@@ -295,6 +315,8 @@ pub struct FlatLit<S, C, const N: usize> {
     pub lighting: Lighting<S, N>,
     /// This frame's lighting in model space, when the model matrix allows it.
     frame: Option<Lighting<S, N>>,
+    /// This frame's lighting as a directional plan in `shade_sums`' units, when it applies.
+    plan: Option<DirectionalPlan<N>>,
     color: C,
 }
 
@@ -304,6 +326,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> FlatLit<S, C, N> {
         Self {
             lighting,
             frame: None,
+            plan: None,
             color: C::from_shade([0; 3]),
         }
     }
@@ -324,6 +347,9 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
     }
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        // 255² 2^16 is full intensity in `shade_sums`' units: the products are then exact.
+        self.plan = lighting.directional_plan([255 * 255; 3], 16, [0; 3]);
         self.frame.is_some()
     }
     #[inline(always)]
@@ -343,6 +369,9 @@ pub(super) fn flat_face_sums<S: Scalar, C, const N: usize>(
     // The centroid, for point lights and the specular term.
     let third = S::from_ratio(1, 3);
     let centre = (v[0].position + v[1].position + v[2].position).scale(third);
+    if let Some(sums) = flat.plan.as_ref().and_then(|p| p.sums(centre, normal)) {
+        return sums;
+    }
     let lighting = flat.frame.as_ref().unwrap_or(&flat.lighting);
     lighting.shade_sums(centre, normal)
 }
@@ -363,6 +392,9 @@ pub struct GouraudLit<S, C, const N: usize> {
     pub lighting: Lighting<S, N>,
     /// This frame's lighting in model space, when the model matrix allows it.
     frame: Option<Lighting<S, N>>,
+    /// This frame's lighting as a directional plan in the target's channel units, when it
+    /// applies.
+    plan: Option<DirectionalPlan<N>>,
     _c: core::marker::PhantomData<C>,
 }
 
@@ -372,10 +404,20 @@ impl<S: Scalar, C, const N: usize> GouraudLit<S, C, N> {
         Self {
             lighting,
             frame: None,
+            plan: None,
             _c: core::marker::PhantomData,
         }
     }
 }
+
+/// Each channel's value of full intensity at the target's depth with [`channel_frac`]
+/// fractional bits: the scale of [`target_channels`], for a [`DirectionalPlan`].
+fn target_scale<C: ShadeColor>() -> [u32; 3] {
+    [0, 1, 2].map(|c| u32::from(C::MAX[c]) << channel_frac(C::MAX[c]))
+}
+
+/// Fractional bits of a [`DirectionalPlan`]'s sums below the unit of its scale.
+const PLAN_BITS: u32 = 32;
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N> {
     type Color = C;
@@ -385,10 +427,21 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
     const FUSED_OFFSET: u32 = 0;
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        // Rounding half up and the fused loop's half step, both in the plan's bias: a channel
+        // is then its sum shifted.
+        let bias = [0, 1, 2]
+            .map(|c| (1 << (PLAN_BITS - 1)) + (1u64 << (channel_frac(C::MAX[c]) - 1 + PLAN_BITS)));
+        self.plan = lighting.directional_plan(target_scale::<C>(), PLAN_BITS, bias);
         self.frame.is_some()
     }
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> [i32; 3] {
+        if let Some(plan) = &self.plan {
+            if let Some(s) = plan.sums(v.position, v.normal) {
+                return s.map(|s| (s >> PLAN_BITS) as i32);
+            }
+        }
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
         target_channels::<C>(lighting.shade_sums(v.position, v.normal), 255 << 16)
     }
@@ -412,12 +465,21 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
 
 /// Lit per pixel: the normal and the world position are interpolated (in 16.16) and lit at every
 /// pixel (Phong shading).
+///
+/// For a fixed-point format whose lights are all directional (Blinn-Phong or no highlight), a
+/// draw interpolates the unit normal in 2.30 instead, and lights each pixel with three
+/// reciprocal square roots of one Newton step (normal, view vector, `L + V`) and no division
+/// (its error against `f64` is in `docs/ACCURACY.md`).
 #[derive(Debug, Clone)]
 pub struct PhongLit<S, C, const N: usize> {
     /// The lights, material and eye.
     pub lighting: Lighting<S, N>,
     /// This frame's lighting in model space, when the model matrix allows it.
     frame: Option<Lighting<S, N>>,
+    /// This frame's lighting as a directional plan: `target` in the target's channel steps,
+    /// `sums` in the units of [`Lighting::shade_sums`] (for fog), when it applies.
+    target: Option<DirectionalPlan<N>>,
+    sums: Option<DirectionalPlan<N>>,
     _c: core::marker::PhantomData<C>,
 }
 
@@ -427,6 +489,8 @@ impl<S: Scalar, C, const N: usize> PhongLit<S, C, N> {
         Self {
             lighting,
             frame: None,
+            target: None,
+            sums: None,
             _c: core::marker::PhantomData,
         }
     }
@@ -441,10 +505,23 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
     const FUSED_FRAC: u32 = 0;
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        // Rounded half up by the bias.
+        let half = [1 << (PLAN_BITS - 1); 3];
+        self.target = lighting.directional_plan(C::MAX.map(u32::from), PLAN_BITS, half);
+        // 255² 2^16 is full intensity in `shade_sums`' units: the products are then exact.
+        self.sums = lighting.directional_plan([255 * 255; 3], 16, [0; 3]);
+        // Both or neither: they decide what the vertices' values are.
+        if self.target.is_none() || self.sums.is_none() {
+            (self.target, self.sums) = (None, None);
+        }
         self.frame.is_some()
     }
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> [i32; 6] {
+        if let Some(plan) = &self.target {
+            return plan.phong_vertex(v.position, v.normal);
+        }
         // Unit normals keep the interpolated normal's scale even across a long triangle.
         let n = v.normal.normalize().unwrap_or_default();
         let p = v.position;
@@ -452,6 +529,11 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
     }
     #[inline(always)]
     fn pixel(&self, v: &[i32; 6]) -> C {
+        if let Some(plan) = &self.target {
+            let s = plan.phong_pixel(v);
+            let ch = |c: usize| (s[c] >> PLAN_BITS) as u8;
+            return C::from_shade([ch(0), ch(1), ch(2)]);
+        }
         from_sums(phong_sums(self, v))
     }
 }
@@ -463,6 +545,9 @@ pub(super) fn phong_sums<S: Scalar, C, const N: usize>(
     phong: &PhongLit<S, C, N>,
     v: &[i32; 6],
 ) -> [u64; 3] {
+    if let Some(plan) = &phong.sums {
+        return plan.phong_pixel(v);
+    }
     let f = |i: usize| S::from_fx16_bits(v[i]);
     let normal = Vec3::new(f(0), f(1), f(2));
     let position = Vec3::new(f(3), f(4), f(5));
