@@ -987,13 +987,13 @@ fn targets(f: &Figures) -> String {
             false,
         ),
         (
-            "64-bit divisions in an M1 frame",
+            "64-bit divisions in an M1 frame (those routed through `wide`: not yet the set-up's edge walks and planes)",
             f.get("M1", "ours", "div64"),
             target::M1_DIV64,
             false,
         ),
         (
-            "64-bit divisions in an M4 frame",
+            "64-bit divisions in an M4 frame (the same)",
             f.get("M4", "ours", "div64"),
             target::M4_DIV64,
             false,
