@@ -54,6 +54,60 @@ pub(crate) fn divmod_floor_i128(n: i128, d: i128) -> (i128, i128) {
     (n.div_euclid(d), n.rem_euclid(d))
 }
 
+/// `(n / d, n % d)` for `d > 0`: a 32-bit division when both operands fit in 32 bits (a
+/// Cortex-M3/M4 has an instruction for it), else [`div_u64`]. The edge walks' operands fit for
+/// every triangle narrower than a few thousand pixels.
+#[inline(always)]
+pub(crate) fn divrem_narrow(n: u64, d: core::num::NonZeroU64) -> (u64, u64) {
+    if (n | d.get()) >> 32 == 0 {
+        let (n, d) = (n as u32, d.get() as u32);
+        // `d` is the non-zero divisor narrowed: never zero.
+        let d = core::num::NonZeroU32::new(d).unwrap_or(core::num::NonZeroU32::MIN);
+        (u64::from(n / d), u64::from(n % d))
+    } else {
+        let q = div_u64(n, d);
+        (q, n - q * d.get())
+    }
+}
+
+/// Exact quotients by one divisor for the price of one 64-bit division: `m = floor((2^63 - 1) /
+/// d)` once, then each `floor(n / d)` is the high half of a signed 64 x 64-bit product and one
+/// correction step.
+///
+/// Why one step suffices, for `|n| < 2^62`: `m = 2^63 / d - e` with `0 < e <= 1`, so `n m / 2^63`
+/// lies within `|n| / 2^63 < 1/2` of `n / d` (below it for `n >= 0`, above it for `n < 0`): its
+/// floor is the quotient or one off, and the remainder `n - q d` (in `-d .. 2 d`) tells which.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Reciprocal {
+    d: i64,
+    m: i64,
+}
+
+impl Reciprocal {
+    /// The reciprocal of 1, which costs no division.
+    pub(crate) const ONE: Self = Self { d: 1, m: i64::MAX };
+
+    /// The reciprocal of `d` (at most `i64::MAX`; a larger one is taken as `i64::MAX`).
+    #[inline(always)]
+    pub(crate) fn new(d: core::num::NonZeroU64) -> Self {
+        let d = core::num::NonZeroU64::new(d.get().min(i64::MAX as u64)).unwrap_or(d);
+        Self {
+            d: d.get() as i64,
+            m: div_u64(i64::MAX as u64, d) as i64,
+        }
+    }
+
+    /// `floor(n / d)`, exactly (as `n.div_euclid(d)`), for `|n| < 2^62`. Outside that range
+    /// the result may be one off, but nothing overflows.
+    #[inline(always)]
+    pub(crate) fn floor(&self, n: i64) -> i64 {
+        let q = ((i128::from(n) * i128::from(self.m)) >> 63) as i64;
+        let r = n.wrapping_sub(q.wrapping_mul(self.d));
+        q.wrapping_add(i64::from(r >= self.d))
+            .wrapping_sub(i64::from(r < 0))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,5 +129,63 @@ mod tests {
         assert_eq!(divmod_floor_i64(7, 0), (0, 0));
         assert_eq!(divmod_floor_i128(-7, 3), (-3, 2));
         assert_eq!(divmod_floor_i128(7, -3), (0, 0));
+    }
+
+    #[test]
+    fn reciprocal_floors_exactly() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let edge = [1, 2, 3, 7, (1 << 32) - 1, 1 << 32, 1 << 61, (1 << 63) - 1];
+        let limit = (1i64 << 62) - 1;
+        let numerators = [0, 1, -1, limit, -limit, limit - 5, 1 - limit];
+        for _ in 0..20_000 {
+            // Divisors and numerators of every size, as the planes of tiny and huge triangles.
+            let d = (next() >> (1 + next() % 63)).max(1);
+            let n = (next() as i64) >> (2 + next() % 62);
+            let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
+            for n in numerators.iter().copied().chain([n]) {
+                let expected = n.div_euclid(d as i64);
+                assert_eq!(r.floor(n), expected, "{n} / {d}");
+            }
+        }
+        for d in edge {
+            let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
+            for n in numerators {
+                let expected = n.div_euclid(d as i64);
+                assert_eq!(r.floor(n), expected, "{n} / {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn reciprocal_never_overflows_outside_its_range() {
+        for d in [1u64, 3, 1 << 40, u64::MAX] {
+            let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
+            for n in [i64::MIN, i64::MAX, i64::MIN + 1, 1 << 62, -(1 << 62)] {
+                // Within one of the quotient (of the divisor clamped to i64::MAX).
+                let d = d.min(i64::MAX as u64) as i64;
+                assert!((r.floor(n) - n.div_euclid(d)).abs() <= 1, "{n} / {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn narrow_division_matches_u64() {
+        let nz = |d| core::num::NonZeroU64::new(d).unwrap();
+        for (n, d) in [
+            (0, 1),
+            (7, 2),
+            (u32::MAX as u64, 1),
+            (1 << 32, 3),
+            (5, 1 << 32),
+            (u64::MAX, 7),
+        ] {
+            assert_eq!(divrem_narrow(n, nz(d)), (n / d, n % d), "{n} / {d}");
+        }
     }
 }

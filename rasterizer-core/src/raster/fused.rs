@@ -23,6 +23,8 @@ use crate::geom::{PixelRect, SubPoint};
 use crate::geom::{Varyings, MAX_VARYINGS};
 use crate::raster::triangle::setup::{misses_every_centre, walk_spans_once, Sorted, SpanSink};
 use crate::surface::{DepthSpan, Surface};
+use crate::wide::Reciprocal;
+use core::num::NonZeroU64;
 
 /// One plane: the value at pixel `(px, py)` is `k + gx px + gy py`, wrapping.
 #[derive(Debug, Clone, Copy, Default)]
@@ -51,6 +53,8 @@ struct Shape {
     e2: (i64, i64),
     /// The doubled area's magnitude: the divisor of every gradient, never zero.
     cross: i64,
+    /// Its reciprocal, for the narrow set-up's quotients (unused otherwise).
+    recip: Reciprocal,
     /// The anchor pixel.
     anchor: (i64, i64),
     /// Its centre minus `v0`, in half sub-pixel units (a centre is half a unit off the grid
@@ -61,15 +65,9 @@ struct Shape {
     narrow: bool,
 }
 
-/// `round(n / d)` for `d > 0`, halves up.
-#[inline(always)]
-fn round_div(n: i64, d: i64) -> i64 {
-    (n + (d >> 1)).div_euclid(d)
-}
-
 /// `round(n / d)` for `d > 0`, halves up, in `i128`.
 fn round_div_wide(n: i128, d: i128) -> i128 {
-    (n + (d >> 1)).div_euclid(d)
+    crate::wide::div_floor_i128(n + (d >> 1), d)
 }
 
 impl Shape {
@@ -81,26 +79,26 @@ impl Shape {
         // The value changes by a / cross per sub-pixel step in x and b / cross in y.
         let a = d1 * self.e2.1 - d2 * self.e1.1;
         let b = d2 * self.e1.0 - d1 * self.e2.0;
-        // Below this, a << (BITS + frac) stays below 2^60.
-        let limit = 1i64 << (60 - BITS - frac);
-        // Gradients below this times the doubled offsets (at most one pixel) stay below 2^61.
-        let steep = 1i64 << (61 - BITS);
-        let gradients = (self.narrow && a.abs() < limit && b.abs() < limit)
-            .then(|| {
-                (
-                    round_div(a << (BITS + frac), self.cross),
-                    round_div(b << (BITS + frac), self.cross),
-                )
-            })
-            .filter(|(gx, gy)| gx.abs() < steep && gy.abs() < steep);
-        let (fa, gx, gy) = match gradients {
-            Some((gx, gy)) => {
-                // The anchor's centre lies within half a pixel of v0: its value from the rounded
-                // gradients is within one unit of the last bit, with no division.
-                let n = gx * self.offset2.0 + gy * self.offset2.1;
-                ((f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1)), gx, gy)
+        // Below 2^(60 - BITS - frac), a << (BITS + frac) stays below 2^60 (both tested at once:
+        // the bound is a power of two).
+        let wide_ab = (a.unsigned_abs() | b.unsigned_abs()) >> (60 - BITS - frac);
+        let (fa, gx, gy) = 'narrow: {
+            if self.narrow && wide_ab == 0 {
+                // round(a 2^(BITS + frac) / cross), halves up, with the one reciprocal (the
+                // numerators stay below 2^61, its exact range).
+                let half = self.cross >> 1;
+                let gx = self.recip.floor((a << (BITS + frac)) + half);
+                let gy = self.recip.floor((b << (BITS + frac)) + half);
+                // Gradients below 2^(61 - BITS) times the doubled offsets (at most one pixel)
+                // stay below 2^61.
+                if (gx.unsigned_abs() | gy.unsigned_abs()) >> (61 - BITS) == 0 {
+                    // The anchor's centre lies within half a pixel of v0: its value from the
+                    // rounded gradients is within one unit of the last bit, with no division.
+                    let n = gx * self.offset2.0 + gy * self.offset2.1;
+                    break 'narrow ((f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1)), gx, gy);
+                }
             }
-            None => self.plane_wide::<BITS>(f[0], a, b, frac),
+            self.plane_wide::<BITS>(f[0], a, b, frac)
         };
         let (ax, ay) = (self.anchor.0 as u32, self.anchor.1 as u32);
         let (gx, gy) = (gx as u32, gy as u32);
@@ -377,13 +375,18 @@ where
         own.1.max(area.y0).min(area.y1 - 1),
     );
     let small = |e: i64| e.abs() < 1 << 28;
+    let narrow = anchor == own && small(e1.0) && small(e1.1) && small(e2.0) && small(e2.1);
+    let cross = t.cross.abs();
+    // `cross` is never zero (`Sorted` drops flat triangles); the wide set-up needs no reciprocal.
+    let divisor = NonZeroU64::new(cross.unsigned_abs()).filter(|_| narrow);
     let shape = Shape {
         e1,
         e2,
-        cross: t.cross.abs(),
+        cross,
+        recip: divisor.map_or(Reciprocal::ONE, Reciprocal::new),
         anchor,
         offset2: (2 * (anchor.0 * s - v0.0) + s, 2 * (anchor.1 * s - v0.1) + s),
-        narrow: anchor == own && small(e1.0) && small(e1.1) && small(e2.0) && small(e2.1),
+        narrow,
     };
     let [o0, o1, o2] = t.order;
     let n = V::LEN.min(MAX_VARYINGS);
