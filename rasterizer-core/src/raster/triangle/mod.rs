@@ -179,7 +179,7 @@ where
         // at most 255), so saturating it is harmless.
         let per_pixel = match g.a[i].checked_mul(s << (FRAC + 1)) {
             Some(n) if n.unsigned_abs() < 1 << 62 => {
-                i128::from((n + den as i64).div_euclid(2 * den as i64))
+                i128::from(crate::wide::div_floor_i64(n + den as i64, 2 * den as i64))
             }
             _ => round_div(i128::from(g.a[i]) * i128::from(s << (FRAC + 1)), den),
         };
@@ -207,7 +207,7 @@ where
 /// `round(n / (2 den))`, halves up, for `den > 0`.
 #[inline]
 fn round_div(n: i128, den: u64) -> i128 {
-    (n + i128::from(den)).div_euclid(2 * i128::from(den))
+    crate::wide::div_floor_i128(n + i128::from(den), 2 * i128::from(den))
 }
 
 /// Gouraud spans: the colour plane evaluated exactly at each span's first pixel, then stepped.
@@ -256,7 +256,7 @@ where
             } else {
                 let f = self.base[i] + self.a[i] * dx2 + self.b[i] * dy2;
                 let n = ((f.max(0) as u64) << FRAC) + self.den;
-                (n / self.den2) as i32
+                crate::wide::div_u64(n, self.den2) as i32
             };
             acc[i] = v + (1 << (FRAC - 1));
         }
