@@ -987,7 +987,7 @@ fn targets(f: &Figures) -> String {
             false,
         ),
         (
-            "64-bit divisions in an M1 frame (those routed through `wide`: not yet the set-up's edge walks and planes)",
+            "64-bit divisions in an M1 frame (all of the vertex, set-up, span and pixel work; not `Fx`'s square root and quotient, used off the lighting plan and when clipping)",
             f.get("M1", "ours", "div64"),
             target::M1_DIV64,
             false,

@@ -2,9 +2,12 @@
 //!
 //! A 32-bit microcontroller has no instruction for them: each is a library call
 //! (`__aeabi_ldivmod` and kin on a Cortex-M, tens of cycles), although an x86 instruction count
-//! shows one instruction. Every such division of the crate goes through these functions, so
-//! that the `count-wide` feature (for the project's counting programs only) can keep them out of
-//! line and a profiler counts their calls. Without the feature they inline as before.
+//! shows one instruction. Every such division of the vertex, set-up, span and pixel work goes
+//! through these functions, so that the `count-wide` feature (for the project's counting programs
+//! only) can keep them out of line and a profiler counts their calls; without the feature they
+//! inline as before. (`Fx`'s `const` quotient and square root, used per draw, when clipping and
+//! off the lighting plan, cannot call them and are not counted.) [`Reciprocal`] turns many
+//! divisions by one divisor into one.
 
 /// `n / d`, unsigned, rounded down; `d` is never zero (the callers make sure).
 #[cfg_attr(feature = "count-wide", inline(never))]
