@@ -125,8 +125,10 @@ pub(crate) fn walk_spans_once<K: SpanSink>(
         EdgeWalk::new(v1, v2, s, mid)
     };
     let short_is_left = t.cross < 0;
+    // The row where the short edge changes, if the triangle has rows above it: one test a row.
+    let switch = if mid > top { mid } else { i64::MIN };
     for row in top..bottom {
-        if row == mid && mid > top {
+        if row == switch {
             short = EdgeWalk::new(v1, v2, s, mid);
         }
         let (l, r) = if short_is_left {
