@@ -216,14 +216,23 @@ impl<S: Scalar, C: ShadeColor, const N: usize> TexturedLit<'_, S, C, N> {
     }
 }
 
+/// The largest `lit scale` [`light_value`] takes: its value then stays below `2^31`.
+const LIT_MAX: u32 = (i32::MAX as u32 - LIGHT_MARGIN) >> (LIGHT_BITS - SCALE_BITS);
+
 /// A light value from `lit scale` (at most the scale, below `2^16`): in [`LIGHT_BITS`], with
 /// the margin. The slots keep only `lit scale` ([`Stored`]), so every vertex's light is rounded
 /// to it here (within `2^-13` of full light).
 #[inline(always)]
 fn light_value(lit_scale: u32) -> i32 {
-    // Clamped so that the value stays below 2^31 whatever the input.
-    const MAX: u32 = (i32::MAX as u32 - LIGHT_MARGIN) >> (LIGHT_BITS - SCALE_BITS);
-    ((lit_scale.min(MAX) << (LIGHT_BITS - SCALE_BITS)) + LIGHT_MARGIN) as i32
+    unpacked_light(lit_scale.min(LIT_MAX))
+}
+
+/// [`light_value`] for a `lit scale` already at most [`LIT_MAX`] (a slot's, clamped when it
+/// was packed): no clamp per read.
+#[inline(always)]
+fn unpacked_light(lit_scale: u32) -> i32 {
+    // Below 2^16 2^15 + 2^16 < 2^32: no u32 overflow for any 16-bit input.
+    ((lit_scale << (LIGHT_BITS - SCALE_BITS)) + LIGHT_MARGIN) as i32
 }
 
 /// A vertex's values in five words, so that a vertex slot takes 32 bytes (a shift to index)
@@ -232,17 +241,19 @@ fn light_value(lit_scale: u32) -> i32 {
 impl Stored<Values> for [i32; 5] {
     #[inline(always)]
     fn pack(v: &Values) -> Self {
-        let l =
-            |c: usize| (v[c].wrapping_sub(LIGHT_MARGIN as i32) as u32) >> (LIGHT_BITS - SCALE_BITS);
+        let l = |c: usize| {
+            ((v[c].wrapping_sub(LIGHT_MARGIN as i32) as u32) >> (LIGHT_BITS - SCALE_BITS))
+                .min(LIT_MAX)
+        };
         [(l(0) | (l(1) << 16)) as i32, l(2) as i32, v[3], v[4], v[5]]
     }
     #[inline(always)]
     fn unpack(&self) -> Values {
         let rg = self[0] as u32;
         [
-            light_value(rg & 0xffff),
-            light_value(rg >> 16),
-            light_value(self[1] as u32),
+            unpacked_light(rg & 0xffff),
+            unpacked_light(rg >> 16),
+            unpacked_light((self[1] as u32) & 0xffff),
             self[2],
             self[3],
             self[4],
