@@ -500,8 +500,9 @@ fn measure_textured() -> (ColorErrors, f64) {
 #[test]
 fn textured_nearest_matches_f64() {
     let (e, share) = measure_textured();
-    // Measured: 5,788 pixels, max 2.524, mean 0.3905; 22.9 % of them within TEXEL_SLACK of a
-    // texel edge (with a slack of 1/64 texel the max is 12.2, with 1/4 it stays 2.524).
+    // Measured: 5,788 pixels, max 2.524, mean 0.3419 (0.3905 while the light was cut to whole
+    // 8-bit steps per pixel); 22.9 % of them within TEXEL_SLACK of a texel edge (with a slack of
+    // 1/64 texel the max was 12.2, with 1/4 it stays 2.524).
     eprintln!("M4: {:.2} % of the pixels near a texel edge", share * 100.0);
-    check("M4 textured nearest", &e, 5.0, 0.75);
+    check("M4 textured nearest", &e, 5.0, 0.7);
 }

@@ -227,6 +227,9 @@ mod tests {
     fn m4_texels_are_close_to_exact() {
         let rows = measure().unwrap();
         eprintln!("{rows:#?}");
+        // Measured (a pixel's reciprocal of 1 / w keeps 16 bits): max 0 at 256 and 1024 texels,
+        // 7.3e-4 at 4096, 0.0307 at 65536 (2 and 38 pixels of 5,819 on another texel); with
+        // an exact 64-bit division per pixel all were 0.
         for r in &rows {
             assert!(r.pixels > 5000, "{r:?}");
             assert!(r.max < 0.05, "{r:?}");

@@ -33,7 +33,7 @@ pub(crate) const X_MIN: i32 = i32::MIN + 2;
 /// One mesh vertex's work for the frame: its screen position and depth, and its packed shader
 /// values. `St` is the shading model's [`crate::shade::Shading::Stored`]: `[u16; 3]`
 /// (16 bytes a slot) for Gouraud and vertex colours, `[i32; 0]` (12 bytes) for unlit and flat
-/// shading, `[i32; 6]` (36 bytes) for Phong.
+/// shading, `[i32; 5]` (32 bytes) for textures, `[i32; 6]` (36 bytes) for Phong.
 ///
 /// Make the scratch with [`VertexSlot::EMPTY`] (`[VertexSlot::EMPTY; 507]`); a draw call fills
 /// the slots it uses when it starts, so their contents before it do not matter.
@@ -549,7 +549,9 @@ fn shade_vertex_w<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
 ) -> Sh::Stored {
     use crate::shade::Stored;
     let mut values = shading.vertex(&space.vertex_in_with::<Sh, M>(mesh, i, normal));
-    let w = mvp.transform_point(mesh.position(i)).w;
+    // Only the w row of `Mat4::transform_point` (the same sum, rounded the same way): the other
+    // three rows cost three times as much and the projection has them already.
+    let w = S::dot4(mvp.m[3], mesh.position(i).to_point4().to_array());
     shading.project(&mut values, w);
     Sh::Stored::pack(&values)
 }

@@ -1,32 +1,58 @@
 //! A textured, Gouraud-lit shader: the texel under each pixel times the light of its vertices.
 //!
 //! Per vertex the light is computed as [`super::GouraudLit`] does (the material's colours apply,
-//! so a white diffuse colour gives the texture's own colours in full light) and kept with 23
-//! fractional bits per 8-bit channel; texture coordinates are kept as the mesh gives them, and
-//! `1 / w` is taken from the vertex's clip-space `w`.
+//! so a white diffuse colour gives the texture's own colours in full light), through the same
+//! directional-light plan when it applies, and kept already scaled to the target's channel over
+//! the texel's (`LIGHT_BITS`), so that a pixel's channel is one product and a shift; texture
+//! coordinates are kept as the mesh gives them, and `1 / w` is taken from the vertex's clip-space
+//! `w`.
 //!
 //! Perspective-correct coordinates, in integers: per triangle, the three `1 / w` are scaled
 //! together to 31 bits (their ratios are all that matter) and the coordinates are made relative
 //! to the whole texel before the triangle's smallest (a margin against wrapping), scaled to the
 //! triangle's extent, and multiplied by them; the span loop interpolates `u / w`, `v / w` and
-//! `1 / w` as 32-bit planes and each pixel divides, so the coordinates are exact up to the
-//! planes' rounding, about 2^-30 of the triangle's extent in texels (`docs/ACCURACY.md` measures
-//! it). The values use all 32 bits, so the span loop gives them no fractional bits of its own
-//! (`FUSED_FRAC` 0). A pipeline that interpolates every value perspective-correctly
-//! ([`crate::numerics::Perspective`]) gets affine values here and corrects them itself.
+//! `1 / w` as 32-bit planes. Each pixel takes one 32-bit reciprocal of its `1 / w` (cut to 16
+//! significant bits) and multiplies both coordinates by it: no 64-bit division, which a 32-bit
+//! core pays a library call for. The coordinates are then exact to about `2^-14` of the
+//! triangle's extent in texels (`docs/ACCURACY.md` measures it). The values use all 32 bits, so
+//! the span loop gives them no fractional bits of its own (`FUSED_FRAC` 0). A pipeline that
+//! interpolates every value perspective-correctly ([`crate::numerics::Perspective`]) gets affine
+//! values here and corrects them itself.
 
-use super::model::{Shading, VertexIn};
+use super::light::DirectionalPlan;
+use super::model::{Shading, Stored, VertexIn};
 use super::Lighting;
 use crate::color::ShadeColor;
 use crate::geom::MAX_VARYINGS;
 use crate::math::{Mat4, Scalar};
 use crate::texture::{Filter, Texture, Wrap};
-use crate::wide;
-use core::num::NonZeroU64;
 
-/// Values per vertex: light r g b (8.23, half a step added), u, v (16.16 texture units) and
-/// `1 / w`.
+/// Values per vertex: light r g b (see [`LIGHT_BITS`]), u, v (16.16 texture units) and `1 / w`.
 type Values = [i32; 6];
+
+/// Fractional bits of a light value: a channel's light is `lit max / texel_max 2^LIGHT_BITS`
+/// plus [`LIGHT_MARGIN`], with `lit` in `0 ..= 1` and `max / texel_max` at most `255 / 31`
+/// (below `2^3.05`), so below `2^31`. `lit max / texel_max` is the factor a texel channel
+/// (`0 ..= texel_max`) is multiplied by to give the target's channel.
+const LIGHT_BITS: u32 = 27;
+
+/// Added to every light value: the planes' rounding may take a value up to
+/// `(|dx| + |dy|) / 2 + 1` units below the exact one (at most `2^15` over the largest viewport),
+/// and none may wrap below zero. It adds at most `63 2^16 / 2^27`, a thirtieth of a step, to a
+/// channel.
+const LIGHT_MARGIN: u32 = 1 << 16;
+
+/// Bits of `max / texel_max` kept in a plan's scale (which must stay below `2^16`).
+const SCALE_BITS: u32 = 12;
+
+/// Each channel's `max / texel_max 2^SCALE_BITS`, rounded down (so that full light never rounds
+/// a channel past its largest value): at most `255 2^12 / 31`, below `2^16`.
+fn light_scale<C: ShadeColor>() -> [u32; 3] {
+    [0, 1, 2].map(|c| (u32::from(C::MAX[c]) << SCALE_BITS) / TEXEL_MAX[c])
+}
+
+/// The largest value of each texel channel (Rgb565).
+const TEXEL_MAX: [u32; 3] = [31, 63, 31];
 
 /// The largest `1 / w` kept per vertex, as `2^Q_BITS / w`: with `w` at least the clipper's
 /// smallest (`2^-8`), it stays below `2^31`.
@@ -35,11 +61,11 @@ const Q_BITS: u32 = 22;
 /// What the pixels of the current triangle need to undo its scaling.
 #[derive(Debug, Clone, Copy, Default)]
 struct TriangleScale {
-    /// The whole texel before the triangle's smallest, in x and y (16.16 texel units shifted
-    /// right by 16).
-    base: [i32; 2],
-    /// `u / w` was scaled down by `2^shift` texel units (16.16): the pixel shifts back.
-    shift: [u32; 2],
+    /// The whole texel before the triangle's smallest, in x and y, as 16.16 texel units.
+    base: [i64; 2],
+    /// `u / w` was scaled down by `2^shift` texel units (16.16): `63 - shift` per axis, the
+    /// pixel's shift back once its reciprocal's exponent is taken off ([`scaled_quotient`]).
+    down: [u32; 2],
 }
 
 /// A textured mesh lit per vertex (Gouraud) with perspective-correct texture coordinates.
@@ -49,6 +75,8 @@ pub struct TexturedLit<'t, S, C, const N: usize> {
     pub lighting: Lighting<S, N>,
     /// This frame's lighting in model space, when the model matrix allows it.
     frame: Option<Lighting<S, N>>,
+    /// This frame's lighting as a directional plan in light values, when it applies.
+    plan: Option<DirectionalPlan<N>>,
     texture: Texture<'t>,
     filter: Filter,
     wrap: Wrap,
@@ -62,6 +90,7 @@ impl<'t, S: Scalar, C, const N: usize> TexturedLit<'t, S, C, N> {
         Self {
             lighting,
             frame: None,
+            plan: None,
             texture,
             filter: Filter::Nearest,
             wrap: Wrap::Repeat,
@@ -104,13 +133,11 @@ impl<S: Scalar, C: ShadeColor, const N: usize> TexturedLit<'_, S, C, N> {
     }
 
     /// The texel channels at texel coordinates `(u, v)` (16.16, relative to the texture), 5/6/5
-    /// with 8 fractional bits.
+    /// with [`TexturedLit::sample_frac`] fractional bits.
     #[inline(always)]
     fn sample(&self, u: i64, v: i64) -> [u32; 3] {
         match self.filter {
-            Filter::Nearest => self
-                .texel((u >> 16) as i32, (v >> 16) as i32)
-                .map(|c| c << 8),
+            Filter::Nearest => self.texel((u >> 16) as i32, (v >> 16) as i32),
             Filter::Bilinear => {
                 // Texel centres are at half texels: weights from the point half a texel back,
                 // in sixteenths.
@@ -138,31 +165,127 @@ impl<S: Scalar, C: ShadeColor, const N: usize> TexturedLit<'_, S, C, N> {
         }
     }
 
+    /// Fractional bits of [`TexturedLit::sample`]'s channels: none for the nearest texel, 8 for
+    /// the bilinear weights.
+    #[inline(always)]
+    fn sample_frac(&self) -> u32 {
+        match self.filter {
+            Filter::Nearest => 0,
+            Filter::Bilinear => 8,
+        }
+    }
+
     /// The pixel's colour from its texel coordinates relative to the triangle's base texel and
-    /// its light (8-bit channels).
+    /// its light values (see [`LIGHT_BITS`]).
     #[inline(always)]
     fn shade(&self, u_rel: i64, v_rel: i64, light: [u32; 3]) -> C {
         let [bu, bv] = self.current.base;
-        let u = u_rel + (i64::from(bu) << 16);
-        let v = v_rel + (i64::from(bv) << 16);
-        let t = self.sample(u, v);
-        // The texel channel (of 31 or 63, 8 fractional bits) times light / 255, at the target's
-        // depth, rounded once: at most 63 2^8 255 255 before the division, below 2^32.
-        const TEXEL_MAX: [u32; 3] = [31, 63, 31];
+        let t = self.sample(u_rel + bu, v_rel + bv);
+        // Texel channel (below 2^(6 + frac)) times light (below 2^31, cut to 2^(25 - frac)):
+        // below 2^31, and the half step for rounding keeps it below 2^32. The product has
+        // LIGHT_BITS - 6 fractional bits.
+        let cut = 6 + self.sample_frac();
+        const S: u32 = LIGHT_BITS - 6;
         let mut out = [0u8; 3];
         for c in 0..3 {
-            let d = TEXEL_MAX[c] * 256 * 255;
-            let n = t[c] * light[c] * u32::from(C::MAX[c]);
-            out[c] = ((n + d / 2) / d) as u8;
+            out[c] = ((t[c] * (light[c] >> cut) + (1 << (S - 1))) >> S) as u8;
         }
         C::from_shade(out)
     }
+
+    /// The light values of a vertex from its lit sums: the plan's when it applies, else from
+    /// [`Lighting::shade_sums`] (in `1 / (255² 2^16)` of full light, at most full).
+    #[inline(always)]
+    fn light(&self, v: &VertexIn<S>) -> [i32; 3] {
+        if let Some(plan) = &self.plan {
+            if let Some(s) = plan.sums(v.position, v.normal) {
+                // Sums in units of 2^-32 of the scale, rounded in the bias.
+                return s.map(|s| light_value((s >> 32) as u32));
+            }
+        }
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        let sums = lighting.shade_sums(v.position, v.normal);
+        let scale = light_scale::<C>();
+        [0, 1, 2].map(|c| {
+            // sums scale < 2^32 2^16: shifted by 16 first, a quotient of u32s by 255²
+            // (rounded), lit scale.
+            let n =
+                (sums[c].min((255 * 255) << 16) * u64::from(scale[c]) + ((255 * 255) << 15)) >> 16;
+            light_value((n as u32) / (255 * 255))
+        })
+    }
+}
+
+/// The largest `lit scale` [`light_value`] takes: its value then stays below `2^31`.
+const LIT_MAX: u32 = (i32::MAX as u32 - LIGHT_MARGIN) >> (LIGHT_BITS - SCALE_BITS);
+
+/// A light value from `lit scale` (at most the scale, below `2^16`): in [`LIGHT_BITS`], with
+/// the margin. The slots keep only `lit scale` ([`Stored`]), so every vertex's light is rounded
+/// to it here (within `2^-13` of full light).
+#[inline(always)]
+fn light_value(lit_scale: u32) -> i32 {
+    unpacked_light(lit_scale.min(LIT_MAX))
+}
+
+/// [`light_value`] for a `lit scale` already at most [`LIT_MAX`] (a slot's, clamped when it
+/// was packed): no clamp per read.
+#[inline(always)]
+fn unpacked_light(lit_scale: u32) -> i32 {
+    // Below 2^16 2^15 + 2^16 < 2^32: no u32 overflow for any 16-bit input.
+    ((lit_scale << (LIGHT_BITS - SCALE_BITS)) + LIGHT_MARGIN) as i32
+}
+
+/// A vertex's values in five words, so that a vertex slot takes 32 bytes (a shift to index)
+/// rather than 36: the lights' `lit scale` (below `2^16`, red and green in one word, green high:
+/// below `2^15`, so the word is never `i32::MIN`, the empty mark), then blue, u, v and `1 / w`.
+impl Stored<Values> for [i32; 5] {
+    #[inline(always)]
+    fn pack(v: &Values) -> Self {
+        let l = |c: usize| {
+            ((v[c].wrapping_sub(LIGHT_MARGIN as i32) as u32) >> (LIGHT_BITS - SCALE_BITS))
+                .min(LIT_MAX)
+        };
+        [(l(0) | (l(1) << 16)) as i32, l(2) as i32, v[3], v[4], v[5]]
+    }
+    #[inline(always)]
+    fn unpack(&self) -> Values {
+        let rg = self[0] as u32;
+        [
+            unpacked_light(rg & 0xffff),
+            unpacked_light(rg >> 16),
+            unpacked_light((self[1] as u32) & 0xffff),
+            self[2],
+            self[3],
+            self[4],
+        ]
+    }
+}
+
+/// `a 2^shift / q` for the pixel's interpolated `a` (`u / w` or `v / w`) and `q` (`1 / w`, at
+/// least 1), from one reciprocal of `q` ([`reciprocal`]) and `down = 63 - shift`.
+#[inline(always)]
+fn scaled_quotient(a: u32, (r, lz): (u32, u32), down: u32) -> i64 {
+    // a r < 2^64; 1 / q = r 2^(lz - 63), so a 2^shift / q = a r 2^(lz + shift - 63) and
+    // lz + shift <= 31 + 32.
+    ((u64::from(a) * u64::from(r)) >> (down - lz)) as i64
+}
+
+/// One reciprocal of `q >= 1` in 32-bit integers: `(r, lz)` with `1 / q ≈ r 2^(lz - 63)`: `q`
+/// cut to its 16 leading bits `d` and `r = (2^32 - 1) / d 2^15` (one division of `u32`s, `r`
+/// below `2^32`), within `2^-15` of the exact value (relative).
+#[inline(always)]
+fn reciprocal(q: u32) -> (u32, u32) {
+    let q = q.max(1);
+    let lz = q.leading_zeros();
+    // In 2^15 ..= 2^16 - 1: the quotient is at most 2^17.
+    let d = (q << lz) >> 16;
+    ((u32::MAX / d.max(1)) << 15, lz)
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S, C, N> {
     type Color = C;
     type Varyings = Values;
-    type Stored = Values;
+    type Stored = [i32; 5];
     const NEEDS_WORLD: bool = true;
     const NEEDS_UV: bool = true;
     const NEEDS_W: bool = true;
@@ -172,17 +295,16 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
 
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
+        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
+        // Sums of `scale 2^32` at full light, half a unit in the bias: shifted by 32 they are
+        // `lit scale` rounded.
+        self.plan = lighting.directional_plan(light_scale::<C>(), 32, [1 << 31; 3]);
         self.frame.is_some()
     }
 
     #[inline(always)]
     fn vertex(&mut self, v: &VertexIn<S>) -> Values {
-        let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
-        // sums / (255 2^16) 8-bit steps (at most 255, `shade_sums` clamps), in 8.23 with half a
-        // step added (the pixel truncates): below 2^31.
-        let light = lighting
-            .shade_sums(v.position, v.normal)
-            .map(|s| ((s * 128 + 127) / 255) as i32 + (1 << 22));
+        let light = self.light(v);
         // Affine until `project` sets 1 / w: every vertex the same.
         [light[0], light[1], light[2], v.uv[0], v.uv[1], 1 << 16]
     }
@@ -220,8 +342,8 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
                 v[k][axis] = ((rel[k] * q[k]) >> shift) as i32;
             }
             let a = axis - 3;
-            self.current.base[a] = base as i32;
-            self.current.shift[a] = shift;
+            self.current.base[a] = base << 16;
+            self.current.down[a] = 63 - shift;
         }
         for k in 0..3 {
             v[k][5] = q[k] as i32;
@@ -230,19 +352,20 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
 
     #[inline(always)]
     fn pixel(&self, v: &Values) -> C {
-        let q = v[5].max(1) as i64;
-        let tu = wide::div_floor_i64(i64::from(v[3].max(0)) << self.current.shift[0], q);
-        let tv = wide::div_floor_i64(i64::from(v[4].max(0)) << self.current.shift[1], q);
-        let light = [0, 1, 2].map(|c| (v[c].max(0) as u32) >> 23);
-        self.shade(tu, tv, light)
+        let r = reciprocal(v[5].max(1) as u32);
+        let [du, dv] = self.current.down;
+        let u = scaled_quotient(v[3].max(0) as u32, r, du);
+        let v_ = scaled_quotient(v[4].max(0) as u32, r, dv);
+        let light = [0, 1, 2].map(|c| v[c].max(0) as u32);
+        self.shade(u, v_, light)
     }
 
     #[inline(always)]
     fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
-        let q = NonZeroU64::new(u64::from(acc[5])).unwrap_or(NonZeroU64::MIN);
-        let [su, sv] = self.current.shift;
-        let u = wide::div_u64(u64::from(acc[3]) << su, q) as i64;
-        let v = wide::div_u64(u64::from(acc[4]) << sv, q) as i64;
-        self.shade(u, v, [acc[0] >> 23, acc[1] >> 23, acc[2] >> 23])
+        let r = reciprocal(acc[5]);
+        let [du, dv] = self.current.down;
+        let u = scaled_quotient(acc[3], r, du);
+        let v = scaled_quotient(acc[4], r, dv);
+        self.shade(u, v, [acc[0], acc[1], acc[2]])
     }
 }
