@@ -33,22 +33,43 @@ build_example_with() {
     BIN="$dir/release/examples/$2"
 }
 
-# callgrind_calls FILE REGEX: the calls callgrind's output FILE records to the functions whose
-# (demangled) names match REGEX, summed over every caller. Names are compressed in the file: the
-# first mention of a function gives `(id) name`, later ones only `(id)`.
-callgrind_calls() {
-    awk -v re="$2" '
-        function id_of(s,   m) { if (match(s, /^\([0-9]+\)/)) return substr(s, 2, RLENGTH - 2); return "" }
-        /^c?fn=/ {
-            v = substr($0, index($0, "=") + 1)
-            id = id_of(v)
-            if (id != "" && length(v) > RLENGTH) names[id] = substr(v, RLENGTH + 2)
-            if ($0 ~ /^cfn=/) { callee = (id != "" ? names[id] : v) } 
+# callgrind_entries FILE BINARY REGEX: how often the functions of BINARY whose (demangled) names
+# match REGEX were entered in callgrind's output FILE, which must be written with
+# --dump-instr=yes: the execution count of each one's first instruction, summed. (A `calls=` line
+# is no count of this: callgrind records a call through the GOT, as a generic function
+# instantiated in another crate makes it, twice.)
+callgrind_entries() {
+    nm -C "$2" | awk -v re="$3" '$2 ~ /^[tT]$/ {
+            name = $0
+            sub(/^[0-9a-f]+ [tT] /, "", name)
+            if (name ~ re) print $1
+        }' | sort -u | awk '
+        function hex(s,   v, i, c) {
+            v = 0
+            s = tolower(s)
+            sub(/^0x/, "", s)
+            for (i = 1; i <= length(s); i++) {
+                c = index("0123456789abcdef", substr(s, i, 1)) - 1
+                v = v * 16 + c
+            }
+            return v
+        }
+        FNR == NR { want[hex($1)] = 1; next }
+        # Position lines: an address (0x.. absolute, +N/-N relative, * the same), a line
+        # number, then the cost. The line after calls= is the call cost: its address counts,
+        # its cost does not.
+        /^calls=/ { call = 1; next }
+        /^[0-9+*-]/ {
+            a = $1
+            if (a ~ /^0x/) addr = hex(a)
+            else if (a ~ /^\+/) addr += substr(a, 2) + 0
+            else if (a ~ /^-/) addr -= substr(a, 2) + 0
+            if (call) { call = 0; next }
+            if (addr in want) total += $NF
             next
         }
-        /^calls=/ { split(substr($0, 7), f, " "); if (callee ~ re) total += f[1]; next }
         END { printf "%d\n", total }
-    ' "$1"
+    ' - "$1"
 }
 
 # callgrind_count BASE PATTERN COMMAND...: runs COMMAND under callgrind, collecting only inside the
