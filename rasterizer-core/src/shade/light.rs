@@ -928,10 +928,11 @@ fn inv_len(x: u64) -> i64 {
     }
 }
 
-/// `2^15 / sqrt((i + 1/2) / 256)` for `64 <= i < 512` (entry `i`, the first 64 never read):
+/// `2^15 / sqrt((i + 1/2) / 256)` for `64 <= i < 512` (entry `i`, the first 64 never read; a
+/// `static`, as a debug build copies a `const` array onto the stack at every use):
 /// [`inv_len`]'s first estimate, `2^30 / |v|` in units of `2^15` at the middle of each
 /// interval of `2^52` of `|v|²` in 4.60 from 1/4 to 2.
-const INV_LEN_TABLE: [u16; 512] = {
+static INV_LEN_TABLE: [u16; 512] = {
     let mut out = [0u16; 512];
     let mut i = 64;
     while i < 512 {
