@@ -255,8 +255,9 @@ pub(crate) fn rsqrt_fast(x: u64) -> (u64, u32) {
 }
 
 /// `2^15 / sqrt((t + 1/2) / 512)` for `128 <= t < 512` (entry `t - 128`), rounded: the
-/// reciprocal root at the middle of each interval of [`rsqrt_fast`]'s top nine bits.
-const RSQRT9_TABLE: [u16; 384] = {
+/// reciprocal root at the middle of each interval of [`rsqrt_fast`]'s top nine bits. A
+/// `static`: a debug build copies a `const` array onto the stack at every inlined use.
+static RSQRT9_TABLE: [u16; 384] = {
     let mut out = [0u16; 384];
     let mut t = 128;
     while t < 512 {
