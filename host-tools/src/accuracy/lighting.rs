@@ -251,12 +251,11 @@ pub fn section(s: &mut String) {
          normals, else a reciprocal square root from a 384-entry table and one Newton step, \
          within 2^-17), `N·H = (N·L + N·V) / |L + V|`, and the colour products scaled to the \
          target's channels, so that a channel is a multiply-add and a shift (no 64-bit \
-         division). `PhongLit` then interpolates the unit normal (in 2.30) and, with one light, the \
-         vertices' unit half vectors `normalize(L + V)` (an approximation: exact at the \
-         vertices, off by the square of the angle a triangle spans from the eye), renormalising \
-         both per pixel from a 512-entry table and one Newton step, and takes the power from a \
-         129-entry table made per draw; with more lights it interpolates the position and \
-         normalises the view vector and each `L + V` per pixel. Random scenes (xorshift32): 1 to 3 coloured lights, \
+         division). `PhongLit` then interpolates the unit normal (in 2.30) and the position, \
+         renormalises the normal per pixel from a 512-entry table and one Newton step, \
+         normalises the view vector and each `L + V` with the reciprocal square root, and takes \
+         the power from a 129-entry table made per draw. Random scenes (xorshift32): 1 to 3 \
+         coloured lights, \
          shininess 0 to 64, points in the unit ball, the eye 1.5 to 8 away; errors of the worst \
          channel against the `f64` formula in 8-bit steps, {CASES} cases a row. Gouraud: the \
          vertex's channels (8 fractional bits), unrounded. Phong: an Rgb888 pixel (its rounding \

@@ -77,8 +77,8 @@
 //! once, so a channel is a multiply-add and a shift. Measured per vertex against an f64
 //! reference, it stays within 0.03 of an 8-bit step (this module's path: 0.017); see
 //! `tests/tests/lighting_plan.rs` and `docs/ACCURACY.md`, also for Phong's pixels, which take
-//! the power from a table made per draw (`PowerTable`) and, with one light, interpolate the
-//! vertices' half vectors instead of normalising a view vector per pixel.
+//! the power from a table made per draw (`PowerTable`) and renormalise their nearly unit
+//! normal from a small table and one Newton step.
 
 use crate::math::fx::{isqrt_u64, rsqrt_fast, rsqrt_u64};
 use crate::math::{Mat4, Scalar, Vec3};
@@ -726,18 +726,12 @@ impl<const N: usize> DirectionalPlan<N> {
 }
 
 impl<const N: usize> DirectionalPlan<N> {
-    /// A Phong pixel of this plan interpolates the half vector `H = normalize(L + V)` of its
-    /// vertices instead of the view vector: one light with a highlight.
-    #[inline(always)]
-    fn phong_half(&self) -> bool {
-        self.specular && self.lights.len() == 1
-    }
-
     /// What a Phong pixel interpolates under the plan: the unit normal in signed 2.30 (zero
-    /// for a zero normal), then with one light and a highlight the unit half vector
-    /// `normalize(L + V)` in 2.30 (zero where the eye is at the vertex or opposite the light),
-    /// else the view vector `eye - position` unnormalised, in the format's raw integers
-    /// (interpolating it is interpolating the position).
+    /// for a zero normal), then the view vector `eye - position` unnormalised, in the format's
+    /// raw integers (interpolating it is interpolating the position). The view vector, not the
+    /// vertices' half vectors: those would be cheaper per pixel, but their interpolation is off
+    /// by the square of the angle a triangle spans from the eye (up to 20 steps in a large
+    /// face's highlight, measured).
     pub(crate) fn phong_vertex<S: Scalar>(&self, position: Vec3<S>, normal: Vec3<S>) -> [i32; 6] {
         let n = raw3(normal).and_then(unit30).unwrap_or_default();
         let p = raw3(position).unwrap_or_default();
@@ -747,27 +741,17 @@ impl<const N: usize> DirectionalPlan<N> {
         let unit = |c: i64| c.clamp(-(1 << 30), 1 << 30) as i32;
         let e = &self.eye;
         let w = [e[0] - p[0], e[1] - p[1], e[2] - p[2]];
-        let second = match self.lights.first() {
-            Some(light) if self.phong_half() => {
-                let h = unit30(w).map(|v| [0, 1, 2].map(|i| light.l[i] + v[i]));
-                h.and_then(unit30).unwrap_or_default().map(unit)
-            }
-            _ => w.map(|c| c.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32),
-        };
+        let second = w.map(|c| c.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32);
         let n = n.map(unit);
         [n[0], n[1], n[2], second[0], second[1], second[2]]
     }
 
     /// The lit sums of a Phong pixel from its interpolated [`DirectionalPlan::phong_vertex`]
-    /// values, the power from `power` (made for the plan's shininess). With one light the
-    /// normal and the half vector are normalised again ([`inv_len`]: two Newton steps for
-    /// nearly unit vectors); otherwise the view vector is normalised ([`rsqrt_fast`]) and
-    /// `N·H = N·h / |h|` for each light with `h = L + V`.
+    /// values, the power from `power` (made for the plan's shininess): the normal's length from
+    /// [`inv_len`], the view vector normalised ([`rsqrt_fast`]) and `N·H = N·h / |h|` for each
+    /// light with `h = L + V`.
     #[inline(always)]
     pub(crate) fn phong_pixel(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
-        if self.phong_half() {
-            return self.phong_pixel_half(v, power);
-        }
         let mut sum = self.ambient;
         let n = [v[0], v[1], v[2]].map(i64::from);
         // Values interpolated from `phong_vertex`'s (normal components within 2^30, any i32
@@ -838,51 +822,6 @@ impl<const N: usize> DirectionalPlan<N> {
             sum[1].min(self.full[1]),
             sum[2].min(self.full[2]),
         ]
-    }
-
-    /// [`DirectionalPlan::phong_pixel`] with one light: `N·L = n·L / |n|` and
-    /// `N·H = n·h / (|n| |h|)` from the interpolated normal `n` and half vector `h`.
-    #[inline(always)]
-    fn phong_pixel_half(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
-        let sum = self.ambient;
-        let Some(light) = self.lights.first() else {
-            return sum;
-        };
-        let n = [v[0], v[1], v[2]].map(i64::from);
-        let h = [v[3], v[4], v[5]].map(i64::from);
-        // Interpolated unit vectors keep their components within 2^30 and every product and
-        // sum below in range; the wrapping operations only keep values from elsewhere from
-        // panicking (they give a wrong colour instead).
-        let sq = |c: i64| c.wrapping_mul(c) as u64;
-        let nn = sq(n[0]).wrapping_add(sq(n[1])).wrapping_add(sq(n[2]));
-        let dot = |x: [i64; 3]| {
-            (n[0].wrapping_mul(x[0]))
-                .wrapping_add(n[1].wrapping_mul(x[1]))
-                .wrapping_add(n[2].wrapping_mul(x[2]))
-                >> 30
-        };
-        // |n| N·L in 2.30.
-        let nl = dot(light.l);
-        if nn == 0 || nl <= 0 {
-            return sum;
-        }
-        let rn = inv_len(nn);
-        // N·L in 2.30: |n| N·L below 2^31 times rn (2^30 / |n|) below 2^62.
-        let nl = nl.wrapping_mul(rn) >> 30;
-        let diffuse = (nl.wrapping_add(1 << 13) >> 14).min(i64::from(ONE16)) as u64;
-        let hh = sq(h[0]).wrapping_add(sq(h[1])).wrapping_add(sq(h[2]));
-        let nh = dot(h);
-        let specular = if hh == 0 || nh <= 0 {
-            0
-        } else {
-            // N·H = n·h rn rh in 2.30, each factor's product below 2^62 as above.
-            let nh = (nh.wrapping_mul(rn) >> 30).wrapping_mul(inv_len(hh)) >> 30;
-            u64::from(power.power(nh.min(i64::from(ONE30)) as u32))
-        };
-        // Written out: `map` with a closure is not always inlined here.
-        let ch =
-            |c: usize| (sum[c] + light.kd[c] * diffuse + light.ks[c] * specular).min(self.full[c]);
-        [ch(0), ch(1), ch(2)]
     }
 
     /// The shininess a [`PowerTable`] for this plan's pixels is made for (0: none is used).

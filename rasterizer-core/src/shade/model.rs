@@ -467,14 +467,10 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
 /// pixel (Phong shading).
 ///
 /// For a fixed-point format whose lights are all directional (Blinn-Phong or no highlight), a
-/// draw interpolates the unit normal in 2.30 instead, and takes the specular power from a table
-/// made per draw. With one light and a highlight it interpolates the vertices' unit half
-/// vectors `normalize(L + V)` in place of the position, so that a pixel renormalises two
-/// nearly unit vectors (a table and one Newton step each) and normalises no view vector: about
-/// 125 instructions a lit pixel instead of 300, at the price of an error that grows with the
-/// square of the angle a triangle spans from the eye (none at the vertices). With more lights
-/// each pixel normalises the view vector and each `L + V`. No division either way (the errors
-/// against `f64` are in `docs/ACCURACY.md` and `tests/tests/lighting_plan.rs`).
+/// draw interpolates the unit normal in 2.30 instead, and lights each pixel with the normal's
+/// length from a small table and one Newton step, two reciprocal square roots (view vector,
+/// `L + V`) and the specular power from a table made per draw, with no division (its error
+/// against `f64` is in `docs/ACCURACY.md` and `tests/tests/lighting_plan.rs`).
 #[derive(Debug, Clone)]
 pub struct PhongLit<S, C, const N: usize> {
     /// The lights, material and eye.
