@@ -378,13 +378,8 @@ for job in "${DIV64_JOBS[@]}"; do
     fi
     echo "counting $scene div64..." >&2
     base="$OUT/div64-$scene"
-    rm -f "$base.out"
     # shellcheck disable=SC2086 # the arguments are words
-    if ! valgrind --tool=callgrind --dump-instr=yes --toggle-collect="*frame_${frame}*" \
-        --callgrind-out-file="$base.out" "${WIDE_BIN[$program]}" $args >"$base.stdout" 2>"$base.log"; then
-        echo "valgrind failed for: ${WIDE_BIN[$program]} $args (see $base.log)" >&2
-        exit 1
-    fi
+    DUMP_INSTR=1 callgrind_count "$base" "*frame_${frame}*" "${WIDE_BIN[$program]}" $args >/dev/null
     calls="$(callgrind_entries "$base.out" "${WIDE_BIN[$program]}" "$WIDE_DIV")"
     # Zero is the goal, so it is a valid figure; the routing itself is checked by the count
     # of a scene that still divides (M4's textured pixels) coming out non-zero.

@@ -82,7 +82,10 @@ callgrind_count() {
     local base="$1" pattern="$2"
     shift 2
     rm -f "$base.out"
-    if ! valgrind --tool=callgrind --toggle-collect="$pattern" --callgrind-out-file="$base.out" \
+    # DUMP_INSTR=1 keeps per-instruction counts (what callgrind_entries reads).
+    local extra=()
+    if [ "${DUMP_INSTR:-0}" = "1" ]; then extra+=(--dump-instr=yes); fi
+    if ! valgrind --tool=callgrind "${extra[@]}" --toggle-collect="$pattern" --callgrind-out-file="$base.out" \
         "$@" >"$base.stdout" 2>"$base.log"; then
         echo "valgrind failed for: $* (see $base.log)" >&2
         return 1
