@@ -187,6 +187,13 @@ const RECIPROCAL_TABLE: [u32; 64] = {
     t
 };
 
+/// `2^32 / (m >> 16)`, within `2^-15` (relative) of `2^48 / m`, for `m` with its top bit set:
+/// one division of `u32`s (bit 15 of the divisor is set, so it is never zero).
+#[inline(always)]
+pub(crate) fn reciprocal_seed(m: u32) -> u32 {
+    u32::MAX / (m >> 16 | 1 << 15)
+}
+
 /// The reciprocal `r` and shift `sh` with `r <= 2^(32 + sh) / d < r (1 + 2^-27)` for `d` in
 /// `[2, 2^30)`: `r <= 2^31`, `sh` in `0..=28`. No 64-bit division: the seed of
 /// [`Divide::Exact`] and [`Divide::Reciprocal`] is one 32-bit division (a single instruction on a
@@ -203,7 +210,7 @@ pub(crate) fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
     let mut r = match method {
         // m >> 16 is in [2^15, 2^16): 2^32 / (m >> 16) ≈ 2^48 / m, within 2^-15.
         // (Bit 15 is set whenever d > 0: the divisor is never zero.)
-        Divide::Exact | Divide::Reciprocal => i64::from(u32::MAX / (m >> 16 | 1 << 15)) << 14,
+        Divide::Exact | Divide::Reciprocal => i64::from(reciprocal_seed(m)) << 14,
         Divide::Newton => i64::from(RECIPROCAL_TABLE[((m >> 25) & 63) as usize]),
     };
     let steps = if method == Divide::Newton { 2 } else { 1 };

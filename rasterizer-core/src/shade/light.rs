@@ -738,12 +738,11 @@ impl<const N: usize> DirectionalPlan<N> {
         // Unit components in 2.30 are within [-2^30, 2^30] (up to rounding); an eye and a
         // position as raw i32s are less than 2^32 apart, clamped to an i32 (an eye 2^15 units
         // away in 16.16).
-        let unit = |c: i64| c.clamp(-(1 << 30), 1 << 30) as i32;
+        let n = n.map(|c| c.clamp(-(1 << 30), 1 << 30) as i32);
         let e = &self.eye;
         let w = [e[0] - p[0], e[1] - p[1], e[2] - p[2]];
-        let second = w.map(|c| c.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32);
-        let n = n.map(unit);
-        [n[0], n[1], n[2], second[0], second[1], second[2]]
+        let w = w.map(|c| c.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32);
+        [n[0], n[1], n[2], w[0], w[1], w[2]]
     }
 
     /// The lit sums of a Phong pixel from its interpolated [`DirectionalPlan::phong_vertex`]

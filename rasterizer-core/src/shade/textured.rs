@@ -277,9 +277,8 @@ fn scaled_quotient(a: u32, (r, lz): (u32, u32), down: u32) -> i64 {
 fn reciprocal(q: u32) -> (u32, u32) {
     let q = q.max(1);
     let lz = q.leading_zeros();
-    // In 2^15 ..= 2^16 - 1: the quotient is at most 2^17.
-    let d = (q << lz) >> 16;
-    ((u32::MAX / d.max(1)) << 15, lz)
+    // q << lz has its top bit set: the seed is at most 2^17.
+    (crate::numerics::reciprocal_seed(q << lz) << 15, lz)
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S, C, N> {
