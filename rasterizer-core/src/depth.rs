@@ -392,3 +392,111 @@ where
     }
     Ok(())
 }
+
+/// The depth stage of a mesh drawn through a frame list ([`crate::frame`]): the list's one depth
+/// buffer, shared by all its meshes as one buffer is in a whole frame, tested and written.
+///
+/// The buffer belongs to the list and is lent to the mesh only while it draws, so a pipeline with
+/// this stage draws nothing on its own: [`crate::pipeline::Pipeline::draw`] returns
+/// `DepthTooSmall`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SharedDepth;
+
+/// Like [`SharedDepth`], tested but not written ([`DepthReadOnly`]): for translucent meshes,
+/// hidden behind the opaque ones drawn before them without hiding what lies behind them.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SharedDepthReadOnly;
+
+impl DepthTest for SharedDepth {
+    fn covers(&self, _area: &Rectangle) -> bool {
+        false
+    }
+
+    fn test_span<E, F>(&mut self, _: i32, _: i32, _: u32, _: i64, _: i64, _: F) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        Ok(())
+    }
+}
+
+impl DepthTest for SharedDepthReadOnly {
+    const WRITE: bool = false;
+
+    fn covers(&self, _area: &Rectangle) -> bool {
+        false
+    }
+
+    fn test_span<E, F>(&mut self, _: i32, _: i32, _: u32, _: i64, _: i64, _: F) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        Ok(())
+    }
+}
+
+/// How a mesh of a frame list uses the list's depth buffer: [`NoDepth`], [`SharedDepth`] or
+/// [`SharedDepthReadOnly`] (sealed: no other type is one).
+pub trait ListDepth: DepthTest + Copy + sealed::Sealed {}
+
+impl ListDepth for NoDepth {}
+impl ListDepth for SharedDepth {}
+impl ListDepth for SharedDepthReadOnly {}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::NoDepth {}
+    impl Sealed for super::SharedDepth {}
+    impl Sealed for super::SharedDepthReadOnly {}
+}
+
+/// The list's depth buffer lent to one mesh for one band, used as its [`ListDepth`] `L` says.
+#[derive(Debug)]
+pub(crate) struct Lent<'a, 'b, L>(&'a mut DepthBuffer<'b>, core::marker::PhantomData<L>);
+
+impl<'a, 'b, L> Lent<'a, 'b, L> {
+    pub(crate) fn new(buffer: &'a mut DepthBuffer<'b>) -> Self {
+        Self(buffer, core::marker::PhantomData)
+    }
+}
+
+impl<L: ListDepth> DepthTest for Lent<'_, '_, L> {
+    const ENABLED: bool = L::ENABLED;
+    const WRITE: bool = L::WRITE;
+
+    #[inline(always)]
+    fn depth_rows(&mut self) -> Option<DepthRows<'_>> {
+        self.0.depth_rows()
+    }
+
+    #[inline(always)]
+    fn comparison(&self) -> Compare {
+        self.0.compare
+    }
+
+    fn covers(&self, area: &Rectangle) -> bool {
+        !L::ENABLED || self.0.covers(area)
+    }
+
+    #[inline(always)]
+    fn test_span<E, F>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i64,
+        dz: i64,
+        mut run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        if !L::ENABLED {
+            run(0, len)
+        } else if L::WRITE {
+            buffer_runs::<E, F, true>(self.0, y, x, len, z, dz, run)
+        } else {
+            buffer_runs::<E, F, false>(self.0, y, x, len, z, dz, run)
+        }
+    }
+}

@@ -6,10 +6,12 @@ use crate::clip::polygon::clip_triangle;
 use crate::clip::polygon::ClipVertex;
 use crate::cull::Cull;
 use crate::depth::DepthTest;
+use crate::geom::{PixelRect, SubPoint};
 use crate::math::Scalar;
 use crate::numerics::Numerics;
 use crate::raster::edge::row_at_or_below;
 use crate::shade::Shading;
+use crate::surface::Surface;
 use crate::surface::{Band, ClipTo, Framebuffer, Storage};
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
@@ -134,21 +136,23 @@ where
     Sh: Shading<S>,
     N: Numerics,
 {
-    /// The rows triangle `t` can touch once it is clipped, or `None` when it draws nothing
-    /// (counted in `stats`). Geometry only: no shading.
-    fn triangle_rows<M: MeshSource<S>>(
+    /// The sub-pixel extent (left, top, right, bottom) of triangle `t` once it is clipped, or
+    /// `None` when it draws nothing (counted in `stats`). Geometry only: no shading.
+    fn triangle_extent<M: MeshSource<S>>(
         &self,
         mesh: &M,
         t: usize,
         scratch: &mut [VertexSlot<Sh::Stored>],
         stats: &mut RenderStats,
-    ) -> Option<(i64, i64)> {
-        let (top, bottom) = match self.front(mesh, t, scratch, stats, false) {
+    ) -> Option<[i32; 4]> {
+        let extent = |ps: &mut dyn Iterator<Item = SubPoint<BITS>>| {
+            ps.fold([i32::MAX, i32::MAX, i32::MIN, i32::MIN], |e, p| {
+                [e[0].min(p.x), e[1].min(p.y), e[2].max(p.x), e[3].max(p.y)]
+            })
+        };
+        let e = match self.front(mesh, t, scratch, stats, false) {
             Front::Skip => return None,
-            Front::Inside { v, .. } => {
-                let ys = v.map(|(p, _)| p.y);
-                (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]))
-            }
+            Front::Inside { v, .. } => extent(&mut v.iter().map(|(p, _)| *p)),
             Front::Clip { clip, codes, .. } => {
                 stats.clipped += 1;
                 let tri = clip.map(|pos| ClipVertex {
@@ -170,16 +174,122 @@ where
                     stats.culled += 1;
                     return None;
                 }
-                let ys = ps.iter().map(|p| p.y);
-                (ys.clone().min().unwrap_or(0), ys.max().unwrap_or(0))
+                extent(&mut ps.iter().copied())
             }
         };
         stats.drawn += 1;
+        Some(e)
+    }
+
+    /// Bins the frame's triangles for bands of `rows` rows on a screen of `height` rows (see
+    /// [`BinEntry`]), after [`Pipeline::begin`]: writes the entries to `bins` and returns how
+    /// many there are, and widens `pixels` to hold every pixel the triangles can touch.
+    ///
+    /// # Errors
+    /// [`BandError::TooFewBins`] when `bins` cannot hold them all.
+    pub(super) fn bin<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        (height, rows): (u32, u32),
+        bins: &mut [BinEntry],
+        stats: &mut RenderStats,
+        pixels: &mut PixelRect,
+    ) -> Result<usize, BandError> {
+        let bands = height.div_ceil(rows.max(1));
+        // Bands per unit of an entry's first and last, so that four bits hold any band.
+        let group = bands.div_ceil(16);
+        // Rows per unit, for 32-bit divisions (rows are below 2^32; a unit beyond them all
+        // gives the same quotients, zero).
+        let band_rows = u32::try_from(u64::from(rows) * u64::from(group)).unwrap_or(u32::MAX);
+        let band_rows = core::num::NonZeroU32::new(band_rows).unwrap_or(core::num::NonZeroU32::MIN);
         let s = 1i64 << BITS;
-        Some((
-            row_at_or_below(i64::from(top), s),
-            row_at_or_below(i64::from(bottom), s),
-        ))
+        let mut count = 0usize;
+        let mut wanted = 0usize;
+        let mut prev = 0usize;
+        let mut push = |entry: BinEntry| {
+            wanted += 1;
+            if let Some(slot) = bins.get_mut(count) {
+                *slot = entry;
+                count += 1;
+            }
+        };
+        for t in 0..mesh.triangle_count() {
+            let Some([left, top, right, bottom]) = self.triangle_extent(mesh, t, scratch, stats)
+            else {
+                continue;
+            };
+            // The rows whose sample lines the triangle can cross; columns to the whole pixel.
+            let top = row_at_or_below(i64::from(top), s).max(0);
+            let bottom = row_at_or_below(i64::from(bottom), s).min(i64::from(height));
+            if top >= bottom {
+                continue;
+            }
+            *pixels = pixels.union(&PixelRect {
+                x0: i64::from(left) >> BITS,
+                y0: top,
+                x1: (i64::from(right) >> BITS) + 1,
+                y1: bottom,
+            });
+            while t - prev > usize::from(u8::MAX) {
+                push(BinEntry::FILLER);
+                prev += usize::from(u8::MAX);
+            }
+            // 0 <= top < bottom <= height.
+            let (top, bottom) = (top as u32, bottom as u32);
+            let (first, last) = ((top / band_rows) as u8, ((bottom - 1) / band_rows) as u8);
+            push(BinEntry {
+                step: (t - prev) as u8,
+                bands: first << 4 | last,
+            });
+            prev = t;
+        }
+        if wanted > bins.len() {
+            return Err(BandError::TooFewBins {
+                needed: wanted,
+                actual: bins.len(),
+            });
+        }
+        Ok(count)
+    }
+
+    /// Draws the binned triangles (`bins`, in mesh order) that touch bin unit `unit` (band `b`
+    /// is in unit `b / ceil(bands / 16)`). `cursor` (entry, triangle) skips the leading entries
+    /// that ended above the unit: start it at `(0, 0)` and pass it again for later bands, in
+    /// order.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn draw_unit<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        bins: &[BinEntry],
+        unit: u8,
+        cursor: &mut (usize, usize),
+        stats: &mut RenderStats,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        let (mut lo, mut lo_t) = *cursor;
+        while let Some(e) = bins
+            .get(lo)
+            .filter(|e| e.last() < unit || e.first() > e.last())
+        {
+            lo_t += usize::from(e.step);
+            lo += 1;
+        }
+        *cursor = (lo, lo_t);
+        let mut t = lo_t;
+        for e in bins.get(lo..).unwrap_or_default() {
+            t += usize::from(e.step);
+            if e.first() <= unit && unit <= e.last() {
+                let front = self.front_again(mesh, t, scratch);
+                self.draw_front(target, mesh, front, scratch, stats)?;
+            }
+        }
+        Ok(())
     }
 
     /// Draws a mesh one horizontal band at a time, for a microcontroller that cannot hold a whole
@@ -239,64 +349,14 @@ where
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
-        let bands = height.div_ceil(rows);
-        // Bands per unit of an entry's first and last, so that four bits hold any band.
-        let group = bands.div_ceil(16);
-        // Rows per unit, for 32-bit divisions (rows are below 2^32; a unit beyond them all
-        // gives the same quotients, zero).
-        let band_rows = u32::try_from(u64::from(rows) * u64::from(group)).unwrap_or(u32::MAX);
-        let band_rows = core::num::NonZeroU32::new(band_rows).unwrap_or(core::num::NonZeroU32::MIN);
-        let mut count = 0usize;
-        let mut wanted = 0usize;
-        let mut prev = 0usize;
-        let mut push = |entry: BinEntry| {
-            wanted += 1;
-            if let Some(slot) = bins.get_mut(count) {
-                *slot = entry;
-                count += 1;
-            }
-        };
-        for t in 0..mesh.triangle_count() {
-            let Some((top, bottom)) = self.triangle_rows(mesh, t, scratch, &mut stats) else {
-                continue;
-            };
-            let (top, bottom) = (top.max(0), bottom.min(i64::from(height)));
-            if top >= bottom {
-                continue;
-            }
-            while t - prev > usize::from(u8::MAX) {
-                push(BinEntry::FILLER);
-                prev += usize::from(u8::MAX);
-            }
-            // 0 <= top < bottom <= height.
-            let (top, bottom) = (top as u32, bottom as u32);
-            let (first, last) = ((top / band_rows) as u8, ((bottom - 1) / band_rows) as u8);
-            push(BinEntry {
-                step: (t - prev) as u8,
-                bands: first << 4 | last,
-            });
-            prev = t;
-        }
-        if wanted > bins.len() {
-            return Err(BandError::TooFewBins {
-                needed: wanted,
-                actual: bins.len(),
-            });
-        }
-        // Each band scans the entries (in mesh order, the order a whole-frame draw has) for the
-        // triangles that touch it; `lo` skips the leading ones that ended above the band.
+        let mut pixels = PixelRect::EMPTY;
+        let count = self.bin(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
         let bins = &bins[..count];
-        let (mut lo, mut lo_t) = (0usize, 0usize);
+        let bands = height.div_ceil(rows);
+        let group = bands.div_ceil(16);
+        let mut cursor = (0, 0);
         let mut scratch_stats = RenderStats::default();
         for b in 0..bands {
-            let unit = (b / group) as u8;
-            while let Some(e) = bins
-                .get(lo)
-                .filter(|e| e.last() < unit || e.first() > e.last())
-            {
-                lo_t += usize::from(e.step);
-                lo += 1;
-            }
             let y0 = b * rows;
             let h = rows.min(height - y0);
             let len = Framebuffer::<Px>::required_len(width, h).unwrap_or(0);
@@ -308,15 +368,15 @@ where
             let mut strip = Band::new(fb, y0 as i32);
             {
                 let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
-                let mut t = lo_t;
-                for e in &bins[lo..] {
-                    t += usize::from(e.step);
-                    if e.first() <= unit && unit <= e.last() {
-                        let front = self.front_again(mesh, t, scratch);
-                        let Ok(()) =
-                            self.draw_front(&mut target, mesh, front, scratch, &mut scratch_stats);
-                    }
-                }
+                let Ok(()) = self.draw_unit(
+                    &mut target,
+                    mesh,
+                    scratch,
+                    bins,
+                    (b / group) as u8,
+                    &mut cursor,
+                    &mut scratch_stats,
+                );
             }
             on_band(&strip);
         }

@@ -17,10 +17,12 @@
 
 mod band;
 mod front;
+mod list;
 mod perspective;
 mod vertex;
 
 pub use band::{BandError, Banding, BinEntry};
+pub use list::MeshCommand;
 pub use vertex::VertexSlot;
 
 use crate::clip::polygon::{clip_segment, clip_triangle, ClipVertex};
@@ -244,6 +246,33 @@ where
             shading: self.shading,
             _numerics: core::marker::PhantomData,
         }
+    }
+
+    /// The same pipeline with another depth stage, and the one it had (a frame list lends its
+    /// depth buffer to a mesh this way for one band).
+    pub(crate) fn swap_depth<D2>(self, depth: D2) -> (Pipeline<S, C, D2, Sh, BITS, N>, D) {
+        (
+            Pipeline {
+                mvp: self.mvp,
+                raw: self.raw,
+                model: self.model,
+                normal_matrix: self.normal_matrix,
+                mirrored: self.mirrored,
+                facing: self.facing,
+                model_mirrors: self.model_mirrors,
+                flip_faces: self.flip_faces,
+                viewport: self.viewport,
+                area: self.area,
+                edges: self.edges,
+                map: self.map,
+                model_space: self.model_space,
+                cull: self.cull,
+                depth,
+                shading: self.shading,
+                _numerics: core::marker::PhantomData,
+            },
+            self.depth,
+        )
     }
 
     /// Replaces the matrix that carries normals to world space.

@@ -7,6 +7,7 @@ use crate::raster::edge::{row_at_or_below, EdgeWalk};
 use crate::surface::Surface;
 use core::cmp::Ordering;
 use core::fmt;
+use embedded_graphics_core::primitives::Rectangle;
 use heapless::Vec;
 
 /// How overlapping parts of a polygon are filled.
@@ -207,6 +208,22 @@ impl<const N: usize, const BITS: u32> Polygon<N, BITS> {
         }
         polygon.edges.sort_unstable_by_key(|e| e.first_row);
         Ok(polygon)
+    }
+
+    /// The pixels the fill can touch (every pixel whose centre may lie inside);
+    /// `Rectangle::zero()` for a polygon that fills nothing.
+    pub fn pixel_bounds(&self) -> Rectangle {
+        let mut r = PixelRect::EMPTY;
+        for e in &self.edges {
+            let xs = (i64::from(e.top.0), i64::from(e.bottom.0));
+            r = r.union(&PixelRect {
+                x0: xs.0.min(xs.1) >> BITS,
+                y0: i64::from(e.first_row),
+                x1: (xs.0.max(xs.1) >> BITS) + 1,
+                y1: i64::from(e.end_row),
+            });
+        }
+        r.to_rectangle()
     }
 
     /// Fills the polygon in one colour, clipped to the surface's clip area.

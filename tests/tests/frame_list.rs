@@ -1,0 +1,672 @@
+//! The frame list ([`rasterizer_core::frame`]) against a whole frame drawn directly: workload S1
+//! (two meshes sharing depth, a translucent panel, anti-aliased bars, text, a Gouraud triangle)
+//! rendered in bands of every kind of height, as a region after a change, and through a
+//! double-buffered sender whose mock DMA fails on any write to a buffer it is reading.
+
+use embedded_graphics::prelude::Drawable;
+use fixtures::s1;
+use rasterizer_core::frame::{
+    changed_areas, Clear, DoubleBuffer, FrameError, FrameList, Layout, RenderError, Slot, Summary,
+};
+use rasterizer_core::mesh::MeshSource;
+use rasterizer_core::prelude::*;
+use rasterizer_core::{
+    depth::SharedDepth,
+    pipeline::{MeshCommand, DEFAULT_BITS},
+    shade::Shading,
+};
+
+const W: u32 = s1::WIDTH;
+const H: u32 = s1::HEIGHT;
+
+fn load(name: &str) -> fixtures::obj::LoadedMesh {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/models")
+        .join(name);
+    fixtures::obj::LoadedMesh::load(&path).unwrap()
+}
+
+struct Meshes {
+    suzanne: fixtures::obj::LoadedMesh,
+    cube: fixtures::obj::LoadedMesh,
+}
+
+fn meshes() -> Meshes {
+    Meshes {
+        suzanne: load("suzanne.obj"),
+        cube: load("unit_cube.obj"),
+    }
+}
+
+/// S1 drawn directly into one whole framebuffer, through the library's own calls, one after the
+/// other: the picture every list render must give.
+fn whole_frame(m: &Meshes, degrees: i32) -> Vec<u16> {
+    let mut px = vec![0u16; (W * H) as usize];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut px, W, H).unwrap();
+    fb.clear(s1::background()).unwrap();
+    let mut depth = vec![u16::MAX; (W * H) as usize];
+    let buffer = DepthBuffer::new(&mut depth, W, H, Compare::Less).unwrap();
+    let suzanne = m.suzanne.mesh();
+    let mut p = Pipeline::new(
+        &s1::transforms(s1::suzanne_model(degrees)),
+        s1::viewport(),
+        CullClockwise,
+        buffer,
+        GouraudLit::<Fx16, Rgb565, 1>::new(s1::suzanne_lighting()),
+    );
+    let mut scratch = vec![VertexSlot::EMPTY; suzanne.vertex_count()];
+    p.draw(&mut fb, &suzanne, &mut scratch).unwrap();
+    let cube = m.cube.mesh();
+    let mut p = Pipeline::new(
+        &s1::transforms(s1::cube_model()),
+        s1::viewport(),
+        CullClockwise,
+        p.depth,
+        FlatLit::<Fx16, Rgb565, 1>::new(s1::cube_lighting()),
+    );
+    let mut scratch = vec![VertexSlot::EMPTY; cube.vertex_count()];
+    p.draw(&mut fb, &cube, &mut scratch).unwrap();
+    let v = |s: &rasterizer_core::frame::Shape<Rgb565>| s.bounds();
+    let _ = v;
+    for s in s1::panel() {
+        let rasterizer_core::frame::Shape::Triangle {
+            vertices,
+            color,
+            opacity,
+        } = s
+        else {
+            unreachable!()
+        };
+        fill_triangle_alpha(&mut fb, vertices, color, opacity).unwrap();
+    }
+    for s in s1::bars() {
+        let rasterizer_core::frame::Shape::LineAa { a, b, width, color } = s else {
+            unreachable!()
+        };
+        draw_line_aa_wide(&mut fb, a, b, width, color).unwrap();
+    }
+    for t in s1::labels() {
+        t.draw(&mut fb).unwrap();
+    }
+    let rasterizer_core::frame::Shape::Gouraud {
+        vertices, colors, ..
+    } = s1::gouraud()
+    else {
+        unreachable!()
+    };
+    fill_triangle_gouraud(&mut fb, vertices, colors).unwrap();
+    px
+}
+
+type SuzanneCommand<'m> = MeshCommand<
+    'm,
+    Fx16,
+    CullClockwise,
+    SharedDepth,
+    GouraudLit<Fx16, Rgb565, 1>,
+    rasterizer_core::mesh::Mesh<'m, Fx16, u32>,
+>;
+type CubeCommand<'m> = MeshCommand<
+    'm,
+    Fx16,
+    CullClockwise,
+    SharedDepth,
+    FlatLit<Fx16, Rgb565, 1>,
+    rasterizer_core::mesh::Mesh<'m, Fx16, u32>,
+>;
+
+/// The per-frame storage of S1's meshes.
+struct Storage<St1, St2> {
+    scratch: (Vec<VertexSlot<St1>>, Vec<VertexSlot<St2>>),
+    bins: (Vec<BinEntry>, Vec<BinEntry>),
+}
+
+fn storage<Sh1: Shading<Fx16>, Sh2: Shading<Fx16>>(
+    suzanne: &rasterizer_core::mesh::Mesh<'_, Fx16, u32>,
+    cube: &rasterizer_core::mesh::Mesh<'_, Fx16, u32>,
+) -> Storage<Sh1::Stored, Sh2::Stored> {
+    Storage {
+        scratch: (
+            vec![VertexSlot::EMPTY; suzanne.vertex_count()],
+            vec![VertexSlot::EMPTY; cube.vertex_count()],
+        ),
+        bins: (
+            vec![BinEntry::ZERO; suzanne.triangle_count() + 4],
+            vec![BinEntry::ZERO; cube.triangle_count() + 1],
+        ),
+    }
+}
+
+/// Builds S1's list with Suzanne turned `degrees` on `layout` and hands it to `f`.
+fn with_list<R>(
+    m: &Meshes,
+    degrees: i32,
+    layout: Layout,
+    f: impl FnOnce(&mut FrameList<'_, Rgb565>) -> R,
+) -> R {
+    let (suzanne, cube) = (m.suzanne.mesh(), m.cube.mesh());
+    let mut st = storage::<GouraudLit<Fx16, Rgb565, 1>, FlatLit<Fx16, Rgb565, 1>>(&suzanne, &cube);
+    let mut monkey: SuzanneCommand = MeshCommand::new(
+        Pipeline::new(
+            &s1::transforms(s1::suzanne_model(degrees)),
+            s1::viewport(),
+            CullClockwise,
+            SharedDepth,
+            GouraudLit::new(s1::suzanne_lighting()),
+        ),
+        &suzanne,
+        &mut st.scratch.0,
+        &mut st.bins.0,
+    );
+    let mut box_: CubeCommand = MeshCommand::new(
+        Pipeline::new(
+            &s1::transforms(s1::cube_model()),
+            s1::viewport(),
+            CullClockwise,
+            SharedDepth,
+            FlatLit::new(s1::cube_lighting()),
+        ),
+        &cube,
+        &mut st.scratch.1,
+        &mut st.bins.1,
+    );
+    let labels = s1::labels();
+    let mut slots = [Slot::EMPTY; 20];
+    let mut list = FrameList::new(&mut slots, layout, Clear::new(s1::background()));
+    list.command(&mut monkey).unwrap();
+    list.command(&mut box_).unwrap();
+    for s in s1::panel() {
+        list.shape(s).unwrap();
+    }
+    for s in s1::bars() {
+        list.shape(s).unwrap();
+    }
+    for t in &labels {
+        list.item(t, 0).unwrap();
+    }
+    list.shape(s1::gouraud()).unwrap();
+    assert_eq!(list.len(), 19);
+    f(&mut list)
+}
+
+/// Copies a band's area into a whole picture.
+fn paste(out: &mut [u16], band: &rasterizer_core::surface::Band<'_, Rgb565>, area: Rectangle) {
+    let data = band.framebuffer().as_slice();
+    for y in area.rows() {
+        let row = (y - band.y0()) as usize * W as usize;
+        for x in area.columns() {
+            out[y as usize * W as usize + x as usize] = data[row + x as usize];
+        }
+    }
+}
+
+fn render_list(m: &Meshes, degrees: i32, rows: u32) -> Vec<u16> {
+    let layout = Layout::new(W, H, rows).unwrap();
+    let mut out = vec![0xdead; (W * H) as usize];
+    let mut band = vec![0u16; (W * rows.min(H)) as usize];
+    let mut depth = vec![0u16; (W * rows.min(H)) as usize];
+    let mut next = 0;
+    with_list(m, degrees, layout, |list| {
+        list.render(&mut band, &mut depth, |b, area| {
+            assert_eq!(b.y0(), next, "bands in order, each once");
+            assert_eq!(area.top_left.y, next);
+            next += b.framebuffer().height() as i32;
+            paste(&mut out, b, area);
+        })
+        .unwrap();
+    });
+    assert_eq!(next as u32, H);
+    out
+}
+
+fn first_difference(a: &[u16], b: &[u16]) -> Option<(usize, usize)> {
+    a.iter()
+        .zip(b)
+        .position(|(x, y)| x != y)
+        .map(|i| (i % W as usize, i / W as usize))
+}
+
+#[test]
+fn s1_in_bands_is_the_whole_frame() {
+    let m = meshes();
+    let whole = whole_frame(&m, s1::SUZANNE_DEGREES);
+    // The picture has all its parts: Suzanne's colours, the cube, the panel over the bars.
+    let distinct: std::collections::HashSet<_> = whole.iter().collect();
+    assert!(distinct.len() > 200, "{} colours", distinct.len());
+    for rows in [1, 7, 16, 100, 240, 1000] {
+        let banded = render_list(&m, s1::SUZANNE_DEGREES, rows);
+        assert_eq!(
+            first_difference(&banded, &whole),
+            None,
+            "bands of {rows} rows"
+        );
+    }
+}
+
+#[test]
+fn each_band_draws_only_what_touches_it() {
+    // A band of the top rows holds only the Gouraud triangle's and Suzanne's pixels: a list
+    // whose Suzanne draws into a band of rows 0..16 is the same as the whole frame's rows there,
+    // and the band below the panel draws none of the panel.
+    let m = meshes();
+    let whole = whole_frame(&m, s1::SUZANNE_DEGREES);
+    let layout = Layout::new(W, H, 16).unwrap();
+    let mut band = vec![0u16; (W * 16) as usize];
+    let mut depth = vec![0u16; (W * 16) as usize];
+    let mut seen = 0;
+    with_list(&m, s1::SUZANNE_DEGREES, layout, |list| {
+        let top = Rectangle::new(Point::new(0, 0), Size::new(W, 16));
+        list.render_region(&top, &mut band, &mut depth, |b, area| {
+            assert_eq!(area, top);
+            let row = &whole[..(W * 16) as usize];
+            assert_eq!(b.framebuffer().as_slice(), row);
+            seen += 1;
+        })
+        .unwrap();
+    });
+    assert_eq!(seen, 1);
+}
+
+#[test]
+fn region_redraw_after_the_turn_is_the_next_frame() {
+    let m = meshes();
+    let before = whole_frame(&m, s1::SUZANNE_DEGREES);
+    let after = whole_frame(&m, s1::SUZANNE_DEGREES_NEXT);
+    let layout = Layout::new(W, H, 16).unwrap();
+    let summaries = |degrees| {
+        with_list(&m, degrees, layout, |list| {
+            let mut out = vec![Summary::default(); 32];
+            let n = list.summaries(&mut out);
+            out.truncate(n);
+            out
+        })
+    };
+    let (old, new) = (
+        summaries(s1::SUZANNE_DEGREES),
+        summaries(s1::SUZANNE_DEGREES_NEXT),
+    );
+    assert_eq!(old.len(), 19);
+    // Only Suzanne changed.
+    let changed: Vec<usize> = (0..19).filter(|&i| old[i] != new[i]).collect();
+    assert_eq!(changed, vec![0]);
+    let mut areas = [Rectangle::zero(); 4];
+    let n = changed_areas(&old, &new, &mut areas);
+    assert_eq!(n, 1);
+    let region = areas[0];
+    let pixels = region.size.width * region.size.height;
+    // Suzanne's old and new bounds together: far less than the screen, more than nothing.
+    assert!(pixels > 10_000 && pixels < W * H / 2, "{region:?}");
+    let mut screen = before.clone();
+    let mut band = vec![0u16; (W * 16) as usize];
+    let mut depth = vec![0u16; (W * 16) as usize];
+    with_list(&m, s1::SUZANNE_DEGREES_NEXT, layout, |list| {
+        list.render_region(&region, &mut band, &mut depth, |b, area| {
+            assert!(area.intersection(&region) == area);
+            paste(&mut screen, b, area);
+        })
+        .unwrap();
+    });
+    assert_eq!(first_difference(&screen, &after), None);
+    assert_ne!(before, after);
+}
+
+#[test]
+fn changed_areas_cover_every_change_and_merge_overlaps() {
+    let r = |x, y, w, h| Rectangle::new(Point::new(x, y), Size::new(w, h));
+    let s = |b: Rectangle, f| Summary {
+        bounds: b,
+        fingerprint: f,
+    };
+    let old = [
+        s(r(0, 0, 10, 10), 1),
+        s(r(50, 50, 10, 10), 2),
+        s(r(100, 0, 5, 5), 3),
+    ];
+    // The first moves onto the second's old place; the third changes in place; a fourth is new.
+    let new = [
+        s(r(45, 45, 10, 10), 1),
+        s(r(50, 50, 10, 10), 2),
+        s(r(100, 0, 5, 5), 4),
+        s(r(200, 200, 3, 3), 5),
+    ];
+    let mut out = [Rectangle::zero(); 8];
+    let n = changed_areas(&old, &new, &mut out);
+    let mut got = out[..n].to_vec();
+    got.sort_by_key(|r| (r.top_left.x, r.top_left.y));
+    assert_eq!(
+        got,
+        vec![r(0, 0, 55, 55), r(100, 0, 5, 5), r(200, 200, 3, 3)]
+    );
+    // One rectangle of room: everything merged into it.
+    let mut one = [Rectangle::zero(); 1];
+    assert_eq!(changed_areas(&old, &new, &mut one), 1);
+    assert_eq!(one[0], r(0, 0, 203, 203));
+    // Nothing changed: nothing to redraw.
+    assert_eq!(changed_areas(&old, &old, &mut out), 0);
+}
+
+/// What the mock DMA saw, in order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Event {
+    Lend(usize),
+    Start(usize, i32),
+    Read(usize, usize),
+    Done(usize),
+}
+
+/// A transfer: the buffer's content when it started, its rows and area, and the words read.
+type Transfer = (Vec<u16>, Rectangle, Rectangle, usize);
+
+/// Two band buffers and a DMA that reads a started buffer `chunk` words at a time, one chunk
+/// each time the renderer calls it, and checks each word it reads against the buffer's content
+/// when the transfer started. Lending a buffer still being read is the failure the renderer
+/// must never cause: it is recorded.
+struct MockDma {
+    buffers: [Vec<u16>; 2],
+    /// The transfer of each buffer: its snapshot, rows and area, and how far it has read.
+    flight: [Option<Transfer>; 2],
+    chunk: usize,
+    events: Vec<Event>,
+    violations: Vec<String>,
+    screen: Vec<u16>,
+}
+
+impl MockDma {
+    fn new(words: usize, chunk: usize) -> Self {
+        Self {
+            buffers: [vec![0; words], vec![0; words]],
+            flight: [None, None],
+            chunk,
+            events: Vec::new(),
+            violations: Vec::new(),
+            screen: vec![0xdead; (W * H) as usize],
+        }
+    }
+
+    /// The DMA moves on: each transfer in flight reads its next chunk.
+    fn tick(&mut self) {
+        for k in 0..2 {
+            let Some((snap, rows, area, pos)) = &mut self.flight[k] else {
+                continue;
+            };
+            let total = (rows.size.width * rows.size.height) as usize;
+            let end = (*pos + self.chunk).min(total);
+            for (i, &was) in snap.iter().enumerate().take(end).skip(*pos) {
+                if self.buffers[k][i] != was {
+                    self.violations
+                        .push(format!("buffer {k} word {i} changed while being sent"));
+                }
+                let (x, y) = (
+                    (i % W as usize) as i32,
+                    rows.top_left.y + (i / W as usize) as i32,
+                );
+                if area.contains(Point::new(x, y)) {
+                    self.screen[y as usize * W as usize + x as usize] = self.buffers[k][i];
+                }
+            }
+            self.events.push(Event::Read(k, end));
+            *pos = end;
+            if end == total {
+                self.events.push(Event::Done(k));
+                self.flight[k] = None;
+            }
+        }
+    }
+}
+
+impl DoubleBuffer<Rgb565> for MockDma {
+    type Error = String;
+
+    fn buffer(&mut self, k: usize) -> &mut [u16] {
+        if self.flight[k].is_some() {
+            self.violations
+                .push(format!("buffer {k} lent for drawing while being sent"));
+        }
+        self.events.push(Event::Lend(k));
+        &mut self.buffers[k]
+    }
+
+    fn start(&mut self, k: usize, rows: Rectangle, area: Rectangle) -> Result<(), String> {
+        self.tick();
+        if self.flight[k].is_some() {
+            return Err(format!("buffer {k} started twice"));
+        }
+        self.events.push(Event::Start(k, rows.top_left.y));
+        self.flight[k] = Some((self.buffers[k].clone(), rows, area, 0));
+        Ok(())
+    }
+
+    fn wait(&mut self, k: usize) -> Result<(), String> {
+        while self.flight[k].is_some() {
+            self.tick();
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn double_buffered_render_never_writes_a_buffer_in_flight() {
+    let m = meshes();
+    let whole = whole_frame(&m, s1::SUZANNE_DEGREES);
+    let layout = Layout::new(W, H, 16).unwrap();
+    let mut depth = vec![0u16; (W * 16) as usize];
+    // A DMA slower than a band (reads a band in three steps) and one faster (at once).
+    for chunk in [W as usize * 6, W as usize * 16] {
+        let mut dma = MockDma::new((W * 16) as usize, chunk);
+        with_list(&m, s1::SUZANNE_DEGREES, layout, |list| {
+            list.render_double(None, &mut depth, &mut dma).unwrap();
+        });
+        assert_eq!(dma.violations, Vec::<String>::new());
+        assert!(
+            dma.flight.iter().all(Option::is_none),
+            "all sent at the end"
+        );
+        assert_eq!(first_difference(&dma.screen, &whole), None);
+        let starts: Vec<_> = dma
+            .events
+            .iter()
+            .filter_map(|e| match e {
+                Event::Start(k, y) => Some((*k, *y)),
+                _ => None,
+            })
+            .collect();
+        // Fifteen bands, alternating buffers, top to bottom.
+        let expected: Vec<_> = (0..15).map(|b| (b % 2, b as i32 * 16)).collect();
+        assert_eq!(starts, expected);
+        if chunk < W as usize * 16 {
+            // The slow DMA overlaps: a band is drawn while the previous one is still being read.
+            let at = |e: Event| dma.events.iter().position(|x| *x == e).unwrap();
+            let (start, done) = (at(Event::Start(0, 0)), at(Event::Done(0)));
+            let overlapped = dma.events[start..done].contains(&Event::Lend(1));
+            assert!(overlapped, "{:?}", &dma.events[..12]);
+        }
+    }
+}
+
+#[test]
+fn the_mock_dma_catches_a_write_in_flight() {
+    // The check itself: drawing into a buffer still being read is reported.
+    let mut dma = MockDma::new(16, 4);
+    let rows = Rectangle::new(Point::zero(), Size::new(16, 1));
+    dma.buffers[0].fill(7);
+    dma.start(0, rows, rows).unwrap();
+    let buf = dma.buffer(0);
+    buf[10] = 9;
+    dma.wait(0).unwrap();
+    assert_eq!(dma.violations.len(), 2, "{:?}", dma.violations);
+}
+
+#[test]
+fn double_buffered_region_render_sends_only_the_region() {
+    let m = meshes();
+    let whole = whole_frame(&m, s1::SUZANNE_DEGREES);
+    let layout = Layout::new(W, H, 16).unwrap();
+    let mut depth = vec![0u16; (W * 16) as usize];
+    let region = Rectangle::new(Point::new(40, 30), Size::new(100, 70));
+    let mut dma = MockDma::new((W * 16) as usize, W as usize * 5);
+    with_list(&m, s1::SUZANNE_DEGREES, layout, |list| {
+        list.render_double(Some(&region), &mut depth, &mut dma)
+            .unwrap();
+    });
+    assert!(dma.violations.is_empty(), "{:?}", dma.violations);
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let i = (y * W as i32 + x) as usize;
+            if region.contains(Point::new(x, y)) {
+                assert_eq!(dma.screen[i], whole[i], "({x}, {y})");
+            } else {
+                assert_eq!(dma.screen[i], 0xdead, "({x}, {y}) outside the region");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_sender_failure_stops_the_render() {
+    struct Failing(Vec<u16>, Vec<u16>, usize);
+    impl DoubleBuffer<Rgb565> for Failing {
+        type Error = &'static str;
+        fn buffer(&mut self, k: usize) -> &mut [u16] {
+            if k == 0 {
+                &mut self.0
+            } else {
+                &mut self.1
+            }
+        }
+        fn start(&mut self, _: usize, _: Rectangle, _: Rectangle) -> Result<(), &'static str> {
+            self.2 += 1;
+            if self.2 == 3 {
+                Err("bus fault")
+            } else {
+                Ok(())
+            }
+        }
+        fn wait(&mut self, _: usize) -> Result<(), &'static str> {
+            Ok(())
+        }
+    }
+    let layout = Layout::new(W, H, 16).unwrap();
+    let mut slots = [Slot::EMPTY; 2];
+    let mut list = FrameList::new(&mut slots, layout, Clear::new(Rgb565::BLACK));
+    list.shape(s1::gouraud()).unwrap();
+    let mut sender = Failing(vec![0; (W * 16) as usize], vec![0; (W * 16) as usize], 0);
+    assert_eq!(
+        list.render_double(None, &mut [], &mut sender),
+        Err(RenderError::Sink("bus fault"))
+    );
+    assert_eq!(sender.2, 3);
+    // A buffer too short: refused before anything is sent.
+    let mut short = Failing(vec![0; 10], vec![0; (W * 16) as usize], 0);
+    assert_eq!(
+        list.render_double(None, &mut [], &mut short),
+        Err(RenderError::Frame(FrameError::BandBufferTooSmall {
+            needed: (W * 16) as usize,
+            actual: 10
+        }))
+    );
+    assert_eq!(short.2, 0);
+}
+
+#[test]
+fn bad_input_gets_typed_errors() {
+    assert!(matches!(
+        Layout::new(0, 10, 1),
+        Err(FrameError::BadLayout { .. })
+    ));
+    assert!(matches!(
+        Layout::new(10, 10, 0),
+        Err(FrameError::BadLayout { .. })
+    ));
+    assert!(matches!(
+        Layout::new(40_000, 10, 1),
+        Err(FrameError::BadLayout { .. })
+    ));
+    assert_eq!(Layout::new(10, 10, 99).unwrap().rows(), 10);
+    let m = meshes();
+    let layout = Layout::new(W, H, 16).unwrap();
+    // Full.
+    let mut slots = [Slot::EMPTY; 1];
+    let mut list = FrameList::new(&mut slots, layout, Clear::new(Rgb565::BLACK));
+    list.shape(s1::gouraud()).unwrap();
+    assert_eq!(
+        list.shape(s1::gouraud()),
+        Err(FrameError::Full { capacity: 1 })
+    );
+    // Too few bins: the mesh is refused and the list unchanged.
+    let suzanne = m.suzanne.mesh();
+    let mut scratch = vec![VertexSlot::EMPTY; 600];
+    let mut bins = vec![BinEntry::ZERO; 10];
+    let mut monkey: SuzanneCommand = MeshCommand::new(
+        Pipeline::new(
+            &s1::transforms(s1::suzanne_model(30)),
+            s1::viewport(),
+            CullClockwise,
+            SharedDepth,
+            GouraudLit::new(s1::suzanne_lighting()),
+        ),
+        &suzanne,
+        &mut scratch,
+        &mut bins,
+    );
+    let mut slots = [Slot::EMPTY; 4];
+    let mut list = FrameList::new(&mut slots, layout, Clear::new(Rgb565::BLACK));
+    assert!(matches!(
+        list.command(&mut monkey),
+        Err(FrameError::TooFewBins { actual: 10, .. })
+    ));
+    assert!(list.is_empty());
+    // A depth buffer too small for a band while a mesh tests depth.
+    let mut bins = vec![BinEntry::ZERO; 1000];
+    let mut monkey: SuzanneCommand = MeshCommand::new(
+        Pipeline::new(
+            &s1::transforms(s1::suzanne_model(30)),
+            s1::viewport(),
+            CullClockwise,
+            SharedDepth,
+            GouraudLit::new(s1::suzanne_lighting()),
+        ),
+        &suzanne,
+        &mut scratch,
+        &mut bins,
+    );
+    let mut slots = [Slot::EMPTY; 4];
+    let mut list = FrameList::new(&mut slots, layout, Clear::new(Rgb565::BLACK));
+    list.command(&mut monkey).unwrap();
+    let mut band = vec![0u16; (W * 16) as usize];
+    let mut depth = vec![0u16; 100];
+    let mut called = false;
+    assert_eq!(
+        list.render(&mut band, &mut depth, |_, _| called = true),
+        Err(FrameError::DepthTooSmall {
+            needed: (W * 16) as usize,
+            actual: 100
+        })
+    );
+    assert!(!called);
+    assert!(matches!(
+        list.render(&mut band[..5], &mut [], |_, _| called = true),
+        Err(FrameError::BandBufferTooSmall { actual: 5, .. })
+    ));
+    assert!(!called);
+}
+
+#[test]
+fn shared_depth_alone_draws_nothing_and_says_so() {
+    // A pipeline built for a list, drawn on its own, reports the missing buffer instead of
+    // drawing without depth.
+    let m = meshes();
+    let suzanne = m.suzanne.mesh();
+    let mut p = Pipeline::new(
+        &s1::transforms(s1::suzanne_model(30)),
+        s1::viewport(),
+        CullClockwise,
+        SharedDepth,
+        GouraudLit::<Fx16, Rgb565, 1>::new(s1::suzanne_lighting()),
+    );
+    let mut px = vec![0u16; (W * H) as usize];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut px, W, H).unwrap();
+    let mut scratch = vec![VertexSlot::EMPTY; 600];
+    assert!(p.draw(&mut fb, &suzanne, &mut scratch).is_err());
+    assert!(px.iter().all(|&p| p == 0));
+    let _ = DEFAULT_BITS;
+}
