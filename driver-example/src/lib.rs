@@ -1,6 +1,13 @@
-//! A display driver example to copy into firmware: the M1 scene (Suzanne, Gouraud lighting, a
-//! depth buffer, back faces culled) rendered in 16-row bands and streamed band by band to an
-//! ST7789 (240x240) or ILI9341 (320x240) through the [`mipidsi`] driver and its SPI interface.
+//! A display driver example to copy into firmware: scenes rendered in 16-row bands and streamed
+//! band by band to an ST7789 (240x240) or ILI9341 (320x240) through the [`mipidsi`] driver and
+//! its SPI interface.
+//!
+//! - The M1 scene (Suzanne, Gouraud lighting, a depth buffer, back faces culled) through
+//!   [`Pipeline::draw_banded`] and one band buffer: [`stream_m1`].
+//! - Workload S1, a whole firmware screen (two meshes, a translucent panel, anti-aliased bars,
+//!   text, a Gouraud triangle) through the frame list ([`rasterizer_core::frame`]) and two band
+//!   buffers, one drawn into while the other is sent ([`s1::DisplaySender`]); after the first
+//!   frame only the rectangles that changed are sent ([`s1::S1Screen`]).
 //!
 //! Each finished band goes out as one address window (CASET/RASET), one memory write (RAMWR)
 //! and the band's pixels in one [`Display::set_pixels`] call: never a window per pixel, which
@@ -8,13 +15,15 @@
 //!
 //! Everything here is `no_std` without an allocator, generic over the display's interface,
 //! model and reset pin, so the same code drives the SPI peripheral of any embedded-hal 1.0 HAL.
-//! `tests/stream.rs` drives it on the host over a recording SPI device and decodes the bytes
-//! back into a picture.
+//! `tests/stream.rs` (M1) and `tests/s1.rs` (S1) drive it on the host over a recording SPI
+//! device and decode the bytes back into a picture.
 //!
 //! # RAM
 //!
-//! Everything a frame needs besides the mesh (which stays in flash) is in [`BandBuffers`]; at
-//! 240 pixels a row ([`St7789Buffers`]) that is [`ST7789_RAM_BYTES`] = 25,520 bytes:
+//! ## M1
+//!
+//! Everything an M1 frame needs besides the mesh (which stays in flash) is in [`BandBuffers`];
+//! at 240 pixels a row ([`St7789Buffers`]) that is [`ST7789_RAM_BYTES`] = 25,520 bytes:
 //!
 //! | what | size |
 //! |---|---:|
@@ -28,8 +37,28 @@
 //! (its size is the firmware's choice: [`mipidsi::interface::SpiInterface::new`] takes it; 512
 //! bytes in the test), one more band buffer of 7,680 bytes (10,240 at 320 wide) for the
 //! double-buffered DMA variant described at [`send_band`], and the stack of the render call
-//! (measured for the banded M1 draw in the project's `docs/MEMORY.md`). The unit tests below
-//! check these figures against `core::mem::size_of`.
+//! (measured for the banded M1 draw in the project's `docs/MEMORY.md`).
+//!
+//! ## S1
+//!
+//! An S1 frame (320 x 240) works in [`s1::S1Buffers`]: [`s1::S1_RAM_BYTES`] = 41,000 bytes.
+//!
+//! | what | size |
+//! |---|---:|
+//! | two colour bands: 2 x 320 x 16 Rgb565 | 20,480 B |
+//! | depth band, shared by both meshes: 320 x 16 `u16` | 10,240 B |
+//! | Suzanne's bins: [`BINS`] of 2 bytes | 2,048 B |
+//! | Suzanne's vertex scratch: [`VERTICES`] of 16 bytes | 8,112 B |
+//! | the cube's bins: [`s1::CUBE_BINS`] of 2 bytes | 24 B |
+//! | the cube's vertex scratch: [`s1::CUBE_VERTICES`] of 12 bytes | 96 B |
+//!
+//! The list itself lives on the stack for the frame: [`s1::S1_COMMANDS`] slots
+//! ([`rasterizer_core::frame::Slot`]), the two mesh commands (pipeline, matrices and lighting)
+//! and the two labels; [`s1::S1Screen`] keeps the shown frame's summaries between frames
+//! (19 x 24 bytes). Their sizes on the host are printed by `tests/s1.rs`
+//! (`cargo test --test s1 -- --nocapture`); they are smaller with a microcontroller's 32-bit
+//! pointers. The fonts, like the meshes, stay in flash. The unit tests check these figures
+//! against `core::mem::size_of`.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -43,6 +72,7 @@ use mipidsi::models::Model;
 use mipidsi::Display;
 use rasterizer_core::cull::Cull;
 use rasterizer_core::depth::DepthTest;
+use rasterizer_core::frame::FrameError;
 use rasterizer_core::math::Scalar;
 use rasterizer_core::mesh::{MeshError, MeshSource};
 use rasterizer_core::numerics::Numerics;
@@ -50,6 +80,8 @@ use rasterizer_core::pipeline::{BandError, RenderStats};
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 use rasterizer_core::surface::Band;
+
+pub mod s1;
 
 /// The converted Suzanne (`host-tools convert assets/models/suzanne.obj`), read in place from
 /// flash.
@@ -124,8 +156,18 @@ pub enum StreamError<E> {
     Band(BandError),
     /// A band lies beyond the 16-bit coordinates of the display controller.
     OffScreen,
-    /// The display interface failed; the bands after the failing one were rendered but not sent.
+    /// The display interface failed; the bands after the failing one were rendered but not sent
+    /// (M1), or the frame stopped there (S1).
     Display(E),
+    /// The display's size is not the scene's.
+    ScreenSize {
+        /// The scene's.
+        expected: Size,
+        /// The display's.
+        actual: Size,
+    },
+    /// The frame list refused a command or its buffers ([`s1::S1Screen::stream`]).
+    Frame(FrameError),
 }
 
 /// The M1 benchmark scene for a `width` x `height` screen, as the benchmarks define it
