@@ -34,6 +34,9 @@ fn main() {
     if on("fog") && !(on("flat") || on("gouraud") || on("phong")) {
         panic!("fog needs flat, gouraud or phong shading");
     }
+    if on("double") && !on("framelist") {
+        panic!("double renders the frame list double-buffered: with framelist");
+    }
     if ["line2d", "triangle2d", "gouraud2d", "polygon2d", "aa2d"]
         .into_iter()
         .any(on)

@@ -10,10 +10,12 @@
 
 #[cfg(feature = "all")]
 mod all;
-#[cfg(any(feature = "all", three_d))]
+#[cfg(any(feature = "all", three_d, feature = "framelist"))]
 mod m1;
 #[cfg(not(feature = "all"))]
 mod one;
+#[cfg(all(not(feature = "all"), feature = "framelist"))]
+mod s1;
 
 // A panic ends the process with status 101 (as a std program's would) so that CI sees a failure;
 // looping forever, as firmware might, would hang CI instead. The message is a fixed string: printing

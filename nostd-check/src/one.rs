@@ -14,7 +14,9 @@
 //! texture) through M1's camera instead.
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, `aa2d` (an anti-aliased line 3 pixels
 //! wide), each one call into a 320 x 240 Rgb565
-//! framebuffer. No feature at all gives the empty baseline (start-up and panic handler only).
+//! framebuffer. A whole screen: `framelist` for workload S1 through the frame list in 16-row
+//! bands (module `s1`; `double` for two band buffers). No feature at all gives the empty
+//! baseline (start-up and panic handler only).
 //!
 //! The buffers are `static`s, as firmware would place them, so `.bss` shows the frame memory of
 //! the configuration.
@@ -324,6 +326,13 @@ pub extern "C" fn main() -> i32 {
         drawn += three_d::draw();
         // Nothing drawn means a broken configuration: fail the run.
         if black_box(drawn) == 0 {
+            return 1;
+        }
+    }
+    #[cfg(feature = "framelist")]
+    {
+        // Likewise for S1's meshes (0 also when the list could not render).
+        if black_box(crate::s1::draw()) == 0 {
             return 1;
         }
     }
