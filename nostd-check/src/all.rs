@@ -1,5 +1,6 @@
 //! The default build: every public drawing entry point, into each pixel format, through the
-//! framebuffer's fast paths and the generic `DrawTarget` adapter, and the 3D draws.
+//! framebuffer's fast paths and the generic `DrawTarget` adapter, the 3D draws, and the frame
+//! list (every kind of command, rendered in bands, as a region and double-buffered).
 
 use core::hint::black_box;
 use embedded_graphics_core::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888};
@@ -159,6 +160,194 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
     drawn
 }
 
+/// Two band buffers and a transfer that firmware would start on the display's DMA.
+struct Dma<'b> {
+    bands: [&'b mut [u16]; 2],
+}
+
+impl rasterizer_core::frame::DoubleBuffer<Rgb565> for Dma<'_> {
+    type Error = ();
+
+    fn buffer(&mut self, k: usize) -> &mut [u16] {
+        let [first, second] = &mut self.bands;
+        if k == 0 {
+            first
+        } else {
+            second
+        }
+    }
+
+    fn start(
+        &mut self,
+        k: usize,
+        rows: embedded_graphics_core::primitives::Rectangle,
+        area: embedded_graphics_core::primitives::Rectangle,
+    ) -> Result<(), ()> {
+        black_box((&self.bands[k & 1][..], rows, area));
+        Ok(())
+    }
+
+    fn wait(&mut self, k: usize) -> Result<(), ()> {
+        black_box(k);
+        Ok(())
+    }
+}
+
+/// The frame list's entry points: a mesh testing and writing the shared depth, a translucent
+/// one testing it only, every 2D shape (opacities hidden from the compiler, so that both the
+/// opaque and the blended paths are linked), a text label and a polygon; rendered in bands, as a region and
+/// double-buffered; the summaries and the areas that changed between two frames.
+fn draw_frame_list() -> u32 {
+    use embedded_graphics_core::primitives::Rectangle;
+    use rasterizer_core::cull::{CullClockwise, NoCull};
+    use rasterizer_core::depth::{SharedDepth, SharedDepthReadOnly};
+    use rasterizer_core::frame::{
+        changed_areas, Clear, FrameList, Layout, PolygonFill, Shape, Slot, Summary,
+    };
+    use rasterizer_core::math::Fx16;
+    use rasterizer_core::mesh::PackedMesh;
+    use rasterizer_core::pipeline::{BinEntry, MeshCommand, Pipeline, VertexSlot};
+    use rasterizer_core::shade::{FlatLit, GouraudLit};
+    use rasterizer_core::transform::Viewport;
+
+    let Ok(mesh) = PackedMesh::parse(black_box(crate::m1::MESH)) else {
+        return 0;
+    };
+    let xf = crate::m1::transforms();
+    let vp = Viewport::new(64, 48);
+    let lighting = fixtures::scenes3d::lighting::<1>();
+    let mut scratch = [VertexSlot::EMPTY; 64];
+    let mut bins = [BinEntry::ZERO; 1024];
+    let mut opaque = MeshCommand::new(
+        Pipeline::new(
+            &xf,
+            vp,
+            CullClockwise,
+            SharedDepth,
+            GouraudLit::<Fx16, Rgb565, 1>::new(lighting.clone()),
+        ),
+        &mesh,
+        &mut scratch,
+        &mut bins,
+    );
+    let mut glass_scratch = [VertexSlot::EMPTY; 16];
+    let mut glass_bins = [BinEntry::ZERO; 1024];
+    let mut glass = MeshCommand::new(
+        Pipeline::new(
+            &xf,
+            vp,
+            NoCull,
+            SharedDepthReadOnly,
+            FlatLit::<Fx16, Rgb565, 1>::new(lighting),
+        ),
+        &mesh,
+        &mut glass_scratch,
+        &mut glass_bins,
+    )
+    .with_opacity(black_box(100));
+    let p = |x: i32, y: i32| black_box(Point::new(x, y));
+    let sp = |x: i32, y: i32| black_box(SubPoint::<4>::new(x, y));
+    let shapes = [
+        Shape::Line {
+            a: p(-5, 2),
+            b: p(70, 40),
+            color: Rgb565::RED,
+        },
+        Shape::LineGradient {
+            a: p(0, 47),
+            b: p(63, 0),
+            colors: [Rgb565::RED, Rgb565::BLUE],
+        },
+        Shape::LineAlpha {
+            a: p(-5, 40),
+            b: p(70, 2),
+            color: Rgb565::GREEN,
+            alpha: black_box(160),
+        },
+        Shape::LineAa {
+            a: p(-5, 30),
+            b: p(70, 7),
+            width: black_box(3),
+            color: Rgb565::WHITE,
+        },
+        Shape::TriangleOutline {
+            vertices: [p(1, 1), p(60, 5), p(20, 40)],
+            color: Rgb565::CYAN,
+        },
+        Shape::Triangle {
+            vertices: [sp(10, 10), sp(900, 100), sp(300, 700)],
+            color: Rgb565::BLUE,
+            opacity: black_box(255),
+        },
+        Shape::Gouraud {
+            vertices: [sp(10, 10), sp(900, 100), sp(300, 700)],
+            colors: [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE],
+            opacity: black_box(255),
+        },
+    ];
+    let labels = fixtures::s1::labels();
+    let star = [
+        sp(500, 50),
+        sp(700, 700),
+        sp(50, 250),
+        sp(950, 250),
+        sp(300, 700),
+    ];
+    let Ok(polygon) = Polygon::<8>::new(&star) else {
+        return 0;
+    };
+    let star = PolygonFill {
+        polygon: &polygon,
+        rule: FillRule::EvenOdd,
+        color: Rgb565::YELLOW,
+    };
+    let mut rendered = true;
+    {
+        let Ok(layout) = Layout::new(64, 48, 8) else {
+            return 0;
+        };
+        let mut slots = [Slot::EMPTY; 16];
+        let mut list = FrameList::new(&mut slots, layout, Clear::new(Rgb565::BLACK));
+        rendered &= list.command(&mut opaque).is_ok();
+        rendered &= list.command(&mut glass).is_ok();
+        for shape in shapes {
+            rendered &= list.shape(shape).is_ok();
+        }
+        rendered &= list.item(&labels[0], 0).is_ok();
+        rendered &= list.item(&star, 0).is_ok();
+        let (mut band, mut other) = ([0u16; 64 * 8], [0u16; 64 * 8]);
+        let mut depth = [0u16; 64 * 8];
+        rendered &= list
+            .render(&mut band, &mut depth, |b, area| {
+                black_box((b.framebuffer().as_slice(), area));
+            })
+            .is_ok();
+        let region = black_box(Rectangle::new(Point::new(8, 5), Size::new(30, 20)));
+        rendered &= list
+            .render_region(&region, &mut band, &mut depth, |b, area| {
+                black_box((b.framebuffer().as_slice(), area));
+            })
+            .is_ok();
+        let mut dma = Dma {
+            bands: [&mut band, &mut other],
+        };
+        rendered &= list.render_double(None, &mut depth, &mut dma).is_ok();
+        let mut frame = [Summary::default(); 16];
+        let n = list.summaries(&mut frame);
+        let mut areas = [Rectangle::zero(); 4];
+        black_box(changed_areas(
+            black_box(&frame[..n.min(16)]),
+            black_box(&[]),
+            &mut areas,
+        ));
+        black_box(&areas);
+    }
+    if !rendered {
+        return 0;
+    }
+    opaque.stats().drawn + glass.stats().drawn
+}
+
 #[unsafe(no_mangle)]
 pub extern "C" fn main() -> i32 {
     // Rgb565 through the framebuffer's own fast paths, in a static buffer as firmware would.
@@ -202,5 +391,9 @@ pub extern "C" fn main() -> i32 {
     black_box(&strip);
     let mut small = [0u16; 64 * 48];
     black_box(draw_3d(&mut small));
+    // Nothing drawn through the list means it refused something: fail the run.
+    if black_box(draw_frame_list()) == 0 {
+        return 1;
+    }
     0
 }
