@@ -19,23 +19,10 @@ use rasterizer_core::{
 const W: u32 = s1::WIDTH;
 const H: u32 = s1::HEIGHT;
 
-fn load(name: &str) -> fixtures::obj::LoadedMesh {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/models")
-        .join(name);
-    fixtures::obj::LoadedMesh::load(&path).unwrap()
-}
-
-struct Meshes {
-    suzanne: fixtures::obj::LoadedMesh,
-    cube: fixtures::obj::LoadedMesh,
-}
+use fixtures::s1::Meshes;
 
 fn meshes() -> Meshes {
-    Meshes {
-        suzanne: load("suzanne.obj"),
-        cube: load("unit_cube.obj"),
-    }
+    s1::load().unwrap()
 }
 
 /// S1 drawn directly into one whole framebuffer, through the library's own calls, one after the

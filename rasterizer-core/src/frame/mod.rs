@@ -287,6 +287,16 @@ impl Fingerprint {
     }
 }
 
+impl core::hash::Hasher for Fingerprint {
+    fn write(&mut self, bytes: &[u8]) {
+        self.bytes(bytes);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
 impl core::fmt::Write for Fingerprint {
     fn write_str(&mut self, s: &str) -> core::fmt::Result {
         self.bytes(s.as_bytes());
@@ -452,15 +462,12 @@ impl<'c, C: Storage> FrameList<'c, C> {
     /// how many there are in the list.
     pub fn summaries(&self, out: &mut [Summary]) -> usize
     where
-        C: core::fmt::Debug,
+        C: core::hash::Hash,
     {
         for (entry, out) in self.entries().zip(out.iter_mut()) {
             let mut hash = Fingerprint::default();
             match &entry.op {
-                Op::Shape(s) => {
-                    use core::fmt::Write;
-                    let _ = write!(hash, "{s:?}");
-                }
+                Op::Shape(s) => core::hash::Hash::hash(s, &mut hash),
                 Op::Item(_, revision) => {
                     hash.bytes(&revision.to_le_bytes());
                 }

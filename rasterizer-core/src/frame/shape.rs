@@ -13,7 +13,7 @@ use embedded_graphics_core::Drawable;
 
 /// A 2D shape of a frame list, drawn by the library's rasterizer of the same name. Sub-pixel
 /// vertices have 4 fractional bits, as [`SubPoint`]'s default.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Shape<C> {
     /// [`draw_line`].
     Line {

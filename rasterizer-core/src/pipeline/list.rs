@@ -119,7 +119,8 @@ where
     Sh::Color: Storage,
     M: MeshSource<S>,
     N: Numerics,
-    Pipeline<S, C, D, Sh, BITS, N>: core::fmt::Debug,
+    C: core::fmt::Debug,
+    Sh: core::fmt::Debug,
 {
     fn prepare(&mut self, layout: &Layout) -> Result<Prepared, FrameError> {
         let Some(p) = self.pipeline.as_mut() else {
@@ -205,8 +206,11 @@ where
     }
 
     fn fingerprint(&self, hash: &mut crate::frame::Fingerprint) {
-        use core::fmt::Write;
         // Everything that decides the picture: transforms, stages, lights, material.
-        let _ = write!(hash, "{:?}{}{}", self.pipeline, self.opacity, self.revision);
+        if let Some(p) = &self.pipeline {
+            p.fingerprint(hash);
+        }
+        hash.bytes(&[self.opacity]);
+        hash.bytes(&self.revision.to_le_bytes());
     }
 }

@@ -275,6 +275,27 @@ where
         )
     }
 
+    /// Feeds everything that decides the pipeline's picture of a given mesh to `out`: its
+    /// matrices, viewport, culling stage and shading ([`Shading::fingerprint`]).
+    pub fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    where
+        C: core::fmt::Debug,
+        Sh: core::fmt::Debug,
+    {
+        use core::fmt::Write;
+        for m in [&self.mvp, &self.model, &self.normal_matrix] {
+            for v in m.m.iter().flatten() {
+                out.bytes(&v.to_fx16_bits().to_le_bytes());
+            }
+        }
+        let vp = &self.viewport;
+        for v in [vp.x, vp.y, vp.width as i32, vp.height as i32] {
+            out.bytes(&v.to_le_bytes());
+        }
+        let _ = write!(out, "{:?}", self.cull);
+        self.shading.fingerprint(out);
+    }
+
     /// Replaces the matrix that carries normals to world space.
     pub fn set_normal_matrix(&mut self, m: Mat4<S>) {
         self.normal_matrix = m;

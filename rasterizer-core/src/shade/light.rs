@@ -223,6 +223,41 @@ struct LightTerms {
 }
 
 impl<S: Scalar, const N: usize> Lighting<S, N> {
+    /// Feeds the lights, material, ambient light, specular model and eye to `out`
+    /// ([`Shading::fingerprint`](crate::shade::Shading::fingerprint)).
+    pub fn fingerprint(&self, out: &mut crate::frame::Fingerprint) {
+        let rgb =
+            |out: &mut crate::frame::Fingerprint, c: Rgb888| out.bytes(&[c.r(), c.g(), c.b()]);
+        let v3 = |out: &mut crate::frame::Fingerprint, v: &Vec3<S>| {
+            for c in [v.x, v.y, v.z] {
+                out.bytes(&c.to_fx16_bits().to_le_bytes());
+            }
+        };
+        for l in &self.lights {
+            match l {
+                Light::Directional { direction, color } => {
+                    out.bytes(&[0]);
+                    v3(out, direction);
+                    rgb(out, *color);
+                }
+                Light::Point { position, color } => {
+                    out.bytes(&[1]);
+                    v3(out, position);
+                    rgb(out, *color);
+                }
+            }
+        }
+        let m = &self.material;
+        for c in [m.ambient, m.diffuse, m.specular, self.ambient] {
+            rgb(out, c);
+        }
+        out.bytes(&m.shininess.to_le_bytes());
+        out.bytes(&[self.specular as u8]);
+        v3(out, &self.eye);
+    }
+}
+
+impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// No lights yet; `ambient` is the colour of the ambient light.
     pub fn new(material: Material, ambient: Rgb888, specular: Specular, eye: Vec3<S>) -> Self {
         let mut out = Self {

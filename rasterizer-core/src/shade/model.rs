@@ -109,6 +109,16 @@ pub trait Shading<S: Scalar> {
     fn begin_frame(&mut self, _model: Option<&Mat4<S>>) -> bool {
         false
     }
+    /// Feeds everything that decides the shader's colours to `out`, for a frame list that
+    /// compares frames ([`crate::frame::changed_areas`]). The default writes the `Debug` form,
+    /// which holds every field; the lit shaders write their lighting's settings, far faster.
+    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    where
+        Self: core::fmt::Debug,
+    {
+        use core::fmt::Write;
+        let _ = write!(out, "{self:?}");
+    }
     /// The shader reads texture coordinates ([`VertexIn::uv`]; zero otherwise).
     const NEEDS_UV: bool = false;
     /// The shader's values depend on the vertex's clip-space `w` ([`Shading::project`]).
@@ -333,6 +343,12 @@ impl<S: Scalar, C: ShadeColor, const N: usize> FlatLit<S, C, N> {
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
+    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    where
+        Self: core::fmt::Debug,
+    {
+        self.lighting.fingerprint(out);
+    }
     type Color = C;
     type Varyings = [i32; 0];
     type Stored = [i32; 0];
@@ -420,6 +436,12 @@ fn target_scale<C: ShadeColor>() -> [u32; 3] {
 const PLAN_BITS: u32 = 32;
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N> {
+    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    where
+        Self: core::fmt::Debug,
+    {
+        self.lighting.fingerprint(out);
+    }
     type Color = C;
     type Varyings = [i32; 3];
     type Stored = [u16; 3];
@@ -501,6 +523,12 @@ impl<S: Scalar, C, const N: usize> PhongLit<S, C, N> {
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> {
+    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    where
+        Self: core::fmt::Debug,
+    {
+        self.lighting.fingerprint(out);
+    }
     type Color = C;
     type Varyings = [i32; 6];
     type Stored = [i32; 6];
