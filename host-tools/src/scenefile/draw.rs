@@ -1,4 +1,9 @@
 //! Drawing a loaded scene: the meshes through the 3D pipeline, then the 2D shapes.
+//!
+//! The pipeline's stages are chosen here once, for both ways of drawing a frame: each mesh's
+//! choice (culling, depth, shading, perspective, fog, dithering, translucency, wireframe) is
+//! handed to a [`MeshSink`], which draws it into a whole frame at once ([`Whole`]); a frame
+//! list's sink is to make a command of it instead.
 
 use super::format::{
     CullMode, DitherMode, FillRuleDef, LightDef, PixelFormat, ShadingModel, Shape,
@@ -6,14 +11,16 @@ use super::format::{
 use super::load::{MeshData, OwnedMesh, Scene, SceneFog, SceneMesh};
 use super::reference::Real;
 use super::{MAX_LIGHTS, MAX_POLYGON};
+use core::fmt::Debug;
 use embedded_graphics_simulator::{OutputImage, OutputSettingsBuilder, SimulatorDisplay};
 use rasterizer_core::color::Channels;
-use rasterizer_core::color::ShadeColor;
 use rasterizer_core::cull::Cull;
-use rasterizer_core::depth::DepthTest;
+use rasterizer_core::geom::MAX_VARYINGS;
 use rasterizer_core::numerics::{Dither, Numerics, Perspective, Standard};
 use rasterizer_core::prelude::*;
-use rasterizer_core::shade::{Fog, FogCurve, FogSettings, Foggable, Shading, FOG_TABLE_LEN};
+use rasterizer_core::shade::{
+    Fog, FogCurve, FogSettings, Foggable, Shading, VertexIn, FOG_TABLE_LEN,
+};
 use rasterizer_core::surface::{BlendError, ClipTo};
 use rasterizer_core::{mesh::MeshSource, pipeline::RenderStats};
 use std::convert::Infallible;
@@ -81,9 +88,8 @@ where
 }
 
 /// The scene drawn onto a simulator display of colour `C`: the meshes into a
-/// `Framebuffer<Rgb888>` (the shaders produce `Rgb888` and convert each pixel to the target's
-/// colour in any case, so this gives the pixels a pipeline of colour `C` would), copied onto the
-/// display converted to `C`; then the shapes straight onto the display through `AnyTarget`.
+/// `Framebuffer<Rgb888>` by `Rgb888` pipelines, copied onto the display converted to `C`; then
+/// the shapes straight onto the display through [`ReadBack`].
 fn render_display<C>(scene: &Scene, pose: Pose) -> Result<(SimulatorDisplay<C>, FrameStats), String>
 where
     C: PixelColor + From<Rgb888> + Channels,
@@ -147,7 +153,7 @@ fn render_3d_pixels<S: Real>(
 }
 
 /// Any mesh source behind one type, so the pipelines are compiled once for all mesh kinds.
-struct DynMesh<'a, S>(&'a dyn MeshSource<S>);
+pub(super) struct DynMesh<'a, S>(pub(super) &'a dyn MeshSource<S>);
 
 impl<S> MeshSource<S> for DynMesh<'_, S> {
     fn vertex_count(&self) -> usize {
@@ -176,7 +182,7 @@ impl<S> MeshSource<S> for DynMesh<'_, S> {
     }
 }
 
-/// The target every pipeline draws into.
+/// The target every pipeline of [`Whole`] draws into.
 type Target<'a> = Counting<Framebuffer<'a, Rgb888>>;
 
 /// A vector of `f64`s in `S`.
@@ -223,17 +229,16 @@ fn model_of<S: Real>(m: &SceneMesh, pose: Pose) -> (Mat4<S>, Option<Mat4<S>>) {
 }
 
 /// Everything one mesh's draw call needs besides the mesh.
-struct Job<'a, S: Real> {
-    mesh: &'a SceneMesh,
+pub(super) struct Job<'a, S: Real> {
+    pub(super) mesh: &'a SceneMesh,
     transforms: Transforms<S>,
     normal_matrix: Option<Mat4<S>>,
-    viewport: Viewport,
+    pub(super) viewport: Viewport,
     lighting: Lighting<S, MAX_LIGHTS>,
 }
 
-/// The meshes, in order, sharing one depth buffer.
-/// Returns the triangles handed to the rasterizer.
-fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> Result<u64, String> {
+/// The draw call of every mesh, in order: transforms, viewport and lights.
+pub(super) fn jobs<S: Real>(scene: &Scene, pose: Pose) -> Result<Vec<Job<'_, S>>, String> {
     let cam = &scene.camera;
     let (w, h) = (scene.width, scene.height);
     let view = Mat4::look_at(v3::<S>(cam.eye), v3(cam.target), v3(cam.up)).ok_or_else(|| {
@@ -256,8 +261,7 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> R
             S::NAME
         )
     })?;
-    let mut zbuf = vec![u16::MAX; w as usize * h as usize];
-    let mut triangles = 0;
+    let mut jobs = Vec::with_capacity(scene.meshes.len());
     for mesh in &scene.meshes {
         let (model, normal_matrix) = model_of::<S>(mesh, pose);
         let mut lighting = Lighting::new(mesh.material, scene.ambient, scene.specular, v3(cam.eye));
@@ -280,7 +284,7 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> R
                 )
             })?;
         }
-        let job = Job {
+        jobs.push(Job {
             mesh,
             transforms: Transforms {
                 model,
@@ -290,30 +294,36 @@ fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> R
             normal_matrix,
             viewport: Viewport::new(w, h),
             lighting,
+        });
+    }
+    Ok(jobs)
+}
+
+/// A mesh's vertex data as a mesh source in `S`.
+pub(super) fn source<'a, S: Real>(
+    mesh: &'a SceneMesh,
+) -> Result<Box<dyn MeshSource<S> + 'a>, String> {
+    Ok(match &mesh.data {
+        MeshData::Packed(bytes) => Box::new(PackedMesh::parse(bytes).map_err(|e| e.to_string())?),
+        MeshData::Owned(owned) => Box::new(Converted::<S>::new(owned)),
+    })
+}
+
+/// The meshes, in order, sharing one depth buffer.
+/// Returns the triangles handed to the rasterizer.
+fn draw_meshes<S: Real>(scene: &Scene, target: &mut Target<'_>, pose: Pose) -> Result<u64, String> {
+    let (w, h) = (scene.width, scene.height);
+    let mut zbuf = vec![u16::MAX; w as usize * h as usize];
+    let mut triangles = 0;
+    for job in jobs::<S>(scene, pose)? {
+        // One mesh converted at a time.
+        let data = source::<S>(job.mesh)?;
+        let mut whole = Whole {
+            target: &mut *target,
+            mesh: &DynMesh(&*data),
+            zbuf: &mut zbuf,
         };
-        let format = scene.format;
-        let draw = |target: &mut Target<'_>, m: &DynMesh<'_, S>, zbuf: &mut [u16]| {
-            if mesh.opacity < u8::MAX {
-                translucent(target, m, &job, zbuf)
-            } else if dithers(mesh) {
-                by_format(target, m, &job, zbuf, format)
-            } else if fogs(mesh) {
-                fogged(target, m, &job, zbuf)
-            } else {
-                by_cull(target, m, &job, zbuf)
-            }
-        };
-        match &mesh.data {
-            MeshData::Packed(bytes) => {
-                let packed = PackedMesh::parse(bytes).map_err(|e| e.to_string())?;
-                triangles += u64::from(draw(target, &DynMesh(&packed), &mut zbuf).drawn);
-            }
-            MeshData::Owned(owned) => {
-                let data = Converted::<S>::new(owned);
-                let mesh = DynMesh(&data.mesh());
-                triangles += u64::from(draw(target, &mesh, &mut zbuf).drawn);
-            }
-        }
+        triangles += u64::from(dispatch(&mut whole, &job, scene.format).drawn);
     }
     Ok(triangles)
 }
@@ -349,6 +359,160 @@ impl<S: Real> Converted<S> {
             uvs: self.uvs.as_deref(),
             triangles: &self.triangles,
         }
+    }
+}
+
+impl<S: Real> MeshSource<S> for Converted<S> {
+    fn vertex_count(&self) -> usize {
+        self.mesh().vertex_count()
+    }
+    fn triangle_count(&self) -> usize {
+        self.mesh().triangle_count()
+    }
+    fn triangle(&self, t: usize) -> [usize; 3] {
+        self.mesh().triangle(t)
+    }
+    fn position(&self, i: usize) -> Vec3<S> {
+        self.mesh().position(i)
+    }
+    fn has_normals(&self) -> bool {
+        self.mesh().has_normals()
+    }
+    fn normal(&self, i: usize) -> Option<Vec3<S>> {
+        self.mesh().normal(i)
+    }
+    fn color(&self, i: usize) -> Option<Rgb888> {
+        self.mesh().color(i)
+    }
+    fn uv(&self, i: usize) -> Option<[i32; 2]> {
+        self.mesh().uv(i)
+    }
+}
+
+/// A culling stage a sink can keep (every one of this module's).
+pub(super) trait Stage: Cull + Copy + Debug + 'static {}
+impl<T: Cull + Copy + Debug + 'static> Stage for T {}
+
+/// A shading model a sink can keep: `Rgb888` out, as every pipeline here draws (see
+/// [`InRgb888`] for the dithered ones).
+pub(super) trait Shade<S: Real>:
+    Shading<S, Color = Rgb888, Stored: 'static> + Debug
+{
+}
+impl<S: Real, T: Shading<S, Color = Rgb888, Stored: 'static> + Debug> Shade<S> for T {}
+
+/// Numeric knobs a sink can keep.
+pub(super) trait Knobs: Numerics + Debug + 'static {}
+impl<T: Numerics + Debug + 'static> Knobs for T {}
+
+/// What a mesh's choice of stages is handed to, one method per use of the frame's depth buffer
+/// (so each compiles only its own depth stage). Opaque meshes test and write depth or ignore
+/// it; translucent ones (opacity below 255, blended through `Translucent`) test it without
+/// writing it, or ignore it. `'s` is how long the scene lives (a texture is borrowed from it).
+/// Each returns what the draw did (nothing yet, for a sink that only records).
+pub(super) trait MeshSink<'s, S: Real> {
+    /// An opaque mesh, depth tested and written.
+    fn opaque_with_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats;
+    /// An opaque mesh without a depth test.
+    fn opaque_without_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats;
+    /// A translucent mesh, depth tested but not written.
+    fn translucent_with_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats;
+    /// A translucent mesh without a depth test.
+    fn translucent_without_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats;
+    /// A mesh's edges in its colour (`Pipeline::draw_wireframe`, no depth test), blended when
+    /// it is translucent.
+    fn wireframe<Cu: Stage>(&mut self, job: &Job<'s, S>, cull: Cu) -> RenderStats;
+}
+
+/// A use of the depth buffer as a type: picks the [`MeshSink`] method.
+trait DepthUse {
+    fn draw<'s, S, K, Cu, Sh, N>(
+        sink: &mut K,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats
+    where
+        S: Real,
+        K: MeshSink<'s, S>,
+        Cu: Stage,
+        Sh: Shade<S> + 's,
+        N: Knobs;
+}
+
+/// [`MeshSink::opaque_with_depth`].
+struct OpaqueDepth;
+/// [`MeshSink::opaque_without_depth`].
+struct OpaqueNoDepth;
+/// [`MeshSink::translucent_with_depth`].
+struct TranslucentDepth;
+/// [`MeshSink::translucent_without_depth`].
+struct TranslucentNoDepth;
+
+macro_rules! depth_use {
+    ($($t:ty => $method:ident),*) => {$(
+        impl DepthUse for $t {
+            fn draw<'s, S, K, Cu, Sh, N>(
+                sink: &mut K,
+                job: &Job<'s, S>,
+                cull: Cu,
+                shading: Sh,
+            ) -> RenderStats
+            where
+                S: Real,
+                K: MeshSink<'s, S>,
+                Cu: Stage,
+                Sh: Shade<S> + 's,
+                N: Knobs,
+            {
+                sink.$method::<Cu, Sh, N>(job, cull, shading)
+            }
+        }
+    )*};
+}
+
+depth_use!(
+    OpaqueDepth => opaque_with_depth,
+    OpaqueNoDepth => opaque_without_depth,
+    TranslucentDepth => translucent_with_depth,
+    TranslucentNoDepth => translucent_without_depth
+);
+
+/// One mesh's pipeline, chosen from its stages and handed to `sink`.
+pub(super) fn dispatch<'s, S: Real, K: MeshSink<'s, S>>(
+    sink: &mut K,
+    job: &Job<'s, S>,
+    format: PixelFormat,
+) -> RenderStats {
+    let mesh = job.mesh;
+    if mesh.opacity < u8::MAX {
+        translucent(sink, job)
+    } else if dithers(mesh) {
+        by_format(sink, job, format)
+    } else if fogs(mesh) {
+        fogged(sink, job)
+    } else {
+        by_cull(sink, job)
     }
 }
 
@@ -392,96 +556,112 @@ fn fog_settings<S: Real>(fog: Option<&SceneFog>) -> FogSettings<S> {
 
 /// A fogged mesh (not dithered): culling chosen at run time and the shading model wrapped in
 /// [`Fog`], so fog adds one pipeline per model, depth stage and interpolation, not per culling.
-fn fogged<S: Real>(
-    target: &mut Target<'_>,
-    mesh: &DynMesh<'_, S>,
-    job: &Job<'_, S>,
-    zbuf: &mut [u16],
-) -> RenderStats {
-    let cull = ModeCull(job.mesh.cull);
-    if !job.mesh.depth {
-        return fogged_shading(target, mesh, job, cull, NoDepth);
-    }
-    let (w, h) = (job.viewport.width, job.viewport.height);
-    match DepthBuffer::new(zbuf, w, h, Compare::Less) {
-        Ok(depth) => fogged_shading(target, mesh, job, cull, depth),
-        Err(_) => RenderStats::default(),
+fn fogged<'s, S: Real, K: MeshSink<'s, S>>(sink: &mut K, job: &Job<'s, S>) -> RenderStats {
+    if job.mesh.depth {
+        fogged_shading::<S, K, OpaqueDepth>(sink, job)
+    } else {
+        fogged_shading::<S, K, OpaqueNoDepth>(sink, job)
     }
 }
 
 /// Picks the shading model of a fogged mesh.
-fn fogged_shading<S: Real, D: DepthTest>(
-    target: &mut Target<'_>,
-    mesh: &DynMesh<'_, S>,
-    job: &Job<'_, S>,
-    cull: ModeCull,
-    depth: D,
+fn fogged_shading<'s, S: Real, K: MeshSink<'s, S>, U: DepthUse>(
+    sink: &mut K,
+    job: &Job<'s, S>,
 ) -> RenderStats {
-    fn with_fog<S: Real, D: DepthTest, Sh: Foggable<S, Color = Rgb888>>(
-        target: &mut Target<'_>,
-        mesh: &DynMesh<'_, S>,
-        job: &Job<'_, S>,
-        cull: ModeCull,
-        depth: D,
-        inner: Sh,
-    ) -> RenderStats {
+    fn with_fog<'s, S, K, U, Sh>(sink: &mut K, job: &Job<'s, S>, inner: Sh) -> RenderStats
+    where
+        S: Real,
+        K: MeshSink<'s, S>,
+        U: DepthUse,
+        Sh: Foggable<S, Color = Rgb888> + Debug + 's,
+        Fog<S, Sh>: Shade<S>,
+    {
         let settings = fog_settings(job.mesh.fog.as_ref());
         let shading = Fog::new(inner, settings, &job.transforms.view);
-        by_perspective(target, mesh, job, cull, depth, shading)
+        by_perspective::<S, K, U, _, _>(sink, job, ModeCull(job.mesh.cull), shading)
     }
     let lighting = job.lighting.clone();
     match job.mesh.shading {
-        ShadingModel::VertexColors => with_fog(
-            target,
-            mesh,
-            job,
-            cull,
-            depth,
-            VertexColors::<Rgb888>::new(),
-        ),
+        ShadingModel::VertexColors => {
+            with_fog::<S, K, U, _>(sink, job, VertexColors::<Rgb888>::new())
+        }
         ShadingModel::Flat => {
             let flat = FlatLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
-            with_fog(target, mesh, job, cull, depth, flat)
+            with_fog::<S, K, U, _>(sink, job, flat)
         }
         ShadingModel::Phong => {
             let phong = PhongLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
-            with_fog(target, mesh, job, cull, depth, phong)
+            with_fog::<S, K, U, _>(sink, job, phong)
         }
         _ => {
             let gouraud = GouraudLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
-            with_fog(target, mesh, job, cull, depth, gouraud)
+            with_fog::<S, K, U, _>(sink, job, gouraud)
         }
     }
 }
 
-/// The `Rgb888` target seen as a target of the output's colour `C`, so that a dithered pipeline
-/// works at the output's channel depth. Each pixel goes back to `Rgb888` exactly: the output's
-/// conversion from `Rgb888` returns the same `C`.
-struct AsColor<'t, 'f, C>(&'t mut Target<'f>, core::marker::PhantomData<C>);
+/// A shading model of the output's colour `Sh::Color` seen as one of `Rgb888`: every colour it
+/// makes converted, the rest handed through. A dithered pipeline dithers at the output's channel
+/// depth, so its shading is of the output's colour; this lets it draw into the `Rgb888` frame
+/// the other meshes share. Each colour comes back exactly when the frame is converted to the
+/// output's colour (a test checks every one).
+#[derive(Debug, Clone)]
+pub(super) struct InRgb888<Sh>(Sh);
 
-impl<C> Dimensions for AsColor<'_, '_, C> {
-    fn bounding_box(&self) -> Rectangle {
-        self.0.bounding_box()
+impl<S: Real, Sh: Shading<S>> Shading<S> for InRgb888<Sh>
+where
+    Sh::Color: Into<Rgb888>,
+{
+    type Color = Rgb888;
+    type Varyings = Sh::Varyings;
+    type Stored = Sh::Stored;
+    const NEEDS_WORLD: bool = Sh::NEEDS_WORLD;
+    const NEEDS_FACE: bool = Sh::NEEDS_FACE;
+    const NEEDS_UV: bool = Sh::NEEDS_UV;
+    const NEEDS_W: bool = Sh::NEEDS_W;
+    const NEEDS_TRIANGLE: bool = Sh::NEEDS_TRIANGLE;
+    const FUSED_FRAC: u32 = Sh::FUSED_FRAC;
+    const FUSED_OFFSET: u32 = Sh::FUSED_OFFSET;
+
+    fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
+        self.0.begin_frame(model)
+    }
+    #[inline(always)]
+    fn vertex(&mut self, v: &VertexIn<S>) -> Self::Varyings {
+        self.0.vertex(v)
+    }
+    #[inline(always)]
+    fn project(&self, v: &mut Self::Varyings, w: S) {
+        self.0.project(v, w);
+    }
+    #[inline(always)]
+    fn triangle(&mut self, v: &mut [Self::Varyings; 3]) {
+        self.0.triangle(v);
+    }
+    #[inline(always)]
+    fn face(&mut self, vertices: &[VertexIn<S>; 3]) {
+        self.0.face(vertices);
+    }
+    #[inline(always)]
+    fn pixel(&self, v: &Self::Varyings) -> Rgb888 {
+        self.0.pixel(v).into()
+    }
+    #[inline(always)]
+    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> Rgb888 {
+        self.0.pixel_fused(acc).into()
+    }
+    #[inline(always)]
+    fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> Rgb888 {
+        self.0.pixel_fused_dithered(acc, threshold).into()
     }
 }
 
-impl<C: PixelColor + Into<Rgb888>> DrawTarget for AsColor<'_, '_, C> {
-    type Color = C;
-    type Error = Infallible;
-    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
-    where
-        I: IntoIterator<Item = Pixel<C>>,
-    {
-        self.0
-            .draw_iter(pixels.into_iter().map(|Pixel(p, c)| Pixel(p, c.into())))
-    }
-}
-
-impl<C: PixelColor + Into<Rgb888>> Surface for AsColor<'_, '_, C> {}
-
-/// Culling chosen at run time, so the dithered path compiles one pipeline per colour, not three.
+/// Culling chosen at run time, so the fogged, dithered and translucent paths (and every mesh of
+/// the banded path) compile one pipeline per stage set, not three. It keeps exactly the
+/// triangles the stage it names keeps.
 #[derive(Debug, Clone, Copy)]
-struct ModeCull(CullMode);
+pub(super) struct ModeCull(pub(super) CullMode);
 
 impl Cull for ModeCull {
     fn keep(&self, area: i64) -> bool {
@@ -494,6 +674,7 @@ impl Cull for ModeCull {
 }
 
 /// Numerics with dithering `D` (1: Bayer 4x4, 2: Bayer 8x8).
+#[derive(Debug)]
 struct Dithered<const D: u8>;
 
 impl<const D: u8> Numerics for Dithered<D> {
@@ -505,283 +686,171 @@ impl<const D: u8> Numerics for Dithered<D> {
 }
 
 /// A dithered mesh: picks the output's colour.
-fn by_format<S: Real>(
-    target: &mut Target<'_>,
-    mesh: &DynMesh<'_, S>,
-    job: &Job<'_, S>,
-    zbuf: &mut [u16],
+fn by_format<'s, S: Real, K: MeshSink<'s, S>>(
+    sink: &mut K,
+    job: &Job<'s, S>,
     format: PixelFormat,
 ) -> RenderStats {
     match format {
-        PixelFormat::Rgb565 => dithered::<S, Rgb565>(target, mesh, job, zbuf),
-        PixelFormat::Rgb888 => dithered::<S, Rgb888>(target, mesh, job, zbuf),
-        PixelFormat::Gray8 => dithered::<S, Gray8>(target, mesh, job, zbuf),
-        PixelFormat::Binary => dithered::<S, BinaryColor>(target, mesh, job, zbuf),
+        PixelFormat::Rgb565 => dithered::<S, K, Rgb565>(sink, job),
+        PixelFormat::Rgb888 => dithered::<S, K, Rgb888>(sink, job),
+        PixelFormat::Gray8 => dithered::<S, K, Gray8>(sink, job),
+        PixelFormat::Binary => dithered::<S, K, BinaryColor>(sink, job),
     }
 }
 
-/// A dithered mesh in the output's colour `C`: picks the depth stage, shading and matrix.
-fn dithered<S: Real, C: ShadeColor + Into<Rgb888>>(
-    target: &mut Target<'_>,
-    mesh: &DynMesh<'_, S>,
-    job: &Job<'_, S>,
-    zbuf: &mut [u16],
-) -> RenderStats {
-    let mut target = AsColor::<C>(target, core::marker::PhantomData);
-    let cull = ModeCull(job.mesh.cull);
-    if !job.mesh.depth {
-        return dithered_shading::<S, C, _>(&mut target, mesh, job, cull, NoDepth);
-    }
-    let (w, h) = (job.viewport.width, job.viewport.height);
-    match DepthBuffer::new(zbuf, w, h, Compare::Less) {
-        Ok(depth) => dithered_shading::<S, C, _>(&mut target, mesh, job, cull, depth),
-        Err(_) => RenderStats::default(),
+/// A dithered mesh in the output's colour `C`: picks the depth stage.
+fn dithered<'s, S: Real, K: MeshSink<'s, S>, C>(sink: &mut K, job: &Job<'s, S>) -> RenderStats
+where
+    C: rasterizer_core::color::ShadeColor + Into<Rgb888> + Debug + 'static,
+{
+    if job.mesh.depth {
+        dithered_shading::<S, K, C, OpaqueDepth>(sink, job)
+    } else {
+        dithered_shading::<S, K, C, OpaqueNoDepth>(sink, job)
     }
 }
 
 /// Picks the shading and the matrix of a dithered mesh.
-fn dithered_shading<S: Real, C: ShadeColor + Into<Rgb888>, D: DepthTest>(
-    target: &mut AsColor<'_, '_, C>,
-    mesh: &DynMesh<'_, S>,
-    job: &Job<'_, S>,
-    cull: ModeCull,
-    depth: D,
-) -> RenderStats {
-    fn draw<S: Real, C: ShadeColor + Into<Rgb888>, D: DepthTest, Sh, N: Numerics>(
-        target: &mut AsColor<'_, '_, C>,
-        mesh: &DynMesh<'_, S>,
-        job: &Job<'_, S>,
-        cull: ModeCull,
-        depth: D,
-        shading: Sh,
-    ) -> RenderStats
-    where
-        Sh: Shading<S, Color = C>,
-    {
-        let mut p =
-            Pipeline::new(&job.transforms, job.viewport, cull, depth, shading).with_numerics::<N>();
-        if let Some(n) = job.normal_matrix {
-            p.set_normal_matrix(n);
-        }
-        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
-        p.draw(target, mesh, &mut scratch).unwrap_or_default()
-    }
+fn dithered_shading<'s, S: Real, K: MeshSink<'s, S>, C, U: DepthUse>(
+    sink: &mut K,
+    job: &Job<'s, S>,
+) -> RenderStats
+where
+    C: rasterizer_core::color::ShadeColor + Into<Rgb888> + Debug + 'static,
+{
+    let cull = ModeCull(job.mesh.cull);
     let bayer4 = job.mesh.dither == DitherMode::Bayer4;
     let fog = fog_settings(job.mesh.fog.as_ref());
     let view = &job.transforms.view;
     if job.mesh.shading == ShadingModel::VertexColors {
-        let sh = Fog::new(VertexColors::<C>::new(), fog, view);
+        let sh = InRgb888(Fog::new(VertexColors::<C>::new(), fog, view));
         return if bayer4 {
-            draw::<S, C, D, _, Dithered<1>>(target, mesh, job, cull, depth, sh)
+            U::draw::<S, K, _, _, Dithered<1>>(sink, job, cull, sh)
         } else {
-            draw::<S, C, D, _, Dithered<2>>(target, mesh, job, cull, depth, sh)
+            U::draw::<S, K, _, _, Dithered<2>>(sink, job, cull, sh)
         };
     }
-    let sh = Fog::new(
+    let sh = InRgb888(Fog::new(
         GouraudLit::<S, C, MAX_LIGHTS>::new(job.lighting.clone()),
         fog,
         view,
-    );
+    ));
     if bayer4 {
-        draw::<S, C, D, _, Dithered<1>>(target, mesh, job, cull, depth, sh)
+        U::draw::<S, K, _, _, Dithered<1>>(sink, job, cull, sh)
     } else {
-        draw::<S, C, D, _, Dithered<2>>(target, mesh, job, cull, depth, sh)
+        U::draw::<S, K, _, _, Dithered<2>>(sink, job, cull, sh)
     }
 }
 
-/// A translucent mesh (`opacity` below 255): drawn through `Translucent`, testing depth without
-/// writing it; culling chosen at run time, so this compiles one pipeline per shading model.
-fn translucent<S: Real>(
-    target: &mut Target<'_>,
-    mesh: &DynMesh<'_, S>,
-    job: &Job<'_, S>,
-    zbuf: &mut [u16],
-) -> RenderStats {
-    let mut target = Translucent::new(target, job.mesh.opacity);
+/// A translucent mesh (`opacity` below 255): blended, testing depth without writing it;
+/// culling chosen at run time, so this compiles one pipeline per shading model.
+fn translucent<'s, S: Real, K: MeshSink<'s, S>>(sink: &mut K, job: &Job<'s, S>) -> RenderStats {
     let cull = ModeCull(job.mesh.cull);
     if job.mesh.wireframe {
-        let color = job.mesh.color;
-        let mut p = Pipeline::new(
-            &job.transforms,
-            job.viewport,
-            cull,
-            NoDepth,
-            Unlit { color },
-        );
-        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
-        // The framebuffer reads back, so this cannot fail.
-        return p
-            .draw_wireframe(&mut target, mesh, &mut scratch, color)
-            .unwrap_or_default();
+        return sink.wireframe(job, cull);
     }
-    if !job.mesh.depth {
-        return by_shading(&mut target, mesh, job, cull, NoDepth);
-    }
-    let (w, h) = (job.viewport.width, job.viewport.height);
-    match DepthBuffer::new(zbuf, w, h, Compare::Less) {
-        Ok(depth) => by_shading(&mut target, mesh, job, cull, depth.read_only()),
-        Err(_) => RenderStats::default(),
+    if job.mesh.depth {
+        by_shading::<S, K, TranslucentDepth, _>(sink, job, cull)
+    } else {
+        by_shading::<S, K, TranslucentNoDepth, _>(sink, job, cull)
     }
 }
 
 /// Picks the culling stage.
-fn by_cull<S: Real, M>(
-    target: &mut Target<'_>,
-    mesh: &M,
-    job: &Job<'_, S>,
-    zbuf: &mut [u16],
-) -> RenderStats
-where
-    M: MeshSource<S>,
-{
+fn by_cull<'s, S: Real, K: MeshSink<'s, S>>(sink: &mut K, job: &Job<'s, S>) -> RenderStats {
     match job.mesh.cull {
-        CullMode::None => by_depth(target, mesh, job, zbuf, NoCull),
-        CullMode::Cw => by_depth(target, mesh, job, zbuf, CullClockwise),
-        CullMode::Ccw => by_depth(target, mesh, job, zbuf, CullCounterClockwise),
+        CullMode::None => by_depth(sink, job, NoCull),
+        CullMode::Cw => by_depth(sink, job, CullClockwise),
+        CullMode::Ccw => by_depth(sink, job, CullCounterClockwise),
     }
 }
 
 /// Wireframe, or picks the depth stage.
-fn by_depth<S: Real, M, C: Cull>(
-    target: &mut Target<'_>,
-    mesh: &M,
-    job: &Job<'_, S>,
-    zbuf: &mut [u16],
-    cull: C,
-) -> RenderStats
-where
-    M: MeshSource<S>,
-{
+fn by_depth<'s, S: Real, K: MeshSink<'s, S>, Cu: Stage>(
+    sink: &mut K,
+    job: &Job<'s, S>,
+    cull: Cu,
+) -> RenderStats {
     if job.mesh.wireframe {
-        let color = job.mesh.color;
-        let mut p = Pipeline::new(
-            &job.transforms,
-            job.viewport,
-            cull,
-            NoDepth,
-            Unlit { color },
-        );
-        let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
-        let Ok(stats) = p.draw_wireframe(target, mesh, &mut scratch, color);
-        return stats;
-    }
-    if job.mesh.depth {
-        let (w, h) = (job.viewport.width, job.viewport.height);
-        // The buffer has exactly w * h entries, so this cannot fail.
-        match DepthBuffer::new(zbuf, w, h, Compare::Less) {
-            Ok(depth) => by_shading(target, mesh, job, cull, depth),
-            Err(_) => RenderStats::default(),
-        }
+        sink.wireframe(job, cull)
+    } else if job.mesh.depth {
+        by_shading::<S, K, OpaqueDepth, _>(sink, job, cull)
     } else {
-        by_shading(target, mesh, job, cull, NoDepth)
+        by_shading::<S, K, OpaqueNoDepth, _>(sink, job, cull)
     }
 }
 
 /// Picks the shading stage.
-fn by_shading<S: Real, T: Surface<Color = Rgb888>, M, C: Cull, D: DepthTest>(
-    target: &mut T,
-    mesh: &M,
-    job: &Job<'_, S>,
-    cull: C,
-    depth: D,
-) -> RenderStats
-where
-    M: MeshSource<S>,
-{
+fn by_shading<'s, S: Real, K: MeshSink<'s, S>, U: DepthUse, Cu: Stage>(
+    sink: &mut K,
+    job: &Job<'s, S>,
+    cull: Cu,
+) -> RenderStats {
     let lighting = job.lighting.clone();
     // The loader allows a texture only with Gouraud shading.
     if let Some(t) = &job.mesh.texture {
         let shading = TexturedLit::<S, Rgb888, MAX_LIGHTS>::new(lighting, t.image.texture())
             .with_filter(t.filter)
             .with_wrap(t.wrap);
-        return by_perspective(target, mesh, job, cull, depth, shading);
+        return by_perspective::<S, K, U, _, _>(sink, job, cull, shading);
     }
     match job.mesh.shading {
-        ShadingModel::None => by_perspective(
-            target,
-            mesh,
-            job,
-            cull,
-            depth,
-            Unlit {
-                color: job.mesh.color,
-            },
-        ),
-        ShadingModel::VertexColors => by_perspective(
-            target,
-            mesh,
-            job,
-            cull,
-            depth,
-            VertexColors::<Rgb888>::new(),
-        ),
-        ShadingModel::Flat => by_perspective(
-            target,
-            mesh,
-            job,
-            cull,
-            depth,
-            FlatLit::<S, Rgb888, MAX_LIGHTS>::new(lighting),
-        ),
-        ShadingModel::Gouraud => by_perspective(
-            target,
-            mesh,
-            job,
-            cull,
-            depth,
-            GouraudLit::<S, Rgb888, MAX_LIGHTS>::new(lighting),
-        ),
-        ShadingModel::Phong => by_perspective(
-            target,
-            mesh,
-            job,
-            cull,
-            depth,
-            PhongLit::<S, Rgb888, MAX_LIGHTS>::new(lighting),
-        ),
+        ShadingModel::None => {
+            let color = job.mesh.color;
+            by_perspective::<S, K, U, _, _>(sink, job, cull, Unlit { color })
+        }
+        ShadingModel::VertexColors => {
+            by_perspective::<S, K, U, _, _>(sink, job, cull, VertexColors::<Rgb888>::new())
+        }
+        ShadingModel::Flat => {
+            let flat = FlatLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
+            by_perspective::<S, K, U, _, _>(sink, job, cull, flat)
+        }
+        ShadingModel::Gouraud => {
+            let gouraud = GouraudLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
+            by_perspective::<S, K, U, _, _>(sink, job, cull, gouraud)
+        }
+        ShadingModel::Phong => {
+            let phong = PhongLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
+            by_perspective::<S, K, U, _, _>(sink, job, cull, phong)
+        }
     }
 }
 
 /// Picks affine or perspective-correct interpolation.
-fn by_perspective<S, T, M, C, D, Sh>(
-    target: &mut T,
-    mesh: &M,
-    job: &Job<'_, S>,
-    cull: C,
-    depth: D,
+fn by_perspective<'s, S, K, U, Cu, Sh>(
+    sink: &mut K,
+    job: &Job<'s, S>,
+    cull: Cu,
     shading: Sh,
 ) -> RenderStats
 where
     S: Real,
-    T: Surface<Color = Rgb888>,
-    M: MeshSource<S>,
-    C: Cull,
-    D: DepthTest,
-    Sh: Shading<S, Color = Rgb888>,
+    K: MeshSink<'s, S>,
+    U: DepthUse,
+    Cu: Stage,
+    Sh: Shade<S> + 's,
 {
     if job.mesh.perspective_correct {
-        draw_with::<S, T, M, C, D, Sh, Perspective>(target, mesh, job, cull, depth, shading)
+        U::draw::<S, K, Cu, Sh, Perspective>(sink, job, cull, shading)
     } else {
-        draw_with::<S, T, M, C, D, Sh, Standard>(target, mesh, job, cull, depth, shading)
+        U::draw::<S, K, Cu, Sh, Standard>(sink, job, cull, shading)
     }
 }
 
-/// The draw call of one monomorphised pipeline.
-fn draw_with<S, T, M, C, D, Sh, N>(
-    target: &mut T,
-    mesh: &M,
+/// The pipeline of a mesh's draw call.
+pub(super) fn pipeline<S, Cu, D, Sh, N>(
     job: &Job<'_, S>,
-    cull: C,
+    cull: Cu,
     depth: D,
     shading: Sh,
-) -> RenderStats
+) -> Pipeline<S, Cu, D, Sh, { rasterizer_core::pipeline::DEFAULT_BITS }, N>
 where
     S: Real,
-    T: Surface<Color = Rgb888>,
-    M: MeshSource<S>,
-    C: Cull,
-    D: DepthTest,
-    Sh: Shading<S, Color = Rgb888>,
+    Cu: Cull,
+    D: rasterizer_core::depth::DepthTest,
+    Sh: Shading<S>,
     N: Numerics,
 {
     let mut p =
@@ -789,24 +858,133 @@ where
     if let Some(n) = job.normal_matrix {
         p.set_normal_matrix(n);
     }
+    p
+}
+
+/// The wireframe pipeline of a mesh: its colour, no depth test.
+pub(super) fn wire_pipeline<S: Real, Cu: Cull>(
+    job: &Job<'_, S>,
+    cull: Cu,
+) -> Pipeline<S, Cu, NoDepth, Unlit<Rgb888>> {
+    let color = job.mesh.color;
+    Pipeline::new(
+        &job.transforms,
+        job.viewport,
+        cull,
+        NoDepth,
+        Unlit { color },
+    )
+}
+
+/// Draws each mesh as it comes into one whole `Rgb888` frame, sharing one depth buffer of the
+/// frame's size.
+struct Whole<'t, 'f, 'm, S> {
+    target: &'t mut Target<'f>,
+    mesh: &'m DynMesh<'m, S>,
+    zbuf: &'t mut [u16],
+}
+
+/// The draw call of one monomorphised pipeline.
+fn draw_with<S, T, M, Cu, D, Sh, N>(
+    target: &mut T,
+    mesh: &M,
+    job: &Job<'_, S>,
+    cull: Cu,
+    depth: D,
+    shading: Sh,
+) -> RenderStats
+where
+    S: Real,
+    T: Surface<Color = Rgb888>,
+    M: MeshSource<S>,
+    Cu: Cull,
+    D: rasterizer_core::depth::DepthTest,
+    Sh: Shading<S, Color = Rgb888>,
+    N: Numerics,
+{
+    let mut p = pipeline::<S, Cu, D, Sh, N>(job, cull, depth, shading);
     // The depth buffer is made for the target, so it always covers the viewport within it.
     let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
     p.draw(target, mesh, &mut scratch).unwrap_or_default()
 }
 
+impl<'s, S: Real> MeshSink<'s, S> for Whole<'_, '_, '_, S> {
+    fn opaque_with_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats {
+        let (w, h) = (job.viewport.width, job.viewport.height);
+        // The buffer has exactly w * h entries, so this cannot fail.
+        let Ok(depth) = DepthBuffer::new(self.zbuf, w, h, Compare::Less) else {
+            return RenderStats::default();
+        };
+        draw_with::<S, _, _, Cu, _, Sh, N>(self.target, self.mesh, job, cull, depth, shading)
+    }
+
+    fn opaque_without_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats {
+        draw_with::<S, _, _, Cu, _, Sh, N>(self.target, self.mesh, job, cull, NoDepth, shading)
+    }
+
+    fn translucent_with_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats {
+        let mesh = self.mesh;
+        let (w, h) = (job.viewport.width, job.viewport.height);
+        let Ok(depth) = DepthBuffer::new(self.zbuf, w, h, Compare::Less) else {
+            return RenderStats::default();
+        };
+        let target = &mut Translucent::new(&mut *self.target, job.mesh.opacity);
+        draw_with::<S, _, _, Cu, _, Sh, N>(target, mesh, job, cull, depth.read_only(), shading)
+    }
+
+    fn translucent_without_depth<Cu: Stage, Sh: Shade<S> + 's, N: Knobs>(
+        &mut self,
+        job: &Job<'s, S>,
+        cull: Cu,
+        shading: Sh,
+    ) -> RenderStats {
+        let target = &mut Translucent::new(&mut *self.target, job.mesh.opacity);
+        draw_with::<S, _, _, Cu, _, Sh, N>(target, self.mesh, job, cull, NoDepth, shading)
+    }
+
+    fn wireframe<Cu: Stage>(&mut self, job: &Job<'s, S>, cull: Cu) -> RenderStats {
+        let mut p = wire_pipeline(job, cull);
+        let color = job.mesh.color;
+        let mut scratch = vec![VertexSlot::EMPTY; self.mesh.vertex_count()];
+        if job.mesh.opacity == u8::MAX {
+            let Ok(stats) = p.draw_wireframe(self.target, self.mesh, &mut scratch, color);
+            return stats;
+        }
+        let target = &mut Translucent::new(&mut *self.target, job.mesh.opacity);
+        // The framebuffer reads back, so this cannot fail.
+        p.draw_wireframe(target, self.mesh, &mut scratch, color)
+            .unwrap_or_default()
+    }
+}
+
 /// A colour of the scene file in the display's format.
-fn color<C: From<Rgb888>>(c: super::format::Color) -> C {
+pub(super) fn color<C: From<Rgb888>>(c: super::format::Color) -> C {
     C::from(Rgb888::new(c.0[0], c.0[1], c.0[2]))
 }
 
 /// The pixel containing a point.
-fn pixel(p: [f64; 2]) -> Point {
+pub(super) fn pixel(p: [f64; 2]) -> Point {
     // `as` saturates, so far-away points stay far away.
     Point::new(p[0].floor() as i32, p[1].floor() as i32)
 }
 
 /// A vertex in 28.4 sub-pixel fixed point, rounded to 1/16 pixel.
-fn sub(p: [f64; 2]) -> SubPoint {
+pub(super) fn sub(p: [f64; 2]) -> SubPoint {
     let one = f64::from(SubPoint::<4>::ONE);
     SubPoint::new((p[0] * one).round() as i32, (p[1] * one).round() as i32)
 }
@@ -874,22 +1052,42 @@ where
 {
     let mut any = ReadBack(display);
     for shape in &scene.shapes {
-        let (clip, opacity) = match shape {
-            Shape::Point { clip, opacity, .. }
-            | Shape::Line { clip, opacity, .. }
-            | Shape::Triangle { clip, opacity, .. }
-            | Shape::Outline { clip, opacity, .. }
-            | Shape::Polygon { clip, opacity, .. } => (*clip, *opacity),
-        };
-        let area = match clip {
-            Some([x, y, w, h]) => Rectangle::new(Point::new(x, y), Size::new(w as u32, h as u32)),
-            None => any.clip_area(),
-        };
-        let mut target = ClipTo::new(&mut any, area);
-        match opacity {
-            Some(a) => draw_shape(&mut Translucent::new(&mut target, a), shape),
-            None => draw_shape(&mut target, shape),
-        }
+        draw_scene_shape(&mut any, shape);
+    }
+}
+
+/// A shape's clip rectangle and opacity.
+pub(super) fn clip_and_opacity(shape: &Shape) -> (Option<Rectangle>, Option<u8>) {
+    let (clip, opacity) = match shape {
+        Shape::Point { clip, opacity, .. }
+        | Shape::Line { clip, opacity, .. }
+        | Shape::Triangle { clip, opacity, .. }
+        | Shape::Outline { clip, opacity, .. }
+        | Shape::Polygon { clip, opacity, .. } => (*clip, *opacity),
+    };
+    // The loader checked that width and height are not negative.
+    let clip = clip.map(|[x, y, w, h]| {
+        Rectangle::new(
+            Point::new(x, y),
+            Size::new(w.max(0) as u32, h.max(0) as u32),
+        )
+    });
+    (clip, opacity)
+}
+
+/// One shape, within its clip rectangle and blended with its opacity, into `target` (the
+/// display, or a band of the frame list).
+pub(super) fn draw_scene_shape<T>(target: &mut T, shape: &Shape)
+where
+    T: Surface,
+    T::Color: From<Rgb888> + Channels,
+{
+    let (clip, opacity) = clip_and_opacity(shape);
+    let area = clip.unwrap_or_else(|| target.clip_area());
+    let mut target = ClipTo::new(target, area);
+    match opacity {
+        Some(a) => draw_shape(&mut Translucent::new(&mut target, a), shape),
+        None => draw_shape(&mut target, shape),
     }
 }
 
@@ -960,7 +1158,8 @@ where
 mod tests {
     use super::*;
 
-    /// [`AsColor`] relies on every output colour surviving the trip through `Rgb888`.
+    /// [`InRgb888`] and the banded path's mesh layer rely on every output colour surviving the
+    /// trip through `Rgb888`.
     #[test]
     fn output_colours_round_trip_through_rgb888() {
         for raw in 0..=u16::MAX {

@@ -12,7 +12,7 @@ use rasterizer_core::prelude::*;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A scalar the scene can be rendered in: [`Scalar`] plus a conversion from the scene's `f64`s.
-pub trait Real: Scalar {
+pub trait Real: Scalar + 'static {
     /// Short name for reports.
     const NAME: &'static str;
     /// The nearest value (saturating where the format is bounded).
