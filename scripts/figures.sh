@@ -9,7 +9,7 @@
 # Usage (from anywhere; paths are relative to the repo root):
 #   scripts/figures.sh                  # every figure
 #   scripts/figures.sh --quick          # only the lines WORKLOADS.md's table requires
-#   scripts/figures.sh T2 M1            # only these scenes (L1 T1 T2 G1 LIMIT and the mesh scenes)
+#   scripts/figures.sh T2 M1            # only these scenes (L1 T1 T2 G1 LIMIT, the mesh scenes, S1)
 #   scripts/figures.sh -o FILE          # also write the lines to FILE (or FIGURES_OUT=FILE), which is
 #                                       # replaced only once every count has succeeded
 #   ANNOTATE=1 scripts/figures.sh ...   # also callgrind_annotate reports next to the outputs
@@ -98,6 +98,7 @@ cd "$ROOT"
 # Every scene this script knows, in output order.
 ALL_SCENES=("${SCENES_2D[@]}" LIMIT)
 for line in "${MESH_SCENES[@]}"; do ALL_SCENES+=("${line%% *}"); done
+ALL_SCENES+=(S1)
 declare -A WANT
 if [ "${#SELECTED[@]}" -eq 0 ]; then
     for s in "${ALL_SCENES[@]}"; do WANT[$s]=1; done
@@ -442,6 +443,60 @@ if wanted M1; then
         emit_count M1 "$r" text_bytes "$(section_bytes "$config" text)"
         emit_count M1 "$r" rodata_bytes "$(section_bytes "$config" rodata)"
     done
+fi
+
+# --- S1: a firmware screen through the frame list (count_s1, stack test, nostd-check) ---
+
+if wanted S1; then
+    build_example count_s1
+    declare -A S1=()
+    for mode in s1 s1_band16 s1_band16x2 s1_region; do
+        echo "counting S1 $mode..." >&2
+        S1[$mode]="$(callgrind_count "$OUT/S1-$mode" "*frame_$mode" "$BIN" "$mode")"
+    done
+    # The banded frames are the whole frame's picture (the tests check the region's).
+    s1_sum() { sed -n 's/.* checksum=\([0-9a-f]*\).*/\1/p' "$OUT/S1-$1.stdout" | tail -n 1; }
+    for mode in s1_band16 s1_band16x2; do
+        if [ -z "$(s1_sum s1)" ] || [ "$(s1_sum "$mode")" != "$(s1_sum s1)" ]; then
+            echo "figures.sh: S1 $mode draws another picture than the whole frame" >&2
+            exit 1
+        fi
+    done
+    emit_count S1 ours instructions "${S1[s1]}"
+    emit_count S1 ours-band16 instructions "${S1[s1_band16]}"
+    emit_count S1 ours-band16x2 instructions "${S1[s1_band16x2]}"
+    emit_count S1 ours-region instructions "${S1[s1_region]}"
+    emit_count S1 ours-region pixels "$(field "$OUT/S1-s1_region.stdout" pixels)"
+    emit_count S1 ours-band16/ours ratio "$(div "${S1[s1_band16]}" "${S1[s1]}" 4)"
+    emit_count S1 ours-band16x2/ours ratio "$(div "${S1[s1_band16x2]}" "${S1[s1]}" 4)"
+    emit_count S1 ours-region/ours ratio "$(div "${S1[s1_region]}" "${S1[s1]}" 4)"
+    # RAM besides the meshes, font and output: band buffers, band depth, bins, vertex scratch and
+    # the peak stack of building and rendering the list (its slots and mesh commands included).
+    log="$OUT/stack-s1-release.log"
+    stack_test release "$log" stack_s1
+    declare -A MEM_S1=()
+    read_memory "$log" MEM_S1 release
+    for config in s1_band16 s1_band16x2; do
+        r="ours-${config#s1_}"
+        for key in stack band band_depth bins scratch; do
+            if [ -z "${MEM_S1[release.$config.$key]:-}" ]; then
+                echo "figures.sh: the stack test printed no $key for $config (see $log)" >&2
+                exit 1
+            fi
+        done
+        ram=0
+        for part in band band_depth bins scratch stack; do ram=$((ram + MEM_S1[release.$config.$part])); done
+        emit_count S1 "$r" ram_bytes "$ram"
+        emit S1 "$r" band_bytes "${MEM_S1[release.$config.band]}"
+        emit S1 "$r" band_depth_bytes "${MEM_S1[release.$config.band_depth]}"
+        emit S1 "$r" bins_bytes "${MEM_S1[release.$config.bins]}"
+        emit S1 "$r" scratch_bytes "${MEM_S1[release.$config.scratch]}"
+        emit_count S1 "$r" stack_bytes "${MEM_S1[release.$config.stack]}"
+    done
+    nostd_build s1_band16
+    emit_count S1 ours-band16 text_bytes "$(section_bytes s1_band16 text)"
+    emit_count S1 ours-band16 rodata_bytes "$(section_bytes s1_band16 rodata)"
+    unset S1 MEM_S1
 fi
 
 if [ -n "$FILE" ]; then

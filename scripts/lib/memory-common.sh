@@ -16,6 +16,9 @@ features_of() {
     gouraud_triangle) echo gouraud2d ;;
     polygon) echo polygon2d ;;
     empty | all) echo "" ;;
+    # Workload S1 through the frame list in 16-row bands, one band buffer or two.
+    s1_band16) echo framelist ;;
+    s1_band16x2) echo framelist,double ;;
     *)
         local IFS=_ f
         # shellcheck disable=SC2086 # split the name at its underscores

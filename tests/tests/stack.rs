@@ -123,6 +123,10 @@ const BOUNDS: &[(&str, usize, usize)] = &[
     ("phong_depth_nocull_banded16", 44096, 4032),
     ("phong_nodepth_cull_banded16", 32704, 4096),
     ("phong_nodepth_nocull_banded16", 32704, 4096),
+    // Workload S1 through the frame list, measured 2026-11-26 (debug 33,456 and 33,744, release
+    // 8,872 and 8,904): the list's slots, both mesh commands and their pipelines are on the stack.
+    ("s1_band16", 50240, 13312),
+    ("s1_band16x2", 50624, 13376),
 ];
 
 /// Why a measurement is not a figure.
@@ -638,4 +642,169 @@ fn type_sizes() {
         mesh.vertices(),
         mesh.triangles(),
     );
+}
+
+// --- Workload S1 through the frame list ---
+
+type Gouraud = GouraudLit<Fx16, Rgb565, 1>;
+type Flat = FlatLit<Fx16, Rgb565, 1>;
+
+/// S1's caller-owned RAM besides the band buffers: vertex scratch and bins of both meshes.
+struct S1Ram {
+    suzanne_scratch: Vec<Slot<Gouraud>>,
+    cube_scratch: Vec<Slot<Flat>>,
+    suzanne_bins: Vec<BinEntry>,
+    cube_bins: Vec<BinEntry>,
+}
+
+/// Two band buffers whose transfer is a `black_box` (blocking), for `render_double`.
+struct Blocking([Vec<u16>; 2]);
+
+impl rasterizer_core::frame::DoubleBuffer<Rgb565> for Blocking {
+    type Error = core::convert::Infallible;
+    fn buffer(&mut self, k: usize) -> &mut [u16] {
+        &mut self.0[k & 1]
+    }
+    fn start(&mut self, k: usize, _: Rectangle, _: Rectangle) -> Result<(), Self::Error> {
+        black_box(self.0[k & 1].as_slice());
+        Ok(())
+    }
+    fn wait(&mut self, _: usize) -> Result<(), Self::Error> {
+        Ok(())
+    }
+}
+
+/// One S1 frame: the list built (its slots, the mesh commands and their pipelines are locals,
+/// on the stack) and rendered in 16-row bands, into `band` or through `double`. Returns the
+/// triangles the meshes draw.
+#[inline(never)]
+fn render_s1(
+    suzanne: &PackedMesh<'_>,
+    cube: &Mesh<'_, Fx16, u8>,
+    ram: &mut S1Ram,
+    band: &mut [u16],
+    depth: &mut [u16],
+    double: Option<&mut Blocking>,
+) -> Result<u32, rasterizer_core::frame::FrameError> {
+    use fixtures::s1;
+    use rasterizer_core::depth::SharedDepth;
+    use rasterizer_core::frame::{Clear, FrameList, Layout, Slot as ListSlot};
+    use rasterizer_core::pipeline::MeshCommand;
+    let mut monkey = MeshCommand::new(
+        Pipeline::new(
+            &s1::transforms(s1::suzanne_model(s1::SUZANNE_DEGREES)),
+            s1::viewport(),
+            CullClockwise,
+            SharedDepth,
+            Gouraud::new(s1::suzanne_lighting()),
+        ),
+        suzanne,
+        &mut ram.suzanne_scratch,
+        &mut ram.suzanne_bins,
+    );
+    let mut box_ = MeshCommand::new(
+        Pipeline::new(
+            &s1::transforms(s1::cube_model()),
+            s1::viewport(),
+            CullClockwise,
+            SharedDepth,
+            Flat::new(s1::cube_lighting()),
+        ),
+        cube,
+        &mut ram.cube_scratch,
+        &mut ram.cube_bins,
+    );
+    let labels = s1::labels();
+    let mut slots = [ListSlot::EMPTY; 19];
+    let mut list = FrameList::new(
+        &mut slots,
+        Layout::new(W, H, BAND_ROWS)?,
+        Clear::new(s1::background()),
+    );
+    list.command(&mut monkey)?;
+    list.command(&mut box_)?;
+    for s in s1::panel().into_iter().chain(s1::bars()) {
+        list.shape(s)?;
+    }
+    for t in &labels {
+        list.item(t, 0)?;
+    }
+    list.shape(s1::gouraud())?;
+    match double {
+        None => list.render(band, depth, |b, _| {
+            black_box(b.framebuffer().as_slice());
+        })?,
+        Some(d) => list.render_double(None, depth, d).map_err(|e| match e {
+            rasterizer_core::frame::RenderError::Frame(e) => e,
+            rasterizer_core::frame::RenderError::Sink(never) => match never {},
+        })?,
+    }
+    Ok(monkey.stats().drawn + box_.stats().drawn)
+}
+
+/// S1 in 16-row bands, single- or double-buffered.
+fn s1_config(name: &str, double: bool) -> Figures {
+    let mut fig = on_fresh_stack(move || {
+        let suzanne = PackedMesh::parse(SUZANNE).expect("packed Suzanne");
+        let cube = fixtures::s1::cube_mesh();
+        let (words, bytes) = rgb565_bytes(BAND_ROWS);
+        let mut ram = S1Ram {
+            suzanne_scratch: vec![Slot::<Gouraud>::EMPTY; suzanne.vertices()],
+            cube_scratch: vec![Slot::<Flat>::EMPTY; 8],
+            // A bin per triangle for the warm-up; then exactly as many as are drawn.
+            suzanne_bins: vec![BinEntry::ZERO; suzanne.triangles()],
+            cube_bins: vec![BinEntry::ZERO; 12],
+        };
+        let mut band = vec![0u16; words];
+        let mut depth = vec![0u16; (W * BAND_ROWS) as usize];
+        let mut pair = Blocking([vec![0u16; words], vec![0u16; words]]);
+        let drawn =
+            render_s1(&suzanne, &cube, &mut ram, &mut band, &mut depth, None).expect("S1 renders");
+        // Exactly as many bins as the frame has visible triangles: a list without them says.
+        ram.suzanne_bins.clear();
+        let visible = match render_s1(&suzanne, &cube, &mut ram, &mut band, &mut depth, None) {
+            Err(rasterizer_core::frame::FrameError::TooFewBins { needed, .. }) => needed,
+            other => panic!("expected TooFewBins, got {other:?}"),
+        };
+        ram.suzanne_bins = vec![BinEntry::ZERO; visible];
+        let cell = core::cell::RefCell::new((&mut ram, &mut band, &mut depth, &mut pair));
+        let mut got = 0;
+        let stack = peak(
+            &mut || {
+                let mut g = cell.borrow_mut();
+                let (ram, band, depth, pair) = &mut *g;
+                let d = if double { Some(&mut **pair) } else { None };
+                got = black_box(render_s1(&suzanne, &cube, ram, band, depth, d).unwrap());
+            },
+            &mut || {},
+        );
+        assert_eq!(got, drawn);
+        if double {
+            band = Vec::new();
+        }
+        let _ = &band;
+        let bins = (ram.suzanne_bins.len() + ram.cube_bins.len()) * size_of::<BinEntry>();
+        Figures {
+            stack,
+            band: if double { 2 * bytes } else { bytes },
+            band_depth: (W * BAND_ROWS) as usize * size_of::<u16>(),
+            bins,
+            visible: drawn as usize,
+            scratch: ram.suzanne_scratch.len() * size_of::<Slot<Gouraud>>()
+                + ram.cube_scratch.len() * size_of::<Slot<Flat>>(),
+            slot: size_of::<Slot<Gouraud>>(),
+            drawn,
+            ..Figures::default()
+        }
+    });
+    fig.name = name.to_string();
+    fig
+}
+
+#[test]
+fn stack_s1() {
+    report(&[
+        s1_config("s1_band16", false),
+        s1_config("s1_band16x2", true),
+    ]);
 }

@@ -174,7 +174,8 @@ where
         }
         self.last_band = Some(band);
         let unit = (band / self.group).min(15) as u8;
-        let (mut lent, marker) = p.swap_depth(Lent::<D>::new(depth));
+        // The depth stage is a zero-sized marker: only the pipeline moves, once each way.
+        let mut lent = p.swap_depth(Lent::<D>::new(depth)).0;
         let target = &mut ClipTo::new(target, lent.viewport.rectangle());
         let scratch = &mut self.scratch[..self.slots];
         let bins = &self.bins[..self.count];
@@ -202,7 +203,7 @@ where
             );
             debug_assert!(blended.is_ok());
         }
-        self.pipeline = Some(lent.swap_depth(marker).0);
+        self.pipeline = Some(lent.swap_depth(D::default()).0);
     }
 
     fn fingerprint(&self, hash: &mut crate::frame::Fingerprint) {
