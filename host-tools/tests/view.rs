@@ -29,12 +29,18 @@ fn have_xvfb() -> bool {
 
 /// Runs `view` for `frames` frames under Xvfb and returns the screenshot's RGB pixels.
 fn view(scene: &Path, frames: u32, dir: &Path) -> (u32, u32, Vec<u8>) {
+    view_with(scene, frames, dir, &[])
+}
+
+/// [`view`] with more arguments.
+fn view_with(scene: &Path, frames: u32, dir: &Path, args: &[&str]) -> (u32, u32, Vec<u8>) {
     let shot = dir.join("shot.png");
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x1024x24", BIN, "view"])
         .arg(scene)
         .args(["--frames", &frames.to_string(), "--screenshot"])
         .arg(&shot)
+        .args(args)
         .output()
         .unwrap();
     assert!(
@@ -72,6 +78,21 @@ fn the_window_shows_what_render_writes() {
         shown == rendered.into_raw(),
         "the window differs from render's picture"
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `view --bands` draws through the frame list and shows the same picture.
+#[test]
+fn the_banded_window_shows_the_same_picture() {
+    if !have_xvfb() {
+        return;
+    }
+    let dir = scratch_in("view", "bands");
+    let scene = scene("translucent_mesh.toml");
+    let (w, h, whole) = view(&scene, 2, &dir);
+    let (bw, bh, banded) = view_with(&scene, 2, &dir, &["--bands", "7"]);
+    assert_eq!((w, h), (bw, bh));
+    assert!(whole == banded, "the banded window differs");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -2,9 +2,10 @@
 //!
 //! The pipeline's stages are chosen here once, for both ways of drawing a frame: each mesh's
 //! choice (culling, depth, shading, perspective, fog, dithering, translucency, wireframe) is
-//! handed to a [`MeshSink`], which draws it into a whole frame at once ([`Whole`]); a frame
-//! list's sink is to make a command of it instead.
+//! handed to a [`MeshSink`], which either draws it into a whole frame at once ([`Whole`]) or
+//! makes a command of a frame list of it (the banded path, `super::banded`).
 
+use super::banded::{self, SceneColor};
 use super::format::{
     CullMode, DitherMode, FillRuleDef, LightDef, PixelFormat, ShadingModel, Shape,
 };
@@ -54,8 +55,9 @@ pub struct Pose {
 pub struct FrameStats {
     /// Triangles handed to the rasterizer.
     pub triangles: u64,
-    /// Pixels the meshes wrote (a pixel written twice counts twice).
-    pub pixels: u64,
+    /// Pixels the meshes wrote (a pixel written twice counts twice); `None` for a frame drawn
+    /// in bands, whose meshes draw straight into the frame list's bands, where nothing counts.
+    pub pixels: Option<u64>,
 }
 
 /// [`render_image`] with the meshes in any pose, and what drawing them did.
@@ -67,13 +69,39 @@ pub fn render_posed(
     pose: Pose,
     scale: u32,
 ) -> Result<(OutputImage<Rgb888>, FrameStats), String> {
+    render_frame(scene, pose, scale, None)
+}
+
+/// [`render_posed`], drawn whole (`bands` `None`) or through a frame list in bands of `bands`
+/// rows (`--bands`), which gives the same image.
+///
+/// # Errors
+/// As [`render_image`]; also bands of 0 rows, and a scene the frame list cannot hold.
+pub fn render_frame(
+    scene: &Scene,
+    pose: Pose,
+    scale: u32,
+    bands: Option<u32>,
+) -> Result<(OutputImage<Rgb888>, FrameStats), String> {
     let settings = OutputSettingsBuilder::new().scale(scale).build();
     Ok(match scene.format {
-        PixelFormat::Rgb565 => output(render_display::<Rgb565>(scene, pose)?, &settings),
-        PixelFormat::Rgb888 => output(render_display::<Rgb888>(scene, pose)?, &settings),
-        PixelFormat::Gray8 => output(render_display::<Gray8>(scene, pose)?, &settings),
-        PixelFormat::Binary => output(render_display::<BinaryColor>(scene, pose)?, &settings),
+        PixelFormat::Rgb565 => output(display::<Rgb565>(scene, pose, bands)?, &settings),
+        PixelFormat::Rgb888 => output(display::<Rgb888>(scene, pose, bands)?, &settings),
+        PixelFormat::Gray8 => output(display::<Gray8>(scene, pose, bands)?, &settings),
+        PixelFormat::Binary => output(display::<BinaryColor>(scene, pose, bands)?, &settings),
     })
+}
+
+/// The scene on a display of colour `C`, drawn whole or in bands.
+fn display<C: SceneColor>(
+    scene: &Scene,
+    pose: Pose,
+    bands: Option<u32>,
+) -> Result<(SimulatorDisplay<C>, FrameStats), String> {
+    match bands {
+        None => render_display(scene, pose),
+        Some(rows) => banded::render_display(scene, pose, rows),
+    }
 }
 
 /// A display's output image at `settings`, with its stats.
@@ -142,7 +170,7 @@ fn render_3d_pixels<S: Real>(
     let triangles = draw_meshes::<S>(scene, &mut target, pose)?;
     let stats = FrameStats {
         triangles,
-        pixels: target.pixels,
+        pixels: Some(target.pixels),
     };
     let fb = &target.inner;
     let rgb = (0..h as i32)

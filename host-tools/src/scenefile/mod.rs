@@ -2,6 +2,7 @@
 //!
 #![doc = include_str!("../../../docs/SCENES.md")]
 
+mod banded;
 mod counting;
 mod draw;
 mod format;
@@ -10,7 +11,7 @@ mod load;
 mod reference;
 
 pub use counting::Counting;
-pub use draw::{render_3d, render_image, render_posed, FrameStats, Pose};
+pub use draw::{render_3d, render_frame, render_image, render_posed, FrameStats, Pose};
 pub use format::{
     Camera, Color, CullMode, FillRuleDef, LightDef, MaterialDef, MeshDef, NormalsMode, Output,
     PixelFormat, RenderOptions, ScaleDef, SceneFile, ShadingModel, Shape, SpecularModel,
@@ -47,6 +48,22 @@ pub struct RenderArgs {
     /// PNG pixels per display pixel, 1 ..= 16 (default: the scene's `output.scale`).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub scale: Option<u32>,
+    /// Draw through a frame list (`rasterizer_core::frame`) in bands of ROWS rows (1 or more),
+    /// as firmware with a buffer of a few rows does; the picture is the same as without.
+    #[arg(long, value_name = "ROWS", value_parser = parse_bands)]
+    pub bands: Option<u32>,
+}
+
+/// Parses `--bands`: rows per band, at least 1.
+///
+/// # Errors
+/// A message for clap's `invalid value` line.
+pub fn parse_bands(s: &str) -> std::result::Result<u32, String> {
+    match s.parse::<u32>() {
+        Ok(0) => Err("a band needs at least 1 row".into()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(format!("not a number of rows: {e}")),
+    }
 }
 
 /// Options of the `animate` command.
@@ -72,6 +89,10 @@ pub struct AnimateArgs {
     /// Time per GIF frame in milliseconds (default: one turn in 3 s, at least 20 ms per frame).
     #[arg(long, value_name = "MS")]
     pub delay_ms: Option<u32>,
+    /// Draw through a frame list (`rasterizer_core::frame`) in bands of ROWS rows (1 or more),
+    /// as firmware with a buffer of a few rows does; the picture is the same as without.
+    #[arg(long, value_name = "ROWS", value_parser = parse_bands)]
+    pub bands: Option<u32>,
 }
 
 /// The format the difference image compares fixed point against.
@@ -188,7 +209,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         u64::from(scene.width) * u64::from(scale),
         u64::from(scene.height) * u64::from(scale),
     )?;
-    let image = render_image(&scene, Angle(0), scale)?;
+    let image = turned(&scene, Angle(0), scale, args.bands)?;
     let buf = image.as_image_buffer();
     write_png(
         &args.output,
@@ -199,6 +220,20 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     )?;
     sayln!(to_stdout, "wrote {}", args.output.display())?;
     Ok(())
+}
+
+/// [`render_image`], drawn whole or (`bands`) through a frame list in bands of that many rows.
+fn turned(
+    scene: &Scene,
+    turn: Angle,
+    scale: u32,
+    bands: Option<u32>,
+) -> std::result::Result<embedded_graphics_simulator::OutputImage<Rgb888>, String> {
+    let pose = Pose {
+        yaw: turn,
+        pitch: Angle(0),
+    };
+    Ok(render_frame(scene, pose, scale, bands)?.0)
 }
 
 /// Why a frame of `animate` failed: the scene, or the output.
@@ -263,7 +298,7 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
         let mut pending = Vec::with_capacity(n as usize);
         for k in 0..n {
             let path = dir.join(format!("{stem}_{k:03}.png"));
-            let image = render_image(&scene, turn(k), scale)?;
+            let image = turned(&scene, turn(k), scale, args.bands)?;
             let buf = image.as_image_buffer();
             let mut out = OutputFile::create(&path, &inputs)?;
             if let Err(e) = encode_png(&mut out, buf.width(), buf.height(), &buf) {
@@ -301,7 +336,8 @@ pub fn animate(args: &AnimateArgs) -> Result<()> {
             .map_err(FrameError::Encode)?;
         for k in 0..n {
             let rgba = {
-                let image = render_image(&scene, turn(k), scale).map_err(FrameError::Scene)?;
+                let image =
+                    turned(&scene, turn(k), scale, args.bands).map_err(FrameError::Scene)?;
                 let buf = image.as_image_buffer();
                 RgbaImage::from_fn(buf.width(), buf.height(), |x, y| {
                     let [r, g, b] = buf.get_pixel(x, y).0;
