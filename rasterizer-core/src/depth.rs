@@ -437,7 +437,7 @@ impl DepthTest for SharedDepthReadOnly {
 
 /// How a mesh of a frame list uses the list's depth buffer: [`NoDepth`], [`SharedDepth`] or
 /// [`SharedDepthReadOnly`] (sealed: no other type is one).
-pub trait ListDepth: DepthTest + Copy + Default + sealed::Sealed {}
+pub trait ListDepth: DepthTest + Copy + sealed::Sealed {}
 
 impl ListDepth for NoDepth {}
 impl ListDepth for SharedDepth {}

@@ -331,17 +331,25 @@ impl<C: Storage> core::fmt::Debug for Slot<'_, C> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match &self.0 {
             None => write!(f, "Slot(empty)"),
-            Some(e) => write!(f, "Slot({:?}, bands {}..={})", e.bounds, e.first, e.last),
+            Some(e) => write!(f, "Slot({:?}, bands {}..={})", e.bounds(), e.first, e.last),
         }
     }
 }
 
 struct Entry<'c, C: Storage> {
     op: Op<'c, C>,
-    bounds: PixelRect,
+    /// Within the screen (sides below 32,768): x0, y0, x1, y1 as `i16`, to keep the slot small.
+    bounds: [i16; 4],
     /// The first and last band the bounds touch.
-    first: u32,
-    last: u32,
+    first: u16,
+    last: u16,
+}
+
+impl<C: Storage> Entry<'_, C> {
+    fn bounds(&self) -> PixelRect {
+        let [x0, y0, x1, y1] = self.bounds.map(i64::from);
+        PixelRect { x0, y0, x1, y1 }
+    }
 }
 
 /// An ordered list of drawing commands for one frame, rendered whole, band by band or in part
@@ -408,7 +416,13 @@ impl<'c, C: Storage> FrameList<'c, C> {
             (1, 0)
         } else {
             // Within the screen: 0 <= y0 < y1 <= height.
-            ((bounds.y0 / rows) as u32, ((bounds.y1 - 1) / rows) as u32)
+            ((bounds.y0 / rows) as u16, ((bounds.y1 - 1) / rows) as u16)
+        };
+        // Within the screen, whose sides are at most 32,767: every coordinate fits i16.
+        let bounds = if bounds.is_empty() {
+            [0; 4]
+        } else {
+            [bounds.x0, bounds.y0, bounds.x1, bounds.y1].map(|v| v as i16)
         };
         slot.0 = Some(Entry {
             op,
@@ -474,7 +488,7 @@ impl<'c, C: Storage> FrameList<'c, C> {
                 Op::Command(c) => c.fingerprint(&mut hash),
             }
             *out = Summary {
-                bounds: entry.bounds.to_rectangle(),
+                bounds: entry.bounds().to_rectangle(),
                 fingerprint: hash.value(),
             };
         }
@@ -571,7 +585,8 @@ impl<'c, C: Storage> FrameList<'c, C> {
                 let Some(e) = slot.0.as_mut() else {
                     continue;
                 };
-                if b < e.first || b > e.last || e.bounds.intersection(&clip).is_empty() {
+                let b16 = b as u16;
+                if b16 < e.first || b16 > e.last || e.bounds().intersection(&clip).is_empty() {
                     continue;
                 }
                 match &mut e.op {

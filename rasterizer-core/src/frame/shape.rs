@@ -119,9 +119,10 @@ impl<C: Storage> Shape<C> {
             Self::Line { a, b, .. }
             | Self::LineGradient { a, b, .. }
             | Self::LineAlpha { a, b, .. } => segment(a, b, 0),
-            // A wide line's pixels lie within half its width (and the anti-aliased fringe of
-            // one pixel) of the segment.
-            Self::LineAa { a, b, width, .. } => segment(a, b, i64::from(width) / 2 + 2),
+            // A wide line cuts each column over w sqrt(A^2 + B^2) / A pixels
+            // (`draw_line_aa_wide`), up to w sqrt 2 on a diagonal: its pixels lie within
+            // w / sqrt 2 < 3w / 4 (and the anti-aliased fringe of a pixel) of the segment.
+            Self::LineAa { a, b, width, .. } => segment(a, b, i64::from(width) * 3 / 4 + 2),
             Self::TriangleOutline {
                 vertices: [p, q, r],
                 ..
@@ -214,5 +215,62 @@ impl<C: Storage, const N: usize, const BITS: u32> Item<C> for PolygonFill<'_, C,
 
     fn draw_into(&self, target: &mut ClipTo<'_, Band<'_, C>>) {
         let Ok(()) = self.polygon.fill(target, self.rule, self.color);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::Framebuffer;
+    use embedded_graphics_core::draw_target::DrawTarget;
+    use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
+
+    /// A wide anti-aliased line cuts each column over `w sqrt(A^2 + B^2) / A` pixels, up to
+    /// `w sqrt 2` on a diagonal: its bounds held only `w / 2` on each side, so a frame list
+    /// skipped the bands of a diagonal line's outer rows (a 60-pixel line at 45 degrees lost
+    /// them in every band height).
+    #[test]
+    fn wide_diagonal_aa_line_within_bounds() {
+        let mut buf = [0u8; 160 * 160];
+        let ends = [
+            (20, 20),
+            (20, -20),
+            (-20, 20),
+            (30, 10),
+            (10, 30),
+            (-30, -29),
+            (29, -30),
+            (1, 1),
+            (1, 0),
+            (0, 0),
+            (25, 0),
+            (0, -25),
+        ];
+        for width in 1..=60 {
+            for (dx, dy) in ends {
+                let mut fb = Framebuffer::<Gray8>::new(&mut buf, 160, 160).unwrap();
+                fb.clear(Gray8::BLACK).unwrap();
+                let (a, b) = (Point::new(80, 80), Point::new(80 + dx, 80 + dy));
+                let line = Shape::LineAa {
+                    a,
+                    b,
+                    width,
+                    color: Gray8::WHITE,
+                };
+                line.draw(&mut fb).unwrap();
+                let bounds = line.bounds();
+                for y in 0..160 {
+                    for x in 0..160 {
+                        let p = Point::new(x, y);
+                        if fb.pixel(p) != Some(Gray8::BLACK) {
+                            assert!(
+                                bounds.contains(p),
+                                "width {width} to ({dx}, {dy}): {p:?} outside {bounds:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 }

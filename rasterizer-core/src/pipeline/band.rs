@@ -1,7 +1,7 @@
 //! Band rendering: a frame drawn one horizontal strip at a time, for firmware without room for a
 //! whole frame.
 
-use super::{Front, MeshSource, Pipeline, RenderStats, VertexSlot};
+use super::{DepthFrom, Front, MeshSource, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::clip_triangle;
 use crate::clip::polygon::ClipVertex;
 use crate::cull::Cull;
@@ -258,8 +258,9 @@ where
     /// that ended above the unit: start it at `(0, 0)` and pass it again for later bands, in
     /// order.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn draw_unit<T, M>(
+    pub(super) fn draw_unit<T, M, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         mesh: &M,
         scratch: &mut [VertexSlot<Sh::Stored>],
@@ -286,7 +287,7 @@ where
             t += usize::from(e.step);
             if e.first() <= unit && unit <= e.last() {
                 let front = self.front_again(mesh, t, scratch);
-                self.draw_front(target, mesh, front, scratch, stats)?;
+                self.draw_front(src, target, mesh, front, scratch, stats)?;
             }
         }
         Ok(())
@@ -369,6 +370,7 @@ where
             {
                 let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
                 let Ok(()) = self.draw_unit(
+                    &mut super::Own,
                     &mut target,
                     mesh,
                     scratch,

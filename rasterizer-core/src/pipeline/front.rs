@@ -4,7 +4,7 @@
 
 use super::perspective::{self, PerspectiveColor};
 use super::vertex::{Projected, OUTSIDE};
-use super::{Pipeline, RenderStats, VertexSlot};
+use super::{DepthFrom, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::{clip_triangle, outcode, trivially_outside, ClipVertex, Outcode};
 use crate::cull::Cull;
 use crate::depth::DepthTest;
@@ -241,8 +241,9 @@ where
 
     /// Draws a triangle the front end let through, counting it as drawn.
     #[inline(always)]
-    pub(super) fn draw_front<T, M>(
+    pub(super) fn draw_front<T, M, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         mesh: &M,
         front: Front<S, BITS>,
@@ -257,10 +258,10 @@ where
             Front::Skip => Ok(()),
             Front::Inside { idx, v } => {
                 let v = v.map(|(p, z)| (p.x, p.y, z));
-                self.draw_visible(target, mesh, idx, v, scratch, stats)
+                self.draw_visible(src, target, mesh, idx, v, scratch, stats)
             }
             Front::Clip { idx, clip, codes } => {
-                self.draw_clipped(target, mesh, idx, clip, codes, scratch, stats)
+                self.draw_clipped(src, target, mesh, idx, clip, codes, scratch, stats)
             }
         }
     }
@@ -268,9 +269,11 @@ where
     /// Draws a triangle that passed the front end's tests, counting it as drawn: its shader
     /// values (from the slots, shading a vertex the first time a visible triangle uses it) and
     /// the raster stage.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub(super) fn draw_visible<T, M>(
+    pub(super) fn draw_visible<T, M, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         mesh: &M,
         idx: [usize; 3],
@@ -298,7 +301,7 @@ where
                     (p[2], v[2].2, self.slot_values(mesh, idx[2], scratch)),
                 ]
             };
-            return self.raster_fused(target, &fv);
+            return self.raster_fused(src, target, &fv);
         }
         let var = self.face_values(mesh, idx, scratch);
         let sv = [0, 1, 2].map(|k| ScreenVertex {
@@ -307,14 +310,15 @@ where
             var: var[k],
             q: Self::q(&self.mvp.transform_point(mesh.position(idx[k]))),
         });
-        self.raster(target, &sv)
+        self.raster(src, target, &sv)
     }
 
     /// Draws a triangle with a corner outside the guard band (the front end's rare path): clipped,
     /// or counted as outside.
     #[inline(never)]
-    pub(super) fn draw_outside<T, M>(
+    pub(super) fn draw_outside<T, M, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         mesh: &M,
         idx: [usize; 3],
@@ -327,7 +331,7 @@ where
     {
         match self.front_clip(mesh, idx, stats) {
             Front::Clip { idx, clip, codes } => {
-                self.draw_clipped(target, mesh, idx, clip, codes, scratch, stats)
+                self.draw_clipped(src, target, mesh, idx, clip, codes, scratch, stats)
             }
             _ => Ok(()),
         }
@@ -336,8 +340,9 @@ where
     /// Clips a triangle in homogeneous space and draws what is left, as a fan.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
-    pub(super) fn draw_clipped<T, M>(
+    pub(super) fn draw_clipped<T, M, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         mesh: &M,
         idx: [usize; 3],
@@ -394,7 +399,7 @@ where
         for k in 1..screen.len() - 1 {
             let fan = [screen[0], screen[k], screen[k + 1]];
             if polygon_area(fan.iter().map(position)).signum() == sign {
-                self.raster(target, &fan)?;
+                self.raster(src, target, &fan)?;
             }
         }
         stats.drawn += 1;
@@ -403,8 +408,9 @@ where
 
     /// Rasterizes one screen triangle through the fused span loop.
     #[inline(always)]
-    pub(super) fn raster_fused<T>(
+    pub(super) fn raster_fused<T, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         fv: &[FusedVertex<Sh::Varyings, BITS>; 3],
     ) -> Result<(), T::Error>
@@ -429,7 +435,7 @@ where
         };
         fill_fused::<_, _, _, _, BITS>(
             target,
-            &mut self.depth,
+            src.pick(&mut self.depth),
             fv,
             &self.area,
             Precision {
@@ -444,8 +450,9 @@ where
     /// fused span loop, or the exact interpolator ([`SpanStart::Exact`], [`SpanStart::Gradient`]
     /// or perspective-correct).
     #[inline(always)]
-    pub(super) fn raster<T>(
+    pub(super) fn raster<T, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         sv: &[ScreenVertex<Sh::Varyings, BITS>; 3],
     ) -> Result<(), T::Error>
@@ -454,9 +461,9 @@ where
     {
         if Self::FUSED {
             let fv = sv.map(|v| (v.p, v.z, v.var));
-            self.raster_fused(target, &fv)
+            self.raster_fused(src, target, &fv)
         } else if Self::FUSED_PERSPECTIVE {
-            self.raster_perspective(target, sv)
+            self.raster_perspective(src, target, sv)
         } else {
             let mut sv = *sv;
             if Sh::NEEDS_TRIANGLE {
@@ -467,9 +474,12 @@ where
                 }
             }
             let shading = &self.shading;
-            fill_triangle_interp_with::<_, _, _, _, N, BITS>(target, &mut self.depth, sv, |v| {
-                shading.pixel(v)
-            })
+            fill_triangle_interp_with::<_, _, _, _, N, BITS>(
+                target,
+                src.pick(&mut self.depth),
+                sv,
+                |v| shading.pixel(v),
+            )
         }
     }
 
@@ -482,8 +492,9 @@ where
     /// Rasterizes one screen triangle through the fused span loop with perspective-correct
     /// values.
     #[inline(always)]
-    fn raster_perspective<T>(
+    fn raster_perspective<T, P: DepthFrom<D>>(
         &mut self,
+        src: &mut P,
         target: &mut T,
         sv: &[ScreenVertex<Sh::Varyings, BITS>; 3],
     ) -> Result<(), T::Error>
@@ -504,7 +515,7 @@ where
         let (fv, color) = PerspectiveColor::<S, Sh, N>::new(&self.shading, &sv);
         fill_fused::<_, _, _, _, BITS>(
             target,
-            &mut self.depth,
+            src.pick(&mut self.depth),
             &fv,
             &self.area,
             perspective::PRECISION,

@@ -1,6 +1,6 @@
 //! A mesh as a command of a frame list ([`crate::frame`]).
 
-use super::{BinEntry, Pipeline, RenderStats, VertexSlot, DEFAULT_BITS};
+use super::{BinEntry, Lend, Pipeline, RenderStats, VertexSlot, DEFAULT_BITS};
 use crate::cull::Cull;
 use crate::depth::{DepthBuffer, Lent, ListDepth};
 use crate::frame::{Command, FrameError, Layout, Prepared};
@@ -28,7 +28,7 @@ where
     S: Scalar,
     Sh: Shading<S>,
 {
-    pipeline: Option<Pipeline<S, C, D, Sh, BITS, N>>,
+    pipeline: Pipeline<S, C, D, Sh, BITS, N>,
     mesh: &'m M,
     scratch: &'m mut [VertexSlot<Sh::Stored>],
     /// Slots in use this frame (the mesh's vertices, at most the scratch's length).
@@ -65,7 +65,7 @@ where
         bins: &'m mut [BinEntry],
     ) -> Self {
         Self {
-            pipeline: Some(pipeline),
+            pipeline,
             mesh,
             scratch,
             slots: 0,
@@ -89,12 +89,12 @@ where
 
     /// Replaces the pipeline (new transforms or lights for the next frame).
     pub fn set_pipeline(&mut self, pipeline: Pipeline<S, C, D, Sh, BITS, N>) {
-        self.pipeline = Some(pipeline);
+        self.pipeline = pipeline;
     }
 
     /// The pipeline.
-    pub fn pipeline(&self) -> Option<&Pipeline<S, C, D, Sh, BITS, N>> {
-        self.pipeline.as_ref()
+    pub fn pipeline(&self) -> &Pipeline<S, C, D, Sh, BITS, N> {
+        &self.pipeline
     }
 
     /// Marks a change that the pipeline does not show (the mesh's data changed in place), for
@@ -123,9 +123,7 @@ where
     Sh: core::fmt::Debug,
 {
     fn prepare(&mut self, layout: &Layout) -> Result<Prepared, FrameError> {
-        let Some(p) = self.pipeline.as_mut() else {
-            return Ok(Prepared::NOTHING);
-        };
+        let p = &mut self.pipeline;
         self.stats = RenderStats {
             triangles: self.mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
@@ -166,22 +164,22 @@ where
         target: &mut ClipTo<'_, Band<'_, Sh::Color>>,
         depth: &mut DepthBuffer<'_>,
     ) {
-        let Some(p) = self.pipeline.take() else {
-            return;
-        };
+        let p = &mut self.pipeline;
         if self.last_band.is_none_or(|last| band <= last) {
             self.cursor = (0, 0);
         }
         self.last_band = Some(band);
         let unit = (band / self.group).min(15) as u8;
-        // The depth stage is a zero-sized marker: only the pipeline moves, once each way.
-        let mut lent = p.swap_depth(Lent::<D>::new(depth)).0;
-        let target = &mut ClipTo::new(target, lent.viewport.rectangle());
+        // The list's buffer is lent for this band; the pipeline stays where it is.
+        let mut lent = Lent::<D>::new(depth);
+        let src = &mut Lend(&mut lent);
+        let target = &mut ClipTo::new(target, p.viewport.rectangle());
         let scratch = &mut self.scratch[..self.slots];
         let bins = &self.bins[..self.count];
         let mut stats = RenderStats::default();
         if self.opacity == 255 {
-            let Ok(()) = lent.draw_unit(
+            let Ok(()) = p.draw_unit(
+                src,
                 target,
                 self.mesh,
                 scratch,
@@ -192,7 +190,8 @@ where
             );
         } else {
             // A band reads back, so blending cannot fail.
-            let blended = lent.draw_unit(
+            let blended = p.draw_unit(
+                src,
                 &mut Translucent::new(target, self.opacity),
                 self.mesh,
                 scratch,
@@ -203,14 +202,11 @@ where
             );
             debug_assert!(blended.is_ok());
         }
-        self.pipeline = Some(lent.swap_depth(D::default()).0);
     }
 
     fn fingerprint(&self, hash: &mut crate::frame::Fingerprint) {
         // Everything that decides the picture: transforms, stages, lights, material.
-        if let Some(p) = &self.pipeline {
-            p.fingerprint(hash);
-        }
+        self.pipeline.fingerprint(hash);
         hash.bytes(&[self.opacity]);
         hash.bytes(&self.revision.to_le_bytes());
     }

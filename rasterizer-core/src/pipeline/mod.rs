@@ -103,6 +103,38 @@ impl<E: core::fmt::Debug> core::fmt::Display for DrawError<E> {
 
 impl<E: core::fmt::Debug> core::error::Error for DrawError<E> {}
 
+/// Where a draw's depth stage comes from: the pipeline's own ([`Own`]), or one lent for the
+/// call ([`Lend`]: a frame list's shared buffer), so that the pipeline need not move to take
+/// another depth stage.
+pub(crate) trait DepthFrom<D> {
+    /// The depth stage drawn with.
+    type Depth: DepthTest;
+    /// It, given the pipeline's own.
+    fn pick<'a>(&'a mut self, own: &'a mut D) -> &'a mut Self::Depth;
+}
+
+/// The pipeline's own depth stage.
+pub(crate) struct Own;
+
+impl<D: DepthTest> DepthFrom<D> for Own {
+    type Depth = D;
+    #[inline(always)]
+    fn pick<'a>(&'a mut self, own: &'a mut D) -> &'a mut D {
+        own
+    }
+}
+
+/// A depth stage lent for one call.
+pub(crate) struct Lend<'x, X>(pub(crate) &'x mut X);
+
+impl<D, X: DepthTest> DepthFrom<D> for Lend<'_, X> {
+    type Depth = X;
+    #[inline(always)]
+    fn pick<'a>(&'a mut self, _own: &'a mut D) -> &'a mut X {
+        self.0
+    }
+}
+
 /// A configured pipeline: transforms, viewport and the compile-time choice of stages.
 ///
 /// `S` is the number format of the geometry ([`crate::math::Fx16`] for 16.16), `C` the culling
@@ -248,33 +280,6 @@ where
         }
     }
 
-    /// The same pipeline with another depth stage, and the one it had (a frame list lends its
-    /// depth buffer to a mesh this way for one band).
-    pub(crate) fn swap_depth<D2>(self, depth: D2) -> (Pipeline<S, C, D2, Sh, BITS, N>, D) {
-        (
-            Pipeline {
-                mvp: self.mvp,
-                raw: self.raw,
-                model: self.model,
-                normal_matrix: self.normal_matrix,
-                mirrored: self.mirrored,
-                facing: self.facing,
-                model_mirrors: self.model_mirrors,
-                flip_faces: self.flip_faces,
-                viewport: self.viewport,
-                area: self.area,
-                edges: self.edges,
-                map: self.map,
-                model_space: self.model_space,
-                cull: self.cull,
-                depth,
-                shading: self.shading,
-                _numerics: core::marker::PhantomData,
-            },
-            self.depth,
-        )
-    }
-
     /// Feeds everything that decides the pipeline's picture of a given mesh to `out`: its
     /// matrices, viewport, culling stage and shading ([`Shading::fingerprint`]).
     pub fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
@@ -361,9 +366,9 @@ where
                 continue;
             };
             if front::outside(&v) {
-                self.draw_outside(target, mesh, idx, scratch, &mut stats)?;
+                self.draw_outside(&mut Own, target, mesh, idx, scratch, &mut stats)?;
             } else if self.visible(&v, &mut stats, false) {
-                self.draw_visible(target, mesh, idx, v, scratch, &mut stats)?;
+                self.draw_visible(&mut Own, target, mesh, idx, v, scratch, &mut stats)?;
             }
         }
         Ok(stats)
