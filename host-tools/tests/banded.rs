@@ -289,6 +289,12 @@ fn shape_scene(format: &str) -> String {
             )
         },
     ];
+    // A wide diagonal line reaches w / sqrt 2 beyond its segment in y (rasterizer-core's
+    // `wide_diagonal_aa_line_within_bounds`).
+    out += "[[shapes]]\nkind = \"line\"\nfrom = [125.5, 60.5]\nto = [145.5, 80.5]\n\
+            color = [255, 255, 255]\nantialias = true\nwidth = 24\nopacity = 200\n\n\
+            [[shapes]]\nkind = \"line\"\nfrom = [20.5, 80.5]\nto = [40.5, 60.5]\n\
+            color = [255, 128, 0]\nantialias = true\nwidth = 30\n";
     for (k, kind) in kinds.iter().enumerate() {
         for variant in 0..4 {
             let (x, y) = (2.0 + 40.0 * variant as f64, 2.0 + 14.0 * k as f64);
