@@ -63,6 +63,14 @@ pub const REQUIRED: &[(&str, &str, &str)] = &[
     ("M2", "ours", "div64"),
     ("M4", "ours", "div64"),
     ("G1", "ours", "div64"),
+    ("S1", "ours", "instructions"),
+    ("S1", "ours-band16", "instructions"),
+    ("S1", "ours-band16x2", "instructions"),
+    ("S1", "ours-region", "instructions"),
+    ("S1", "ours-region", "pixels"),
+    ("S1", "ours-band16", "ram_bytes"),
+    ("S1", "ours-band16x2", "ram_bytes"),
+    ("S1", "ours-band16", "text_bytes"),
 ];
 
 /// The order of renderers in the tables: the default first, then the same pipeline without its
@@ -106,6 +114,14 @@ mod target {
     pub const PHONG_PER_TRIANGLE: f64 = 4000.0;
     /// A 16-row banded frame against the whole frame drawn the same way.
     pub const BAND16_RATIO: f64 = 1.20;
+    /// S1 in 16-row bands against the whole frame drawn directly.
+    pub const S1_BAND16_RATIO: f64 = 1.25;
+    /// All the RAM of S1 in 16-row bands besides mesh and font data, one band buffer and two.
+    pub const S1_RAM: f64 = 36864.0;
+    /// The same, double-buffered.
+    pub const S1_RAM_DOUBLE: f64 = 49152.0;
+    /// S1's region redraw after Suzanne turns, against the whole frame.
+    pub const S1_REGION_RATIO: f64 = 0.6;
     /// All the RAM of M1 in 16-row bands, and the `.text` of the M1 link check, in bytes.
     pub const BAND16_RAM: f64 = 32768.0;
     /// The `.text` of the no_std link check built with the M1 configuration.
@@ -928,7 +944,7 @@ fn targets(f: &Figures) -> String {
         None => "-",
     };
     let per = |scene: &str, r: &str| f.get(scene, r, "per_primitive");
-    let rows: [(&str, Option<f64>, f64, bool); 11] = [
+    let rows: [(&str, Option<f64>, f64, bool); 15] = [
         (
             "M1 whole frame, per triangle",
             per("M1", "ours"),
@@ -998,6 +1014,30 @@ fn targets(f: &Figures) -> String {
             target::M4_DIV64,
             false,
         ),
+        (
+            "S1 (a firmware screen) in 16-row bands, against the whole frame drawn directly",
+            f.get("S1", "ours-band16/ours", "ratio"),
+            target::S1_BAND16_RATIO,
+            true,
+        ),
+        (
+            "S1 in 16-row bands, all RAM besides mesh and font data (bytes)",
+            f.get("S1", "ours-band16", "ram_bytes"),
+            target::S1_RAM,
+            false,
+        ),
+        (
+            "S1 in 16-row bands, double-buffered, the same (bytes)",
+            f.get("S1", "ours-band16x2", "ram_bytes"),
+            target::S1_RAM_DOUBLE,
+            false,
+        ),
+        (
+            "S1 region redraw after Suzanne turns 5 degrees, against the whole frame",
+            f.get("S1", "ours-region/ours", "ratio"),
+            target::S1_REGION_RATIO,
+            true,
+        ),
     ];
     for (what, now, target, fraction) in rows {
         let show = |v: f64| if fraction { dec(v, 3) } else { int(v) };
@@ -1009,6 +1049,64 @@ fn targets(f: &Figures) -> String {
         ]);
     }
     t.done()
+}
+
+/// Workload S1 (a firmware screen through the frame list): each way of drawing it.
+fn s1(f: &Figures) -> String {
+    let mut t = Table::new(
+        &[
+            "S1 drawn",
+            "instructions",
+            "against the whole frame",
+            "RAM (bytes)",
+            "of it: bands, band depth, bins, vertex scratch, stack",
+        ],
+        "lrrrl",
+    );
+    let whole = f.get("S1", "ours", "instructions");
+    let rows = [
+        ("whole frame, each command drawn directly", "ours"),
+        ("frame list, 16-row bands, one band buffer", "ours-band16"),
+        ("frame list, 16-row bands, double-buffered", "ours-band16x2"),
+        (
+            "frame list, region redraw after Suzanne turns 30 -> 35 degrees",
+            "ours-region",
+        ),
+    ];
+    for (what, r) in rows {
+        let n = f.get("S1", r, "instructions");
+        let parts = [
+            "band_bytes",
+            "band_depth_bytes",
+            "bins_bytes",
+            "scratch_bytes",
+            "stack_bytes",
+        ]
+        .map(|m| f.get("S1", r, m));
+        let parts = if parts.iter().all(Option::is_some) {
+            parts.map(|p| int(p.unwrap_or(0.0))).join(" + ")
+        } else {
+            "-".to_string()
+        };
+        let what = if r == "ours-region" {
+            format!("{what} ({} pixels)", or_dash(f.get("S1", r, "pixels"), int))
+        } else {
+            what.to_string()
+        };
+        t.row(&[
+            what,
+            or_dash(n, int),
+            or_dash(ratio(n, whole), |v| dec(v, 3)),
+            or_dash(f.get("S1", r, "ram_bytes"), int),
+            parts,
+        ]);
+    }
+    let mut out = t.done();
+    out.push_str(&format!(
+        "\n`.text` of the no_std build of S1 through the frame list (nostd-check `framelist`, x86-64, opt-level s): {} bytes.\n",
+        or_dash(f.get("S1", "ours-band16", "text_bytes"), int)
+    ));
+    out
 }
 
 fn readme_speed(f: &Figures) -> String {
@@ -1139,6 +1237,7 @@ pub fn blocks(f: &Figures) -> Vec<Block> {
         b("BENCHMARKS.md", "m1-memory", m1_memory(f)),
         b("BENCHMARKS.md", "m1-target", m1_target(f)),
         b("BENCHMARKS.md", "targets", targets(f)),
+        b("BENCHMARKS.md", "s1", s1(f)),
         b("BENCHMARKS.md", "scenes-3d", scenes_3d(f)),
         b("BENCHMARKS.md", "ours-vs-euc", ours_vs_euc(f, false)),
         b("BENCHMARKS.md", "same-picture", same_picture(f)),

@@ -657,3 +657,358 @@ fn shared_depth_alone_draws_nothing_and_says_so() {
     assert!(px.iter().all(|&p| p == 0));
     let _ = DEFAULT_BITS;
 }
+
+/// Every kind of command the list takes, in an order where each one overlaps others: every
+/// `Shape` variant, a polygon item, text, an opaque mesh with shared depth, a translucent mesh
+/// testing that depth read-only, and a mesh without depth.
+mod every_command {
+    use super::*;
+    use rasterizer_core::depth::{NoDepth, SharedDepthReadOnly};
+    use rasterizer_core::frame::{PolygonFill, Shape};
+
+    const W: u32 = 96;
+    const H: u32 = 72;
+
+    fn sp(x: i32, y: i32) -> SubPoint {
+        SubPoint::new(x, y)
+    }
+
+    /// The 2D shapes, sub-pixel corners in 1/16 pixel.
+    fn shapes() -> Vec<Shape<Rgb565>> {
+        let c = |r, g, b| Rgb565::new(r, g, b);
+        vec![
+            Shape::Line {
+                a: Point::new(-5, 3),
+                b: Point::new(100, 60),
+                color: c(31, 0, 0),
+            },
+            Shape::LineGradient {
+                a: Point::new(2, 70),
+                b: Point::new(90, 1),
+                colors: [c(0, 63, 0), c(0, 0, 31)],
+            },
+            Shape::LineAlpha {
+                a: Point::new(10, 0),
+                b: Point::new(12, 71),
+                color: c(31, 63, 0),
+                alpha: 100,
+            },
+            Shape::LineAa {
+                a: Point::new(5, 40),
+                b: Point::new(91, 20),
+                width: 5,
+                color: c(0, 63, 31),
+            },
+            Shape::TriangleOutline {
+                vertices: [Point::new(3, 3), Point::new(80, 30), Point::new(30, 68)],
+                color: c(31, 31, 31),
+            },
+            Shape::Triangle {
+                vertices: [sp(100, 50), sp(1400, 300), sp(600, 1100)],
+                color: c(20, 10, 5),
+                opacity: 255,
+            },
+            Shape::Triangle {
+                vertices: [sp(300, 200), sp(1500, 900), sp(100, 1100)],
+                color: c(5, 40, 25),
+                opacity: 90,
+            },
+            Shape::Gouraud {
+                vertices: [sp(700, 10), sp(1530, 700), sp(400, 800)],
+                colors: [c(31, 0, 0), c(0, 63, 0), c(0, 0, 31)],
+                opacity: 255,
+            },
+            Shape::Gouraud {
+                vertices: [sp(0, 600), sp(1000, 500), sp(500, 1150)],
+                colors: [c(31, 63, 0), c(0, 63, 31), c(31, 0, 31)],
+                opacity: 170,
+            },
+        ]
+    }
+
+    fn star() -> Polygon<8> {
+        Polygon::new(&[
+            sp(760, 40),
+            sp(1200, 1100),
+            sp(40, 380),
+            sp(1500, 380),
+            sp(330, 1100),
+        ])
+        .unwrap()
+    }
+
+    fn camera(yaw: i32) -> Transforms<Fx16> {
+        fixtures::scenes3d::camera(Mat4::rotation_y(Angle::from_degrees(yaw)), W, H)
+    }
+
+    fn lit() -> GouraudLit<Fx16, Rgb565, 1> {
+        GouraudLit::new(fixtures::scenes3d::lighting())
+    }
+
+    /// The same commands drawn directly into one framebuffer.
+    fn direct(m: &Meshes) -> Vec<u16> {
+        let mut px = vec![0u16; (W * H) as usize];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut px, W, H).unwrap();
+        fb.clear(Rgb565::new(3, 6, 9)).unwrap();
+        let shapes = shapes();
+        for s in &shapes[..5] {
+            s.draw(&mut fb).unwrap();
+        }
+        let mut depth = vec![u16::MAX; (W * H) as usize];
+        let suzanne = m.suzanne.mesh();
+        let mut scratch = vec![VertexSlot::EMPTY; suzanne.vertex_count()];
+        let zb = DepthBuffer::new(&mut depth, W, H, Compare::Less).unwrap();
+        let mut p = Pipeline::new(&camera(20), Viewport::new(W, H), CullClockwise, zb, lit());
+        p.draw(&mut fb, &suzanne, &mut scratch).unwrap();
+        star()
+            .fill(&mut fb, FillRule::NonZero, Rgb565::new(10, 50, 10))
+            .unwrap();
+        for s in &shapes[5..] {
+            s.draw(&mut fb).unwrap();
+        }
+        let cube = m.cube.mesh();
+        let mut cs = vec![VertexSlot::EMPTY; cube.vertex_count()];
+        let mut q = Pipeline::new(
+            &camera(-35),
+            Viewport::new(W, H),
+            CullClockwise,
+            p.depth.read_only(),
+            lit(),
+        );
+        q.draw(
+            &mut rasterizer_core::surface::Translucent::new(&mut fb, 128),
+            &cube,
+            &mut cs,
+        )
+        .unwrap();
+        let mut r = Pipeline::new(&camera(60), Viewport::new(W, H), NoCull, NoDepth, lit());
+        r.draw(&mut fb, &cube, &mut cs).unwrap();
+        for t in s1::labels() {
+            // The labels moved into this small screen.
+            Text::with_baseline(t.text, Point::new(4, 50), t.character_style, Baseline::Top)
+                .draw(&mut fb)
+                .unwrap();
+        }
+        px
+    }
+
+    use embedded_graphics::text::{Baseline, Text};
+
+    /// The list of the same commands, rendered with `rows`-row bands within `region`, pasted
+    /// over a copy of `base`.
+    fn listed(m: &Meshes, rows: u32, region: Rectangle, base: &[u16]) -> Vec<u16> {
+        let (suzanne, cube) = (m.suzanne.mesh(), m.cube.mesh());
+        let mut ss = vec![VertexSlot::EMPTY; suzanne.vertex_count()];
+        let mut sb = vec![BinEntry::ZERO; suzanne.triangle_count() + 4];
+        let mut cs1 = vec![VertexSlot::EMPTY; cube.vertex_count()];
+        let mut cb1 = vec![BinEntry::ZERO; 16];
+        let mut cs2 = vec![VertexSlot::EMPTY; cube.vertex_count()];
+        let mut cb2 = vec![BinEntry::ZERO; 16];
+        let vp = Viewport::new(W, H);
+        let mut monkey = MeshCommand::new(
+            Pipeline::new(&camera(20), vp, CullClockwise, SharedDepth, lit()),
+            &suzanne,
+            &mut ss,
+            &mut sb,
+        );
+        let mut glass = MeshCommand::new(
+            Pipeline::new(&camera(-35), vp, CullClockwise, SharedDepthReadOnly, lit()),
+            &cube,
+            &mut cs1,
+            &mut cb1,
+        )
+        .with_opacity(128);
+        let mut plain = MeshCommand::new(
+            Pipeline::new(&camera(60), vp, NoCull, NoDepth, lit()),
+            &cube,
+            &mut cs2,
+            &mut cb2,
+        );
+        let star = star();
+        let fill = PolygonFill {
+            polygon: &star,
+            rule: FillRule::NonZero,
+            color: Rgb565::new(10, 50, 10),
+        };
+        let labels: Vec<_> = s1::labels()
+            .iter()
+            .map(|t| {
+                Text::with_baseline(t.text, Point::new(4, 50), t.character_style, Baseline::Top)
+            })
+            .collect();
+        let shapes = shapes();
+        let mut slots: Vec<Slot<'_, Rgb565>> = (0..20).map(|_| Slot::EMPTY).collect();
+        let layout = Layout::new(W, H, rows).unwrap();
+        let mut list = FrameList::new(&mut slots, layout, Clear::new(Rgb565::new(3, 6, 9)));
+        for s in &shapes[..5] {
+            list.shape(*s).unwrap();
+        }
+        list.command(&mut monkey).unwrap();
+        list.item(&fill, 0).unwrap();
+        for s in &shapes[5..] {
+            list.shape(*s).unwrap();
+        }
+        list.command(&mut glass).unwrap();
+        list.command(&mut plain).unwrap();
+        for t in &labels {
+            list.item(t, 0).unwrap();
+        }
+        let mut out = base.to_vec();
+        let mut band = vec![0u16; (W * rows.min(H)) as usize];
+        let mut depth = vec![0u16; (W * rows.min(H)) as usize];
+        list.render_region(&region, &mut band, &mut depth, |b, area| {
+            let data = b.framebuffer().as_slice();
+            for y in area.rows() {
+                for x in area.columns() {
+                    let src = (y - b.y0()) as usize * W as usize + x as usize;
+                    out[y as usize * W as usize + x as usize] = data[src];
+                }
+            }
+        })
+        .unwrap();
+        out
+    }
+
+    #[test]
+    fn every_command_in_bands_is_the_direct_drawing() {
+        let m = meshes();
+        let whole = direct(&m);
+        let distinct: std::collections::HashSet<_> = whole.iter().collect();
+        assert!(distinct.len() > 100, "{} colours", distinct.len());
+        let screen = Rectangle::new(Point::zero(), Size::new(W, H));
+        let blank = vec![0u16; (W * H) as usize];
+        for rows in [1, 5, 16, 72] {
+            let got = listed(&m, rows, screen, &blank);
+            let diff = got.iter().zip(&whole).position(|(a, b)| a != b);
+            assert_eq!(
+                diff.map(|i| (i % W as usize, i / W as usize)),
+                None,
+                "{rows} rows"
+            );
+        }
+    }
+
+    #[test]
+    fn any_region_is_the_direct_drawing_within_it() {
+        let m = meshes();
+        let whole = direct(&m);
+        let blank = vec![0xbeef_u16; (W * H) as usize];
+        let regions = [
+            Rectangle::new(Point::new(13, 7), Size::new(40, 33)),
+            Rectangle::new(Point::new(0, 0), Size::new(1, 1)),
+            Rectangle::new(Point::new(95, 71), Size::new(5, 5)),
+            Rectangle::new(Point::new(-10, 30), Size::new(200, 3)),
+            Rectangle::new(Point::new(50, -4), Size::new(9, 200)),
+        ];
+        for region in regions {
+            for rows in [3, 16] {
+                let got = listed(&m, rows, region, &blank);
+                for y in 0..H as i32 {
+                    for x in 0..W as i32 {
+                        let i = (y * W as i32 + x) as usize;
+                        let want = if region.contains(Point::new(x, y)) {
+                            whole[i]
+                        } else {
+                            0xbeef
+                        };
+                        assert_eq!(got[i], want, "({x}, {y}) of {region:?}, {rows} rows");
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn summaries_change_with_what_a_command_draws() {
+    // The same frame twice gives the same summaries; a change of light, material, opacity,
+    // revision, shape colour or item revision changes exactly that command's.
+    let m = meshes();
+    let suzanne = m.suzanne.mesh();
+    let layout = Layout::new(W, H, 16).unwrap();
+    let summarize =
+        |light: [i32; 3], diffuse: Rgb888, opacity: u8, revision: u32, red: u8, text: u32| {
+            let mut scratch = vec![VertexSlot::EMPTY; suzanne.vertex_count()];
+            let mut bins = vec![BinEntry::ZERO; suzanne.triangle_count()];
+            let mut lighting = Lighting::new(
+                Material {
+                    diffuse,
+                    ..fixtures::scenes3d::material()
+                },
+                Rgb888::WHITE,
+                rasterizer_core::shade::Specular::BlinnPhong,
+                Vec3::from_ints(0, 0, 3),
+            );
+            lighting
+                .add_light(Light::Directional {
+                    direction: Vec3::from_ints(light[0], light[1], light[2]),
+                    color: Rgb888::WHITE,
+                })
+                .unwrap();
+            let mut monkey: SuzanneCommand = MeshCommand::new(
+                Pipeline::new(
+                    &s1::transforms(s1::suzanne_model(30)),
+                    s1::viewport(),
+                    CullClockwise,
+                    SharedDepth,
+                    GouraudLit::new(lighting),
+                ),
+                &suzanne,
+                &mut scratch,
+                &mut bins,
+            )
+            .with_opacity(opacity);
+            monkey.set_revision(revision);
+            let labels = s1::labels();
+            let mut slots = [Slot::EMPTY; 4];
+            let mut list = FrameList::new(&mut slots, layout, Clear::new(Rgb565::BLACK));
+            list.command(&mut monkey).unwrap();
+            let mut g = s1::gouraud();
+            if let rasterizer_core::frame::Shape::Gouraud { colors, .. } = &mut g {
+                colors[0] = Rgb565::new(red, 0, 0);
+            }
+            list.shape(g).unwrap();
+            list.item(&labels[0], text).unwrap();
+            let mut out = [Summary::default(); 3];
+            assert_eq!(list.summaries(&mut out), 3);
+            out
+        };
+    let base = summarize([1, 1, 1], Rgb888::new(220, 140, 80), 255, 0, 31, 0);
+    assert_eq!(
+        base,
+        summarize([1, 1, 1], Rgb888::new(220, 140, 80), 255, 0, 31, 0)
+    );
+    let variants = [
+        (
+            summarize([1, 2, 1], Rgb888::new(220, 140, 80), 255, 0, 31, 0),
+            0,
+        ),
+        (
+            summarize([1, 1, 1], Rgb888::new(220, 141, 80), 255, 0, 31, 0),
+            0,
+        ),
+        (
+            summarize([1, 1, 1], Rgb888::new(220, 140, 80), 254, 0, 31, 0),
+            0,
+        ),
+        (
+            summarize([1, 1, 1], Rgb888::new(220, 140, 80), 255, 1, 31, 0),
+            0,
+        ),
+        (
+            summarize([1, 1, 1], Rgb888::new(220, 140, 80), 255, 0, 30, 0),
+            1,
+        ),
+        (
+            summarize([1, 1, 1], Rgb888::new(220, 140, 80), 255, 0, 31, 7),
+            2,
+        ),
+    ];
+    for (k, (v, changed)) in variants.iter().enumerate() {
+        for i in 0..3 {
+            assert_eq!(v[i] != base[i], i == *changed, "variant {k}, command {i}");
+        }
+        // Same bounds: only the fingerprint tells the change.
+        assert_eq!(v[*changed].bounds, base[*changed].bounds, "variant {k}");
+    }
+}
