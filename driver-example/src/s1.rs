@@ -21,10 +21,10 @@ use mipidsi::interface::{Interface, InterfacePixelFormat};
 use mipidsi::models::Model;
 use mipidsi::Display;
 use rasterizer_core::depth::SharedDepth;
+use rasterizer_core::frame::MeshCommand;
 use rasterizer_core::frame::{
     changed_areas, Clear, DoubleBuffer, FrameList, Layout, RenderError, Slot, Summary,
 };
-use rasterizer_core::pipeline::MeshCommand;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 

@@ -35,7 +35,7 @@ type Mesh3<'a> = Mesh<'a, Fx16, u32>;
 type Gouraud = GouraudLit<Fx16, Rgb565, 1>;
 type Flat = FlatLit<Fx16, Rgb565, 1>;
 type MeshCmd<'m, Sh> = MeshCommand<'m, Fx16, CullClockwise, SharedDepth, Sh, Mesh3<'m>>;
-use rasterizer_core::pipeline::MeshCommand;
+use rasterizer_core::frame::MeshCommand;
 
 /// The caller's RAM of a list frame besides the band buffers: vertex scratch and bins.
 struct Ram {

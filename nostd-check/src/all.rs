@@ -201,12 +201,13 @@ fn draw_frame_list() -> u32 {
     use embedded_graphics_core::primitives::Rectangle;
     use rasterizer_core::cull::{CullClockwise, NoCull};
     use rasterizer_core::depth::{SharedDepth, SharedDepthReadOnly};
+    use rasterizer_core::frame::MeshCommand;
     use rasterizer_core::frame::{
         changed_areas, Clear, FrameList, Layout, PolygonFill, Shape, Slot, Summary,
     };
     use rasterizer_core::math::Fx16;
     use rasterizer_core::mesh::PackedMesh;
-    use rasterizer_core::pipeline::{BinEntry, MeshCommand, Pipeline, VertexSlot};
+    use rasterizer_core::pipeline::{BinEntry, Pipeline, VertexSlot};
     use rasterizer_core::shade::{FlatLit, GouraudLit};
     use rasterizer_core::transform::Viewport;
 

@@ -12,10 +12,11 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use fixtures::s1;
 use rasterizer_core::cull::CullClockwise;
 use rasterizer_core::depth::SharedDepth;
+use rasterizer_core::frame::MeshCommand;
 use rasterizer_core::frame::{Clear, FrameList, Layout, Slot};
 use rasterizer_core::math::Fx16;
 use rasterizer_core::mesh::PackedMesh;
-use rasterizer_core::pipeline::{BinEntry, MeshCommand, Pipeline, VertexSlot};
+use rasterizer_core::pipeline::{BinEntry, Pipeline, VertexSlot};
 use rasterizer_core::shade::{FlatLit, GouraudLit, Shading};
 
 /// The screen: 320 x 240.

@@ -445,9 +445,9 @@ impl ListDepth for SharedDepthReadOnly {}
 
 mod sealed {
     pub trait Sealed {}
-    impl Sealed for super::NoDepth {}
-    impl Sealed for super::SharedDepth {}
-    impl Sealed for super::SharedDepthReadOnly {}
+    impl Sealed for crate::depth::NoDepth {}
+    impl Sealed for crate::depth::SharedDepth {}
+    impl Sealed for crate::depth::SharedDepthReadOnly {}
 }
 
 /// The list's depth buffer lent to one mesh for one band, used as its [`ListDepth`] `L` says.

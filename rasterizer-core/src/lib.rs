@@ -153,6 +153,7 @@ pub mod clip;
 pub mod color;
 pub mod cull;
 pub mod depth;
+pub mod fingerprint;
 pub mod frame;
 pub mod geom;
 pub mod math;

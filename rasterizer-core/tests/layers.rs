@@ -12,12 +12,14 @@ use std::path::{Path, PathBuf};
 const LAYERS: &[&[&str]] = &[
     // The 64-bit divisions every layer may need (math's exact ratios among them).
     &["wide"],
-    &["math", "numerics", "color"],
+    &["math", "numerics", "color", "fingerprint"],
     &["geom", "texture"],
     &["surface"],
     &["mesh", "transform", "clip", "cull", "depth"],
     &["raster", "shade"],
     &["pipeline"],
+    // Whole screens of commands, meshes among them.
+    &["frame"],
     &["prelude"],
 ];
 

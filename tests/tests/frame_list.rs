@@ -11,9 +11,7 @@ use rasterizer_core::frame::{
 use rasterizer_core::mesh::MeshSource;
 use rasterizer_core::prelude::*;
 use rasterizer_core::{
-    depth::SharedDepth,
-    pipeline::{MeshCommand, DEFAULT_BITS},
-    shade::Shading,
+    depth::SharedDepth, frame::MeshCommand, pipeline::DEFAULT_BITS, shade::Shading,
 };
 
 const W: u32 = s1::WIDTH;

@@ -688,8 +688,8 @@ fn render_s1(
 ) -> Result<u32, rasterizer_core::frame::FrameError> {
     use fixtures::s1;
     use rasterizer_core::depth::SharedDepth;
+    use rasterizer_core::frame::MeshCommand;
     use rasterizer_core::frame::{Clear, FrameList, Layout, Slot as ListSlot};
-    use rasterizer_core::pipeline::MeshCommand;
     let mut monkey = MeshCommand::new(
         Pipeline::new(
             &s1::transforms(s1::suzanne_model(s1::SUZANNE_DEGREES)),

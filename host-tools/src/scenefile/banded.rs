@@ -29,12 +29,13 @@ use super::MAX_POLYGON;
 use embedded_graphics_simulator::SimulatorDisplay;
 use rasterizer_core::color::Channels;
 use rasterizer_core::depth::{DepthBuffer, ListDepth, SharedDepth, SharedDepthReadOnly};
+use rasterizer_core::frame::MeshCommand;
 use rasterizer_core::frame::{
     self, Clear, Command, Fingerprint, FrameError, FrameList, Item, Layout, PolygonFill, Prepared,
     Slot,
 };
 use rasterizer_core::mesh::MeshSource;
-use rasterizer_core::pipeline::{MeshCommand, RenderStats, DEFAULT_BITS};
+use rasterizer_core::pipeline::{RenderStats, DEFAULT_BITS};
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 use rasterizer_core::surface::{Band, ClipTo, Storage};

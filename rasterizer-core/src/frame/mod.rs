@@ -34,12 +34,12 @@
 //! assert_eq!(rows, 48);
 //! ```
 //!
-//! [`MeshCommand`]: crate::pipeline::MeshCommand
-//! [`MeshCommand::set_pipeline`]: crate::pipeline::MeshCommand::set_pipeline
 
+mod mesh;
 mod shape;
 
-pub use crate::pipeline::MeshCommand;
+pub use crate::fingerprint::Fingerprint;
+pub use mesh::MeshCommand;
 pub use shape::{Item, PolygonFill, Shape};
 
 use crate::depth::{Compare, DepthBuffer, DepthTest};
@@ -241,7 +241,6 @@ impl Prepared {
 /// A command of a frame list that keeps state between bands: a mesh ([`MeshCommand`]), or
 /// anything a user builds on the same terms.
 ///
-/// [`MeshCommand`]: crate::pipeline::MeshCommand
 pub trait Command<C: Storage> {
     /// Called once when the command is added to a list for `layout`: does the frame's
     /// once-only work and returns the pixels it may draw.
@@ -260,48 +259,6 @@ pub trait Command<C: Storage> {
     );
     /// Feeds everything that decides its pixels to `hash` ([`changed_areas`]).
     fn fingerprint(&self, hash: &mut Fingerprint);
-}
-
-/// A 64-bit FNV-1a hash of what a command draws, fed through `core::fmt::Write` or
-/// [`Fingerprint::bytes`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Fingerprint(u64);
-
-impl Default for Fingerprint {
-    fn default() -> Self {
-        Self(0xcbf2_9ce4_8422_2325)
-    }
-}
-
-impl Fingerprint {
-    /// Feeds bytes.
-    pub fn bytes(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-
-    /// The hash.
-    pub fn value(&self) -> u64 {
-        self.0
-    }
-}
-
-impl core::hash::Hasher for Fingerprint {
-    fn write(&mut self, bytes: &[u8]) {
-        self.bytes(bytes);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-impl core::fmt::Write for Fingerprint {
-    fn write_str(&mut self, s: &str) -> core::fmt::Result {
-        self.bytes(s.as_bytes());
-        Ok(())
-    }
 }
 
 /// One command of a frame list as [`changed_areas`] compares frames: its bounds and fingerprint.

@@ -187,7 +187,7 @@ where
     ///
     /// # Errors
     /// [`BandError::TooFewBins`] when `bins` cannot hold them all.
-    pub(super) fn bin<M: MeshSource<S>>(
+    pub(crate) fn bin<M: MeshSource<S>>(
         &self,
         mesh: &M,
         scratch: &mut [VertexSlot<Sh::Stored>],
@@ -258,7 +258,7 @@ where
     /// that ended above the unit: start it at `(0, 0)` and pass it again for later bands, in
     /// order.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn draw_unit<T, M, P: DepthFrom<D>>(
+    pub(crate) fn draw_unit<T, M, P: DepthFrom<D>>(
         &mut self,
         src: &mut P,
         target: &mut T,

@@ -17,12 +17,10 @@
 
 mod band;
 mod front;
-mod list;
 mod perspective;
 mod vertex;
 
 pub use band::{BandError, Banding, BinEntry};
-pub use list::MeshCommand;
 pub use vertex::VertexSlot;
 
 use crate::clip::polygon::{clip_segment, clip_triangle, ClipVertex};
@@ -154,9 +152,9 @@ pub struct Pipeline<S, C, D, Sh, const BITS: u32 = DEFAULT_BITS, N = Standard> {
     raw: Option<RawMvp>,
     model: Mat4<S>,
     normal_matrix: Mat4<S>,
-    viewport: Viewport,
+    pub(crate) viewport: Viewport,
     /// The viewport's pixels, and its edges in sub-pixel units (left, top, right, bottom).
-    area: PixelRect,
+    pub(crate) area: PixelRect,
     edges: [i64; 4],
     /// The viewport's mapping for the projection's fast path.
     map: ScreenMap,
@@ -282,7 +280,7 @@ where
 
     /// Feeds everything that decides the pipeline's picture of a given mesh to `out`: its
     /// matrices, viewport, culling stage and shading ([`Shading::fingerprint`]).
-    pub fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    pub fn fingerprint(&self, out: &mut crate::fingerprint::Fingerprint)
     where
         C: core::fmt::Debug,
         Sh: core::fmt::Debug,

@@ -237,7 +237,7 @@ where
     /// mesh's vertices are filled with their geometry and marked unshaded. Returns the scratch cut
     /// to the mesh's vertices, so that a corner's bounds check also validates its index
     /// ([`Pipeline::fetch`]).
-    pub(super) fn begin<'s, M: MeshSource<S>>(
+    pub(crate) fn begin<'s, M: MeshSource<S>>(
         &mut self,
         mesh: &M,
         scratch: &'s mut [VertexSlot<Sh::Stored>],

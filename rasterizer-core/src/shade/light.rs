@@ -225,10 +225,11 @@ struct LightTerms {
 impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// Feeds the lights, material, ambient light, specular model and eye to `out`
     /// ([`Shading::fingerprint`](crate::shade::Shading::fingerprint)).
-    pub fn fingerprint(&self, out: &mut crate::frame::Fingerprint) {
-        let rgb =
-            |out: &mut crate::frame::Fingerprint, c: Rgb888| out.bytes(&[c.r(), c.g(), c.b()]);
-        let v3 = |out: &mut crate::frame::Fingerprint, v: &Vec3<S>| {
+    pub fn fingerprint(&self, out: &mut crate::fingerprint::Fingerprint) {
+        let rgb = |out: &mut crate::fingerprint::Fingerprint, c: Rgb888| {
+            out.bytes(&[c.r(), c.g(), c.b()])
+        };
+        let v3 = |out: &mut crate::fingerprint::Fingerprint, v: &Vec3<S>| {
             for c in [v.x, v.y, v.z] {
                 out.bytes(&c.to_fx16_bits().to_le_bytes());
             }

@@ -112,7 +112,7 @@ pub trait Shading<S: Scalar> {
     /// Feeds everything that decides the shader's colours to `out`, for a frame list that
     /// compares frames ([`crate::frame::changed_areas`]). The default writes the `Debug` form,
     /// which holds every field; the lit shaders write their lighting's settings, far faster.
-    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    fn fingerprint(&self, out: &mut crate::fingerprint::Fingerprint)
     where
         Self: core::fmt::Debug,
     {
@@ -343,7 +343,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> FlatLit<S, C, N> {
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for FlatLit<S, C, N> {
-    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    fn fingerprint(&self, out: &mut crate::fingerprint::Fingerprint)
     where
         Self: core::fmt::Debug,
     {
@@ -436,7 +436,7 @@ fn target_scale<C: ShadeColor>() -> [u32; 3] {
 const PLAN_BITS: u32 = 32;
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N> {
-    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    fn fingerprint(&self, out: &mut crate::fingerprint::Fingerprint)
     where
         Self: core::fmt::Debug,
     {
@@ -523,7 +523,7 @@ impl<S: Scalar, C, const N: usize> PhongLit<S, C, N> {
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> {
-    fn fingerprint(&self, out: &mut crate::frame::Fingerprint)
+    fn fingerprint(&self, out: &mut crate::fingerprint::Fingerprint)
     where
         Self: core::fmt::Debug,
     {

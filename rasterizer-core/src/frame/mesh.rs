@@ -1,13 +1,13 @@
 //! A mesh as a command of a frame list ([`crate::frame`]).
 
-use super::{BinEntry, Lend, Pipeline, RenderStats, VertexSlot, DEFAULT_BITS};
+use super::{Command, FrameError, Layout, Prepared};
 use crate::cull::Cull;
 use crate::depth::{DepthBuffer, Lent, ListDepth};
-use crate::frame::{Command, FrameError, Layout, Prepared};
 use crate::geom::PixelRect;
 use crate::math::Scalar;
 use crate::mesh::MeshSource;
 use crate::numerics::{Numerics, Standard};
+use crate::pipeline::{BandError, BinEntry, Lend, Pipeline, RenderStats, VertexSlot, DEFAULT_BITS};
 use crate::shade::Shading;
 use crate::surface::{Band, ClipTo, Storage, Translucent};
 
@@ -140,7 +140,7 @@ where
                 &mut pixels,
             )
             .map_err(|e| match e {
-                super::BandError::TooFewBins { needed, actual } => {
+                BandError::TooFewBins { needed, actual } => {
                     FrameError::TooFewBins { needed, actual }
                 }
                 _ => FrameError::TooFewBins {
@@ -204,7 +204,7 @@ where
         }
     }
 
-    fn fingerprint(&self, hash: &mut crate::frame::Fingerprint) {
+    fn fingerprint(&self, hash: &mut crate::fingerprint::Fingerprint) {
         // Everything that decides the picture: transforms, stages, lights, material.
         self.pipeline.fingerprint(hash);
         hash.bytes(&[self.opacity]);
