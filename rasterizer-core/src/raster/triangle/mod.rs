@@ -154,6 +154,10 @@ where
     // side 2M) and 2 den <= 2^61.
     let den = t.cross.unsigned_abs();
     let sign = t.cross.signum();
+    if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), sign) {
+        let clip = PixelRect::from_rectangle(&p.surface.clip_area());
+        return walk_spans(&t, s, &clip, &mut p);
+    }
     let mut g = Gouraud {
         surface,
         s,
@@ -202,6 +206,118 @@ where
     }
     let clip = PixelRect::from_rectangle(&g.surface.clip_area());
     walk_spans(&t, s, &clip, &mut g)
+}
+
+/// Gouraud spans from colour planes set up once per triangle: each channel's value at a pixel
+/// centre is `c0 + (g dx2 + h dy2) / 2^32` in 32.32, with the gradients `g`, `h` per doubled
+/// sub-pixel unit rounded once (one reciprocal of the doubled area for all six), so a span starts
+/// with two multiplies per channel and no division.
+///
+/// Taken when the triangle's extents keep both the products in `i64` and the start's error
+/// (`(ex + ey) 2^-33` steps from the gradients' rounding) below `2^-17` steps, as small as the
+/// stepping's own per pixel: every screen-sized triangle. The start then lies within `2^-17` of
+/// the exact blend, which is what [`Gouraud`]'s exact start gives up to its own rounding.
+struct Planes<'a, S: Surface> {
+    surface: &'a mut S,
+    s: i64,
+    v0: (i64, i64),
+    /// `c0 2^32`, and the gradients per doubled unit in 32.32.
+    base: [i64; 4],
+    g: [i64; 4],
+    h: [i64; 4],
+    step: [i32; 4],
+}
+
+impl<'a, S: Surface> Planes<'a, S>
+where
+    S::Color: Channels,
+{
+    fn new(
+        surface: &'a mut S,
+        t: &Sorted,
+        s: i64,
+        c: &[[u8; 4]; 3],
+        (ex, ey): (u64, u64),
+        sign: i64,
+    ) -> Option<Self> {
+        // Within 2^16 doubled units the start's error stays below 2^-17 steps.
+        if ex + ey > 1 << 16 {
+            return None;
+        }
+        let den2 = NonZeroU64::new(2 * t.cross.unsigned_abs())?;
+        let recip = crate::wide::Reciprocal::new(den2);
+        let half = (den2.get() / 2) as i64;
+        let [v0, v1, v2] = t.v;
+        let mut p = Self {
+            surface,
+            s,
+            v0,
+            base: [0; 4],
+            g: [0; 4],
+            h: [0; 4],
+            step: [0; 4],
+        };
+        // One index runs over several per-channel arrays at once.
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..S::Color::COUNT {
+            let (c0, c1, c2) = (i64::from(c[0][i]), i64::from(c[1][i]), i64::from(c[2][i]));
+            // The plane's numerators, as for `Gouraud`; |a|, |b| <= 2^8 (ex + ey) <= 2^24 here.
+            let a = sign * ((c1 - c0) * (v2.1 - v0.1) - (c2 - c0) * (v1.1 - v0.1));
+            let b = sign * ((c2 - c0) * (v1.0 - v0.0) - (c1 - c0) * (v2.0 - v0.0));
+            // round(a 2^32 / 2 den): below 2^57 in magnitude, within the reciprocal's range.
+            let g = recip.floor((a << 32) + half);
+            let h = recip.floor((b << 32) + half);
+            // The products at a pixel inside the triangle must fit i64 with the base (up to
+            // 2^40): a sliver's gradients can be as large as its colour range over 1/2^BITS.
+            let reach = g
+                .unsigned_abs()
+                .checked_mul(ex)?
+                .checked_add(h.unsigned_abs().checked_mul(ey)?)?;
+            if reach >= 1 << 61 {
+                return None;
+            }
+            p.base[i] = c0 << 32;
+            p.g[i] = g;
+            p.h[i] = h;
+            // A pixel is 2s doubled units: its step in 16.16, saturated as `Gouraud`'s is (a step
+            // beyond i32 only lands on one-pixel spans).
+            let per_pixel = (i128::from(g) * i128::from(2 * s) + (1 << 15)) >> 16;
+            p.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
+        }
+        Some(p)
+    }
+}
+
+impl<S: Surface> SpanSink for Planes<'_, S>
+where
+    S::Color: Channels,
+{
+    type Error = S::Error;
+
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
+        // Doubled pixel-centre offsets from v0, at most the extents (2^16).
+        let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.v0.0;
+        let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.v0.1;
+        let mut acc = [0i32; 4];
+        // One index runs over several per-channel arrays at once.
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..S::Color::COUNT {
+            // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
+            // inside the triangle it lies within the vertex colours' range (up to 2^-17).
+            let v = self.base[i] + self.g[i] * dx2 + self.h[i] * dy2;
+            acc[i] = ((v + (1 << 15)) >> 16) as i32 + (1 << (FRAC - 1));
+        }
+        let step = self.step;
+        self.surface
+            .shade_span_in_clip(x0, row, (x1 - x0) as u32, || {
+                let color = S::Color::from_fixed16(&acc);
+                for (a, st) in acc.iter_mut().zip(step).take(S::Color::COUNT) {
+                    *a = a.wrapping_add(st);
+                }
+                color
+            })
+    }
 }
 
 /// `round(n / (2 den))`, halves up, for `den > 0`.
