@@ -9,7 +9,7 @@
 # Usage (from anywhere; paths are relative to the repo root):
 #   scripts/figures.sh                  # every figure
 #   scripts/figures.sh --quick          # only the lines WORKLOADS.md's table requires
-#   scripts/figures.sh T2 M1            # only these scenes (L1 T1 T2 G1 LIMIT, the mesh scenes, S1)
+#   scripts/figures.sh T2 M1            # only these scenes (L1 T1 T2 G1 P1 LIMIT, the mesh scenes, S1)
 #   scripts/figures.sh -o FILE          # also write the lines to FILE (or FIGURES_OUT=FILE), which is
 #                                       # replaced only once every count has succeeded
 #   ANNOTATE=1 scripts/figures.sh ...   # also callgrind_annotate reports next to the outputs
@@ -58,7 +58,7 @@ MEMORY_JOBS=(
     "ours-m1_band16_noscratch gouraud_depth_cull_banded16_noscratch"
 )
 
-SCENES_2D=(L1 T1 T2 G1)
+SCENES_2D=(L1 T1 T2 G1 P1)
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
@@ -192,6 +192,10 @@ for scene in "${SCENES_2D[@]}"; do
     G1)
         kind=gouraud
         renderers=(ours) # embedded-graphics has no Gouraud fill
+        ;;
+    P1)
+        kind=polygons
+        renderers=(ours) # nor a polygon fill
         ;;
     *) kind=triangles ;;
     esac

@@ -1,6 +1,6 @@
 //! Draws one frame of a WORKLOADS.md scene for callgrind to count (`scripts/callgrind.sh`).
 //!
-//! `count2d SCENE RENDERER [--pixels | --stats]`, SCENE one of L1 T1 T2 G1 LIMIT, RENDERER `ours` or `eg`
+//! `count2d SCENE RENDERER [--pixels | --stats]`, SCENE one of L1 T1 T2 G1 P1 LIMIT, RENDERER `ours` or `eg`
 //! (LIMIT ignores it). The scene is generated and one warm frame drawn outside the counted
 //! function; then exactly one call of a `frame_*` function draws the counted frame:
 //!
@@ -9,6 +9,7 @@
 //! | L1 | `frame_ours_lines` | `frame_eg_lines` |
 //! | T1, T2 | `frame_ours_triangles` | `frame_eg_triangles` |
 //! | G1 | `frame_ours_gouraud` | - |
+//! | P1 | `frame_ours_polygons` | - |
 //! | LIMIT | `frame_limit` | `frame_limit` |
 //!
 //! With `--pixels` nothing is counted: the scene is drawn once into a target that counts pixel writes
@@ -20,7 +21,9 @@ mod eg;
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use fixtures::scenes::{self, CountingTarget, GouraudTri, LineSeg, Tri, HEIGHT, PIXELS, WIDTH};
+use fixtures::scenes::{
+    self, CountingTarget, GouraudTri, LineSeg, Poly, Tri, HEIGHT, PIXELS, WIDTH,
+};
 use rasterizer_core::prelude::*;
 use std::hint::black_box;
 use std::process::ExitCode;
@@ -38,6 +41,14 @@ fn frame_ours_triangles(fb: &mut Framebuffer<Rgb565>, t: &[Tri]) {
 #[inline(never)]
 fn frame_ours_gouraud(fb: &mut Framebuffer<Rgb565>, t: &[GouraudTri]) {
     let Ok(()) = scenes::draw_gouraud_ours(fb, t);
+}
+
+#[inline(never)]
+fn frame_ours_polygons(fb: &mut Framebuffer<Rgb565>, p: &[Poly]) {
+    let Ok(()) = scenes::draw_polygons_ours(fb, p) else {
+        // A P1 polygon has at most P1_MAX_VERTICES vertices: the edge table always holds it.
+        std::process::exit(1);
+    };
 }
 
 #[inline(never)]
@@ -65,7 +76,7 @@ enum Renderer {
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: count2d SCENE RENDERER [--pixels | --stats]   SCENE: L1 T1 T2 G1 LIMIT, \
+        "usage: count2d SCENE RENDERER [--pixels | --stats]   SCENE: L1 T1 T2 G1 P1 LIMIT, \
          RENDERER: ours eg"
     );
     ExitCode::from(2)
@@ -85,8 +96,10 @@ fn main() -> ExitCode {
         "eg" => Renderer::Eg,
         _ => return usage(),
     };
-    if scene == "G1" && renderer == Renderer::Eg {
-        eprintln!("count2d: embedded-graphics has no Gouraud fill, G1 is ours only");
+    if (scene == "G1" || scene == "P1") && renderer == Renderer::Eg {
+        eprintln!(
+            "count2d: embedded-graphics has no Gouraud or polygon fill, {scene} is ours only"
+        );
         return ExitCode::from(2);
     }
     if let Some(flag) = count_only {
@@ -99,6 +112,13 @@ fn main() -> ExitCode {
             ("T2", Renderer::Ours) => scenes::draw_triangles_ours(&mut count, &scenes::t2()),
             ("T2", Renderer::Eg) => eg::draw_triangles_eg(&mut count, &scenes::t2()),
             ("G1", _) => scenes::draw_gouraud_ours(&mut count, &scenes::g1()),
+            ("P1", _) => match scenes::draw_polygons_ours(&mut count, &scenes::p1()) {
+                Ok(()) => Ok(()),
+                Err(e) => {
+                    eprintln!("count2d: P1: {e}");
+                    return ExitCode::FAILURE;
+                }
+            },
             ("LIMIT", _) => {
                 count.pixels = PIXELS as u64;
                 // One contiguous fill.
@@ -152,6 +172,14 @@ fn main() -> ExitCode {
             let Ok(()) = scenes::draw_gouraud_ours(&mut fb, &t);
             frame_ours_gouraud(&mut fb, black_box(&t));
             t.len()
+        }
+        ("P1", _) => {
+            let p = scenes::p1();
+            if scenes::draw_polygons_ours(&mut fb, &p).is_err() {
+                return ExitCode::FAILURE;
+            }
+            frame_ours_polygons(&mut fb, black_box(&p));
+            p.len()
         }
         ("LIMIT", _) => {
             let words: &mut [u16; PIXELS] = fb

@@ -22,6 +22,8 @@ pub const REQUIRED: &[(&str, &str, &str)] = &[
     ("T2", "ours", "per_primitive"),
     ("G1", "ours", "instructions"),
     ("G1", "ours", "per_primitive"),
+    ("P1", "ours", "instructions"),
+    ("P1", "ours", "per_primitive"),
     ("L1", "eg", "instructions"),
     ("L1", "eg", "per_primitive"),
     ("T1", "eg", "instructions"),
@@ -396,7 +398,7 @@ fn speed_2d(f: &Figures) -> String {
         ],
         "lrrrrrll",
     );
-    for scene in ["L1", "T1", "T2", "G1"] {
+    for scene in ["L1", "T1", "T2", "G1", "P1"] {
         let ours = f.get(scene, "ours", "per_primitive");
         let target = target::PER_PRIMITIVE_2D
             .iter()
@@ -498,7 +500,7 @@ fn pixels_2d(f: &Figures) -> String {
         ],
         "llrrrr",
     );
-    for scene in ["L1", "T1", "T2", "G1"] {
+    for scene in ["L1", "T1", "T2", "G1", "P1"] {
         for (r, name) in [("ours", "ours"), ("eg", "embedded-graphics")] {
             let px = f.get(scene, r, "pixels");
             if px.is_none() {
