@@ -392,15 +392,26 @@ where
         if Sh::NEEDS_FACE {
             self.face(mesh, idx);
         }
-        // The clipped vertices are rounded, which can fold a sliver polygon: a fan triangle of
-        // the other winding then overlaps its neighbour, and their common pixels would be drawn
-        // twice. Such a fold is thinner than the rounding, so it is skipped.
+        // The clipped vertices are rounded, which can dent the convex polygon: at a reflex
+        // vertex the fan's triangles overlap (or fold), and their common pixels would be drawn
+        // twice. Dropping every vertex that does not turn the polygon's way leaves a convex
+        // polygon (the dents were thinner than the rounding), whose fan tiles it exactly.
         let sign = area.signum();
-        for k in 1..screen.len() - 1 {
-            let fan = [screen[0], screen[k], screen[k + 1]];
-            if polygon_area(fan.iter().map(position)).signum() == sign {
-                self.raster(src, target, &fan)?;
+        let turns = |s: &[ScreenVertex<Sh::Varyings, BITS>], k: usize| {
+            let n = s.len();
+            let corner = [s[(k + n - 1) % n], s[k], s[(k + 1) % n]];
+            polygon_area(corner.iter().map(position)).signum() == sign
+        };
+        while screen.len() >= 3 {
+            match (0..screen.len()).find(|&k| !turns(&screen, k)) {
+                Some(k) => {
+                    screen.remove(k);
+                }
+                None => break,
             }
+        }
+        for k in 1..screen.len().saturating_sub(1) {
+            self.raster(src, target, &[screen[0], screen[k], screen[k + 1]])?;
         }
         stats.drawn += 1;
         Ok(())
