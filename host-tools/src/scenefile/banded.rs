@@ -19,8 +19,8 @@
 //!   translucent ones) a [`SceneShape`] item drawing them as the whole-frame path does.
 
 use super::draw::{
-    clip_and_opacity, color, dispatch, draw_scene_shape, jobs, pipeline, pixel, source, sub,
-    wire_pipeline, DynMesh, FrameStats, Job, Knobs, MeshSink, ModeCull, Pose, Shade, Stage,
+    clip_and_opacity, color, dispatch, draw_scene_shape, jobs, list_shape, pipeline, pixel, source,
+    sub, wire_pipeline, DynMesh, FrameStats, Job, Knobs, MeshSink, ModeCull, Pose, Shade, Stage,
 };
 use super::format::{FillRuleDef, Shape};
 use super::load::Scene;
@@ -564,87 +564,11 @@ fn meet(a: &Rectangle, b: &Rectangle) -> Rectangle {
 /// How a shape joins the list.
 fn plan<C: SceneColor>(shape: &Shape) -> Plan<'_, C> {
     let (clip, opacity) = clip_and_opacity(shape);
-    // The list's shape of the same geometry and colours, ignoring clip and opacity: its bounds
-    // hold the shape's pixels, and with no clip and no opacity it draws exactly them.
-    let geometry = match shape {
+    match shape {
         Shape::Point { at, .. } => {
             let bounds = Rectangle::new(pixel(*at), Size::new(1, 1));
             return item(shape, bounds, clip);
         }
-        Shape::Line {
-            from,
-            to,
-            color: c,
-            colors,
-            antialias,
-            width,
-            ..
-        } => {
-            let (a, b) = (pixel(*from), pixel(*to));
-            match (c, colors) {
-                (_, Some([ca, cb])) => frame::Shape::LineGradient {
-                    a,
-                    b,
-                    colors: [color(*ca), color(*cb)],
-                },
-                (Some(c), None) if *antialias => frame::Shape::LineAa {
-                    a,
-                    b,
-                    width: width.unwrap_or(1),
-                    color: color(*c),
-                },
-                (Some(c), None) => match opacity {
-                    // Exactly `draw_line` through `Translucent`.
-                    Some(alpha) if clip.is_none() => {
-                        return Plan::Shape(frame::Shape::LineAlpha {
-                            a,
-                            b,
-                            color: color(*c),
-                            alpha,
-                        })
-                    }
-                    _ => frame::Shape::Line {
-                        a,
-                        b,
-                        color: color(*c),
-                    },
-                },
-                (None, None) => return Plan::Nothing,
-            }
-        }
-        Shape::Triangle {
-            vertices,
-            color: c,
-            colors,
-            ..
-        } => {
-            let vertices = vertices.map(sub);
-            // Opacity below 255 blends each pixel once, exactly as through `Translucent`.
-            let opacity = opacity.unwrap_or(u8::MAX);
-            let s = match (c, colors) {
-                (_, Some(cs)) => frame::Shape::Gouraud {
-                    vertices,
-                    colors: cs.map(color),
-                    opacity,
-                },
-                (Some(c), None) => frame::Shape::Triangle {
-                    vertices,
-                    color: color(*c),
-                    opacity,
-                },
-                (None, None) => return Plan::Nothing,
-            };
-            return match clip {
-                None => Plan::Shape(s),
-                Some(_) => item(shape, s.bounds(), clip),
-            };
-        }
-        Shape::Outline {
-            vertices, color: c, ..
-        } => frame::Shape::TriangleOutline {
-            vertices: vertices.map(pixel),
-            color: color(*c),
-        },
         Shape::Polygon {
             vertices,
             fill_rule,
@@ -665,11 +589,46 @@ fn plan<C: SceneColor>(shape: &Shape) -> Plan<'_, C> {
             };
             return Plan::Fill(Box::new(polygon), rule, color(*c));
         }
+        _ => {}
+    }
+    // The list's shape of the same geometry and colours: its bounds hold the shape's pixels,
+    // and with no clip and no opacity it draws exactly them.
+    let Some(geometry) = list_shape::<C>(shape) else {
+        return Plan::Nothing;
     };
-    if clip.is_none() && opacity.is_none() {
-        Plan::Shape(geometry)
-    } else {
-        item(shape, geometry.bounds(), clip)
+    // With an opacity, a flat or Gouraud triangle blends each pixel once and a plain line is
+    // `draw_line_alpha`: exactly what `Translucent` makes of them. Other shapes with an opacity
+    // are drawn as the whole frame draws them.
+    let listed = match (geometry, opacity) {
+        (s, None) => Some(s),
+        (
+            frame::Shape::Triangle {
+                vertices, color, ..
+            },
+            Some(opacity),
+        ) => Some(frame::Shape::Triangle {
+            vertices,
+            color,
+            opacity,
+        }),
+        (
+            frame::Shape::Gouraud {
+                vertices, colors, ..
+            },
+            Some(opacity),
+        ) => Some(frame::Shape::Gouraud {
+            vertices,
+            colors,
+            opacity,
+        }),
+        (frame::Shape::Line { a, b, color }, Some(alpha)) => {
+            Some(frame::Shape::LineAlpha { a, b, color, alpha })
+        }
+        (_, Some(_)) => None,
+    };
+    match (listed, clip) {
+        (Some(s), None) => Plan::Shape(s),
+        _ => item(shape, geometry.bounds(), clip),
     }
 }
 

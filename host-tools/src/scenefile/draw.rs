@@ -16,6 +16,7 @@ use core::fmt::Debug;
 use embedded_graphics_simulator::{OutputImage, OutputSettingsBuilder, SimulatorDisplay};
 use rasterizer_core::color::Channels;
 use rasterizer_core::cull::Cull;
+use rasterizer_core::frame;
 use rasterizer_core::geom::MAX_VARYINGS;
 use rasterizer_core::numerics::{Dither, Numerics, Perspective, Standard};
 use rasterizer_core::prelude::*;
@@ -1119,14 +1120,12 @@ where
     }
 }
 
-/// One shape (already checked by the loader). The target reads back, so no draw fails.
-fn draw_shape<T>(t: &mut T, shape: &Shape)
-where
-    T: Surface,
-    T::Color: From<Rgb888> + Channels,
-{
-    let _ = match shape {
-        Shape::Point { at, color: c, .. } => draw_point(t, pixel(*at), color(*c)).map_err(drop),
+/// The frame list's shape of a scene shape's geometry and colours, opaque and unclipped (the
+/// caller applies the scene's clip and opacity): what both the whole-frame path and the bands
+/// draw. `None` for points and polygons, which have no list shape, and for a shape without
+/// colours.
+pub(super) fn list_shape<C: From<Rgb888>>(shape: &Shape) -> Option<frame::Shape<C>> {
+    match shape {
         Shape::Line {
             from,
             to,
@@ -1135,33 +1134,67 @@ where
             antialias,
             width,
             ..
-        } => match (c, colors) {
-            (_, Some([a, b])) => {
-                draw_line_gradient(t, pixel(*from), pixel(*to), color(*a), color(*b)).map_err(drop)
+        } => {
+            let (a, b) = (pixel(*from), pixel(*to));
+            match (c, colors) {
+                (_, Some([ca, cb])) => Some(frame::Shape::LineGradient {
+                    a,
+                    b,
+                    colors: [color(*ca), color(*cb)],
+                }),
+                (Some(c), None) if *antialias => Some(frame::Shape::LineAa {
+                    a,
+                    b,
+                    width: width.unwrap_or(1),
+                    color: color(*c),
+                }),
+                (Some(c), None) => Some(frame::Shape::Line {
+                    a,
+                    b,
+                    color: color(*c),
+                }),
+                (None, None) => None,
             }
-            (Some(c), None) if *antialias => {
-                let (a, b) = (pixel(*from), pixel(*to));
-                draw_line_aa_wide(t, a, b, width.unwrap_or(1), color(*c)).map_err(drop)
-            }
-            (Some(c), None) => draw_line(t, pixel(*from), pixel(*to), color(*c)).map_err(drop),
-            (None, None) => Ok(()),
-        },
+        }
         Shape::Triangle {
             vertices,
             color: c,
             colors,
             ..
         } => {
-            let v = vertices.map(sub);
+            let vertices = vertices.map(sub);
             match (c, colors) {
-                (_, Some(cs)) => fill_triangle_gouraud(t, v, cs.map(color)).map_err(drop),
-                (Some(c), None) => fill_triangle(t, v, color(*c)).map_err(drop),
-                (None, None) => Ok(()),
+                (_, Some(cs)) => Some(frame::Shape::Gouraud {
+                    vertices,
+                    colors: cs.map(color),
+                    opacity: u8::MAX,
+                }),
+                (Some(c), None) => Some(frame::Shape::Triangle {
+                    vertices,
+                    color: color(*c),
+                    opacity: u8::MAX,
+                }),
+                (None, None) => None,
             }
         }
         Shape::Outline {
             vertices, color: c, ..
-        } => draw_triangle(t, vertices.map(pixel), color(*c)).map_err(drop),
+        } => Some(frame::Shape::TriangleOutline {
+            vertices: vertices.map(pixel),
+            color: color(*c),
+        }),
+        Shape::Point { .. } | Shape::Polygon { .. } => None,
+    }
+}
+
+/// One shape (already checked by the loader). The target reads back, so no draw fails.
+fn draw_shape<T>(t: &mut T, shape: &Shape)
+where
+    T: Surface,
+    T::Color: From<Rgb888> + Channels,
+{
+    let _ = match shape {
+        Shape::Point { at, color: c, .. } => draw_point(t, pixel(*at), color(*c)).map_err(drop),
         Shape::Polygon {
             vertices,
             fill_rule,
@@ -1179,6 +1212,7 @@ where
                 Err(_) => Ok(()),
             }
         }
+        _ => list_shape(shape).map_or(Ok(()), |s| s.draw(t).map_err(drop)),
     };
 }
 

@@ -1,5 +1,6 @@
 //! The 2D commands of a frame list: shapes held by value, and items drawn by reference.
 
+use crate::color::Channels;
 use crate::geom::{PixelRect, SubPoint};
 use crate::raster::line::{draw_line, draw_line_aa_wide, draw_line_alpha, draw_line_gradient};
 use crate::raster::polygon::{FillRule, Polygon};
@@ -112,7 +113,7 @@ fn corners<const BITS: u32>(v: &[SubPoint<BITS>; 3]) -> PixelRect {
     }
 }
 
-impl<C: Storage> Shape<C> {
+impl<C: Channels> Shape<C> {
     /// The pixels the shape can draw.
     pub fn bounds(&self) -> Rectangle {
         match *self {
