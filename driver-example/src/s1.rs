@@ -343,13 +343,7 @@ impl S1Screen {
             .map_err(StreamError::Frame)?;
         list.command(&mut cube_command)
             .map_err(StreamError::Frame)?;
-        for shape in s1::panel().into_iter().chain(s1::bars()) {
-            list.shape(shape).map_err(StreamError::Frame)?;
-        }
-        for label in &labels {
-            list.item(label, 0).map_err(StreamError::Frame)?;
-        }
-        list.shape(s1::gouraud()).map_err(StreamError::Frame)?;
+        s1::add_2d(&mut list, &labels).map_err(StreamError::Frame)?;
 
         let mut now = [Summary::default(); S1_COMMANDS];
         list.summaries(&mut now);

@@ -160,16 +160,7 @@ fn with_list<R>(
     let mut list = FrameList::new(&mut slots, layout, Clear::new(s1::background()));
     list.command(&mut monkey).unwrap();
     list.command(&mut box_).unwrap();
-    for s in s1::panel() {
-        list.shape(s).unwrap();
-    }
-    for s in s1::bars() {
-        list.shape(s).unwrap();
-    }
-    for t in &labels {
-        list.item(t, 0).unwrap();
-    }
-    list.shape(s1::gouraud()).unwrap();
+    s1::add_2d(&mut list, &labels).unwrap();
     assert_eq!(list.len(), 19);
     f(&mut list)
 }
