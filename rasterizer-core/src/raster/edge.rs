@@ -22,23 +22,35 @@ fn ceil_div(n: i64, d: NonZeroU64) -> i64 {
     }
 }
 
+/// Bits below the column in [`EdgeWalk`]'s packed state: the remainder lies in `[-D, D)` with
+/// `D <= 2^39` inside the guard band (`D = 2 S dy`, `dy <= 2^(22 + b)`, `S = 2^b`, `b <= 8`), so
+/// it fits the low 40 bits as a two's-complement number, and a column of the guard band (below
+/// 2^22 in magnitude) times 2^40 fits `i64`.
+const REM_BITS: u32 = 40;
+
 /// The column walk of one edge.
+///
+/// The column and the remainder live in one integer, `col 2^40 + rem` (the remainder biased into
+/// `[-D, 0)` and 2^40 added so that the column is the integer's top bits): a row's step is one add,
+/// a test of the remainder's sign bit and a conditional subtract, and the walk holds three values
+/// instead of five, which the row loops keep in registers.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct EdgeWalk {
-    /// `ceil(N / D)` for the current row.
-    pub col: i64,
-    /// `col D - N - D`, in `[-D, 0)`.
-    rem: i64,
-    d: i64,
-    col_step: i64,
-    rem_step: i64,
+    /// `(col + 1) 2^40 + rem`, `rem = col D - N - D` in `[-D, 0)`.
+    packed: i64,
+    /// `col_step 2^40 + rem_step`, `rem_step` in `[0, D)`.
+    step: i64,
+    /// `2^40 + D`: one column back and one `D` off the remainder.
+    carry: i64,
 }
 
 impl EdgeWalk {
     /// Sets the walk up at row `row` for the edge `a -> b` (`b.y > a.y`), `s` the sub-pixel unit.
     ///
     /// Bound: inside the guard band `|N| <= 12 M^2 < 2^62` (see [`crate::geom::GUARD_BAND_PIXELS`]):
-    /// callers only set the walk up at a row whose sample lies within the edge's own rows.
+    /// callers only set the walk up, and read its column, at rows whose sample lies within the
+    /// edge's own rows. Steps past them (the last row's, or an edge less than two rows tall) may
+    /// leave a meaningless column, never read; the arithmetic wraps there rather than overflow.
     #[inline(always)]
     pub fn new(a: (i64, i64), b: (i64, i64), s: i64, row: i64) -> Self {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
@@ -48,28 +60,36 @@ impl EdgeWalk {
         // dy > 0 for every edge a caller walks; a zero divisor would only mean a wrong span.
         let nz = NonZeroU64::new(d.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
         let col = ceil_div(n, nz);
-        let step = 2 * s * dx;
         let col_step = ceil_div(
             dx,
             NonZeroU64::new(dy.unsigned_abs()).unwrap_or(NonZeroU64::MIN),
         );
+        // (col + 1) 2^40 + (col D - N - D) and col_step 2^40 + (col_step D - 2 S dx), each
+        // with one product by 2^40 + D.
+        let carry = (1i64 << REM_BITS) + d;
         Self {
-            col,
-            rem: col * d - n - d,
-            d,
-            col_step,
-            rem_step: col_step * d - step,
+            packed: col
+                .wrapping_mul(carry)
+                .wrapping_sub(n)
+                .wrapping_add((1i64 << REM_BITS) - d),
+            step: col_step.wrapping_mul(carry).wrapping_sub(2 * s * dx),
+            carry,
         }
+    }
+
+    /// The first column at or right of the edge on the current row.
+    #[inline(always)]
+    pub fn col(&self) -> i64 {
+        self.packed >> REM_BITS
     }
 
     /// Moves to the next row.
     #[inline(always)]
     pub fn step(&mut self) {
-        self.col += self.col_step;
-        self.rem += self.rem_step;
-        if self.rem >= 0 {
-            self.rem -= self.d;
-            self.col -= 1;
+        self.packed = self.packed.wrapping_add(self.step);
+        // The remainder's sign bit clear: it reached [0, D), so one column back.
+        if self.packed & (1 << (REM_BITS - 1)) == 0 {
+            self.packed = self.packed.wrapping_sub(self.carry);
         }
     }
 }

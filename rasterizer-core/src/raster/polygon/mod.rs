@@ -299,7 +299,7 @@ impl<const N: usize, const BITS: u32> Polygon<N, BITS> {
 fn sort_by_column(aet: &mut [Active]) {
     for i in 1..aet.len() {
         let mut j = i;
-        while j > 0 && aet[j - 1].walk.col > aet[j].walk.col {
+        while j > 0 && aet[j - 1].walk.col() > aet[j].walk.col() {
             aet.swap(j - 1, j);
             j -= 1;
         }
@@ -328,8 +328,8 @@ fn emit_row<S: Surface>(
         if !rule.is_inside(winding) {
             continue;
         }
-        let x0 = pair[0].walk.col.max(clip.x0);
-        let x1 = pair[1].walk.col.min(clip.x1);
+        let x0 = pair[0].walk.col().max(clip.x0);
+        let x1 = pair[1].walk.col().min(clip.x1);
         if x0 >= x1 {
             continue;
         }

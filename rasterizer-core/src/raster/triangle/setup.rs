@@ -132,9 +132,9 @@ pub(crate) fn walk_spans_once<K: SpanSink>(
             short = EdgeWalk::new(v1, v2, s, mid);
         }
         let (l, r) = if short_is_left {
-            (short.col, long.col)
+            (short.col(), long.col())
         } else {
-            (long.col, short.col)
+            (long.col(), short.col())
         };
         let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
         if x0 < x1 {
@@ -159,15 +159,15 @@ fn rows_of<K: SpanSink>(
 ) -> Result<(), K::Error> {
     if inside_x {
         for row in rows {
-            if left.col < right.col {
-                sink.span(row as i32, left.col as i32, right.col as i32)?;
+            if left.col() < right.col() {
+                sink.span(row as i32, left.col() as i32, right.col() as i32)?;
             }
             left.step();
             right.step();
         }
     } else {
         for row in rows {
-            let (x0, x1) = (left.col.max(clip.x0), right.col.min(clip.x1));
+            let (x0, x1) = (left.col().max(clip.x0), right.col().min(clip.x1));
             if x0 < x1 {
                 sink.span(row as i32, x0 as i32, x1 as i32)?;
             }
