@@ -2,7 +2,7 @@
 //! when it faces away or lies outside the view, clip what crosses the guard band, and hand what is
 //! left to the rasterizer.
 
-use super::perspective::{self, PerspectiveColor};
+use super::perspective::PerspectiveColor;
 use super::vertex::{Projected, OUTSIDE};
 use super::{DepthFrom, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::{clip_triangle, outcode, trivially_outside, ClipVertex, Outcode};
@@ -44,6 +44,10 @@ pub(super) fn outside(v: &[Projected; 3]) -> bool {
 struct ShaderColor<'a, S, Sh, N>(&'a Sh, core::marker::PhantomData<(S, N)>);
 
 impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for ShaderColor<'_, S, Sh, N> {
+    const PRECISION: Precision = Precision {
+        frac: Sh::FUSED_FRAC,
+        offset: Sh::FUSED_OFFSET,
+    };
     const AT: bool = !matches!(N::DITHER, Dither::None);
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
@@ -449,10 +453,6 @@ where
             src.pick(&mut self.depth),
             fv,
             &self.area,
-            Precision {
-                frac: Sh::FUSED_FRAC,
-                offset: Sh::FUSED_OFFSET,
-            },
             ShaderColor::<S, Sh, N>(&self.shading, core::marker::PhantomData),
         )
     }
@@ -529,7 +529,6 @@ where
             src.pick(&mut self.depth),
             &fv,
             &self.area,
-            perspective::PRECISION,
             color,
         )
     }

@@ -28,7 +28,7 @@ const D_BITS: u32 = 15;
 const L_BITS: u32 = 16;
 /// Fractional bits of the three planes in the span loop: with values of at most `2^Q_BITS` they
 /// stay below `2^32`.
-pub(super) const PRECISION: Precision = Precision {
+const PRECISION: Precision = Precision {
     frac: 16,
     offset: 0,
 };
@@ -127,6 +127,7 @@ fn barycentrics(b1: u32, b2: u32, q: u32) -> [u32; 2] {
 impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color>
     for PerspectiveColor<'_, S, Sh, N>
 {
+    const PRECISION: Precision = PRECISION;
     const AT: bool = !matches!(N::DITHER, Dither::None);
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {

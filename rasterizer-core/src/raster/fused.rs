@@ -130,6 +130,9 @@ impl Shape {
 /// What the fused loop asks of a shader: the colour of a pixel from its values, each
 /// `value 2^vfrac + voffset` (see [`fill_fused`]).
 pub(crate) trait FusedColor<C> {
+    /// The fixed-point scale of the values this colour reads: a constant, so that the set-up's
+    /// shifts and range tests are by constants.
+    const PRECISION: Precision;
     /// The colour depends on the pixel's screen position too ([`FusedColor::color_at`]): the
     /// loops then track it; otherwise they compile exactly as without it.
     const AT: bool = false;
@@ -330,7 +333,7 @@ pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
 
 /// Fills a triangle with a depth test and interpolated values through the fused span loop.
 ///
-/// The shader's values get `precision.frac` fractional bits and `precision.offset` added
+/// The shader's values get `P::PRECISION.frac` fractional bits and `P::PRECISION.offset` added
 /// (`pixel` receives each pixel's values as `value 2^frac + offset`, wrapping); depth gets 16
 /// fractional bits and is rounded down to whole steps, or to the nearest when a vertex lies on
 /// the near plane (depth 0), where rounding down could wrap. `area` (not empty) is the
@@ -343,7 +346,6 @@ pub(crate) fn fill_fused<S, D, V, P, const BITS: u32>(
     depth: &mut D,
     vertices: &[FusedVertex<V, BITS>; 3],
     area: &PixelRect,
-    precision: Precision,
     pixel: P,
 ) -> Result<(), S::Error>
 where
@@ -355,7 +357,7 @@ where
     let Precision {
         frac: vfrac,
         offset: voffset,
-    } = precision;
+    } = P::PRECISION;
     let Some(t) = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0]) else {
         return Ok(());
     };
