@@ -98,7 +98,7 @@ impl Shape {
                     break 'narrow ((f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1)), gx, gy);
                 }
             }
-            self.plane_wide::<BITS>(f[0], a, b, frac)
+            plane_wide::<BITS>(f[0], a, b, frac, self.cross, self.offset2)
         };
         let (ax, ay) = (self.anchor.0 as u32, self.anchor.1 as u32);
         let (gx, gy) = (gx as u32, gy as u32);
@@ -112,19 +112,28 @@ impl Shape {
         }
     }
 
-    /// [`Shape::plane`] for large triangles, steep planes or a far anchor: the anchor's value
-    /// exactly rounded, in `i128`. Only the low 32 bits of each result matter.
-    #[inline(never)]
-    #[cold]
-    fn plane_wide<const BITS: u32>(&self, f0: i64, a: i64, b: i64, frac: u32) -> (i64, i64, i64) {
-        let (a, b, d) = (i128::from(a), i128::from(b), i128::from(self.cross));
-        let gx = round_div_wide(a << (BITS + frac), d);
-        let gy = round_div_wide(b << (BITS + frac), d);
-        let n = (a * i128::from(self.offset2.0) + b * i128::from(self.offset2.1)) << frac;
-        let fa = (i128::from(f0) << frac) + round_div_wide(n, 2 * d);
-        // Truncating keeps the low bits, all the wrapping arithmetic needs.
-        (fa as i64, gx as i64, gy as i64)
-    }
+}
+
+/// [`Shape::plane`] for large triangles, steep planes or a far anchor: the anchor's value exactly
+/// rounded, in `i128`. Only the low 32 bits of each result matter. It takes the two fields it
+/// needs by value, so that the shape need not be stored in memory for it.
+#[inline(never)]
+#[cold]
+fn plane_wide<const BITS: u32>(
+    f0: i64,
+    a: i64,
+    b: i64,
+    frac: u32,
+    cross: i64,
+    offset2: (i64, i64),
+) -> (i64, i64, i64) {
+    let (a, b, d) = (i128::from(a), i128::from(b), i128::from(cross));
+    let gx = round_div_wide(a << (BITS + frac), d);
+    let gy = round_div_wide(b << (BITS + frac), d);
+    let n = (a * i128::from(offset2.0) + b * i128::from(offset2.1)) << frac;
+    let fa = (i128::from(f0) << frac) + round_div_wide(n, 2 * d);
+    // Truncating keeps the low bits, all the wrapping arithmetic needs.
+    (fa as i64, gx as i64, gy as i64)
 }
 
 /// What the fused loop asks of a shader: the colour of a pixel from its values, each
