@@ -524,12 +524,6 @@ where
             }
         }
         let (fv, color) = PerspectiveColor::<S, Sh, N>::new(&self.shading, &sv);
-        fill_fused::<_, _, _, _, BITS>(
-            target,
-            src.pick(&mut self.depth),
-            &fv,
-            &self.area,
-            color,
-        )
+        fill_fused::<_, _, _, _, BITS>(target, src.pick(&mut self.depth), &fv, &self.area, color)
     }
 }

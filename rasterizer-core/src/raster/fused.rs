@@ -65,6 +65,14 @@ struct Shape {
     narrow: bool,
 }
 
+/// Whether `a` and `b` both lie in `[-2^bits, 2^bits)`: each moved up by `2^bits` is then below
+/// `2^(bits + 1)` as an unsigned number (a negative one wraps far above), and so is their OR.
+#[inline(always)]
+fn both_within(a: i64, b: i64, bits: u32) -> bool {
+    let h = 1i64 << bits;
+    (a.wrapping_add(h) | b.wrapping_add(h)) as u64 >> (bits + 1) == 0
+}
+
 /// `round(n / d)` for `d > 0`, halves up, in `i128`.
 fn round_div_wide(n: i128, d: i128) -> i128 {
     crate::wide::div_floor_i128(n + (d >> 1), d)
@@ -79,19 +87,18 @@ impl Shape {
         // The value changes by a / cross per sub-pixel step in x and b / cross in y.
         let a = d1 * self.e2.1 - d2 * self.e1.1;
         let b = d2 * self.e1.0 - d1 * self.e2.0;
-        // Below 2^(60 - BITS - frac), a << (BITS + frac) stays below 2^60 (both tested at once:
-        // the bound is a power of two).
-        let wide_ab = (a.unsigned_abs() | b.unsigned_abs()) >> (60 - BITS - frac);
+        // In [-2^(60 - BITS - frac), 2^(60 - BITS - frac)), a << (BITS + frac) stays within
+        // 2^60.
         let (fa, gx, gy) = 'narrow: {
-            if self.narrow && wide_ab == 0 {
+            if self.narrow && both_within(a, b, 60 - BITS - frac) {
                 // round(a 2^(BITS + frac) / cross), halves up, with the one reciprocal (the
                 // numerators stay below 2^61, its exact range).
                 let half = self.cross >> 1;
                 let gx = self.recip.floor((a << (BITS + frac)) + half);
                 let gy = self.recip.floor((b << (BITS + frac)) + half);
-                // Gradients below 2^(61 - BITS) times the doubled offsets (at most one pixel)
-                // stay below 2^61.
-                if (gx.unsigned_abs() | gy.unsigned_abs()) >> (61 - BITS) == 0 {
+                // Gradients of at most 2^(61 - BITS) times the doubled offsets (at most one
+                // pixel) stay within 2^61.
+                if both_within(gx, gy, 61 - BITS) {
                     // The anchor's centre lies within half a pixel of v0: its value from the
                     // rounded gradients is within one unit of the last bit, with no division.
                     let n = gx * self.offset2.0 + gy * self.offset2.1;
@@ -111,7 +118,6 @@ impl Shape {
             gy,
         }
     }
-
 }
 
 /// [`Shape::plane`] for large triangles, steep planes or a far anchor: the anchor's value exactly
@@ -449,4 +455,38 @@ where
         _v: core::marker::PhantomData,
     };
     walk_spans_once(&t, s, &clip, &mut sink)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::both_within;
+
+    #[test]
+    fn both_within_is_the_half_open_range() {
+        for bits in [0u32, 1, 20, 56, 61] {
+            let h = 1i64 << bits;
+            let inside = |v: i64| (-h..h).contains(&v);
+            for a in [
+                i64::MIN,
+                -h - 1,
+                -h,
+                -h + 1,
+                -1,
+                0,
+                1,
+                h - 1,
+                h,
+                h + 1,
+                i64::MAX,
+            ] {
+                for b in [-h - 1, -h, 0, h - 1, h] {
+                    assert_eq!(
+                        both_within(a, b, bits),
+                        inside(a) && inside(b),
+                        "{a} {b} {bits}"
+                    );
+                }
+            }
+        }
+    }
 }
