@@ -27,8 +27,8 @@ pub use crate::raster::triangle::{
     draw_triangle, fill_triangle, fill_triangle_alpha, fill_triangle_gouraud,
 };
 pub use crate::shade::{
-    FlatLit, GouraudLit, Light, Lighting, MatCap, Material, PhongLit, Specular, TexturedLit,
-    Unlit, VertexColors,
+    FlatLit, GouraudLit, Light, Lighting, MatCap, Material, PhongLit, Specular, TexturedLit, Unlit,
+    VertexColors,
 };
 pub use crate::surface::{AnyTarget, BlendError, Framebuffer, Surface, Translucent};
 pub use crate::texture::{Filter, Texture, Wrap};
