@@ -236,7 +236,7 @@ fn texel_of(rows: &[[i32; 3]; 3], n: [i32; 3], side_log2: u8) -> (u32, u32) {
     let shift = largest.ilog2().saturating_sub(29);
     let [x, y, z] = v.map(|c| c >> shift);
     let sq = [x, y, z].map(|c| c.unsigned_abs() * c.unsigned_abs());
-    let (r, k) = crate::math::fx::rsqrt_fast(sq[0] + sq[1] + sq[2]);
+    let (r, k) = crate::math::fx::rsqrt_u64(sq[0] + sq[1] + sq[2]);
     // Unit components in 2.30: |c| r < 2^61, and k >= 31 > UNIT_BITS.
     let unit = |c: i64| (c * r as i64) >> (k - UNIT_BITS);
     // round((u + 1) / 2 · last) = floor(((u + 1) last + 1) / 2) in units of 2^-30: below 2^41.
