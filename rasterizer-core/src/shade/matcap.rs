@@ -74,7 +74,7 @@ const UNIT_BITS: u32 = 30;
 
 /// The largest entry of the normal transform as [`MatCap`] keeps it, as a power of two: 20
 /// significant bits, far finer than a texel, while a product with a 16.16 normal component
-/// (below `2^31`) and a sum of three stay below `2^53`.
+/// (below `2^31`, the entry at most `2^21`) and a sum of three stay below `2^54`.
 const MATRIX_LEAD: u32 = 20;
 
 /// MatCap shading per vertex: the view-space normal picks a texel of a square image of a lit
@@ -199,26 +199,22 @@ fn scaled_rows<S: Scalar>(m: &Mat4<S>) -> [[i32; 3]; 3] {
             .max()
             .unwrap_or(0)
     };
-    // 16 fractional bits find the scale; the entries are then taken again at it, so that a
-    // floating-point format keeps its precision for small entries.
+    // 16 fractional bits find the scale (a lead of at most 31); the entries are then taken again
+    // at it, so that a floating-point format keeps its precision for small entries. The clamp
+    // only bites where a floating-point entry saturated the first look (beyond 2^15).
     let lead = match largest(&at(16)) {
         0 => return [[0; 3]; 3],
         m => m.ilog2(),
     };
-    let bits = 16 + MATRIX_LEAD;
-    if lead <= bits {
-        at(bits - lead)
-    } else {
-        // Entries of 2^(lead - 16) and more: shift the 16-bit ones down.
-        at(16).map(|row| row.map(|v| v >> (lead - MATRIX_LEAD)))
-    }
+    let limit = 1i32 << (MATRIX_LEAD + 1);
+    at(16 + MATRIX_LEAD - lead).map(|row| row.map(|v| v.clamp(-limit, limit)))
 }
 
 /// The texel a normal (16.16 bits) picks through `rows` ([`scaled_rows`]) in an image of
 /// `2^side_log2` texels a side.
 #[inline(always)]
 fn texel_of(rows: &[[i32; 3]; 3], n: [i32; 3], side_log2: u8) -> (u32, u32) {
-    // Each product below 2^(MATRIX_LEAD + 31), a sum of three below 2^53.
+    // Each product at most 2^(MATRIX_LEAD + 32), a sum of three below 2^54.
     let dot = |r: &[i32; 3]| {
         i64::from(r[0]) * i64::from(n[0])
             + i64::from(r[1]) * i64::from(n[1])
