@@ -742,6 +742,15 @@ fn matcap_key_picks_the_image() {
     let drawn: Vec<&[u8]> = flat.chunks(3).filter(|p| *p != [0, 0, 0]).collect();
     assert!(!drawn.is_empty());
     assert!(drawn.iter().all(|p| *p == [255, 0, 0]), "{:?}", &drawn[..4]);
+    // Fog mixes the MatCap colours as it does Gouraud's; opacity blends them.
+    let fogged = render_scene(
+        &dir,
+        "fogged",
+        &mesh("fog = { color = \"#8090a0\", start = 2.0, end = 4.0 }"),
+    );
+    assert_ne!(fogged, builtin);
+    let translucent = render_scene(&dir, "translucent", &mesh("opacity = 128"));
+    assert_ne!(translucent, builtin);
     let cases: &[(&str, String, &[&str])] = &[
         (
             "matcap_gouraud",
