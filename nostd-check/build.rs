@@ -8,7 +8,7 @@ fn on(feature: &str) -> bool {
 fn main() {
     println!("cargo::rustc-check-cfg=cfg(three_d)");
     println!("cargo::rustc-check-cfg=cfg(two_d)");
-    let shading = ["unlit", "flat", "gouraud", "phong", "textured"];
+    let shading = ["unlit", "flat", "gouraud", "phong", "textured", "matcap"];
     let stages = [
         "depth",
         "cull",
@@ -29,10 +29,10 @@ fn main() {
         1 => println!("cargo::rustc-cfg=three_d"),
         _ => panic!("choose at most one shading feature: {shading:?}"),
     }
-    // Fog mixes a lit colour (per vertex, triangle or pixel), which unlit shading does not have,
+    // Fog mixes a shaded colour (per vertex, triangle or pixel), which unlit shading does not have,
     // and the textured model does not take it.
-    if on("fog") && !(on("flat") || on("gouraud") || on("phong")) {
-        panic!("fog needs flat, gouraud or phong shading");
+    if on("fog") && !(on("flat") || on("gouraud") || on("phong") || on("matcap")) {
+        panic!("fog needs flat, gouraud, phong or matcap shading");
     }
     if on("double") && !on("framelist") {
         panic!("double renders the frame list double-buffered: with framelist");

@@ -404,6 +404,17 @@ if wanted M1; then
     if [ -n "$m1" ]; then
         emit_count M1 ours-perspective/ours ratio "$(div "$n" "$m1" 4)"
     fi
+    # M1 with MatCap shading per vertex (shade::MatCap, the default image), counted by a binary
+    # of its own (count3d_matcap) so count3d stays as it was.
+    build_example count3d_matcap
+    echo "counting M1 ours-matcap..." >&2
+    n="$(callgrind_count "$OUT/3d-M1-matcap" "*frame_m1_matcap*" "$BIN")"
+    emit_count M1 ours-matcap instructions "$n"
+    emit_count M1 ours-matcap per_primitive "$(div "$n" "$(field "$OUT/3d-M1-matcap.stdout" triangles)" 1)"
+    emit_count M1 ours-matcap covered "$(field "$OUT/3d-M1-matcap.stdout" covered)"
+    if [ -n "$m1" ]; then
+        emit_count M1 ours-matcap/ours ratio "$(div "$n" "$m1" 4)"
+    fi
 fi
 
 # --- RAM and code size of M1 (stack test, nostd-check) ---

@@ -64,7 +64,7 @@ pub struct Scene3d {
 }
 
 /// Every 3D picture, in the order they are written.
-pub const SCENES: [Scene3d; 8] = [
+pub const SCENES: [Scene3d; 9] = [
     Scene3d {
         file: "suzanne_wireframe.png",
         draw: suzanne_wireframe,
@@ -80,6 +80,10 @@ pub const SCENES: [Scene3d; 8] = [
     Scene3d {
         file: "suzanne_phong.png",
         draw: suzanne_phong,
+    },
+    Scene3d {
+        file: "suzanne_matcap.png",
+        draw: suzanne_matcap,
     },
     Scene3d {
         file: "suzanne_dither.png",
@@ -217,6 +221,16 @@ fn suzanne_gouraud(models: &Models, display: &mut Display) -> SceneResult {
         display,
         GouraudLit::<_, Rgb565, 2>::new(lighting::<2>()),
     )
+}
+
+/// Suzanne coloured per vertex from the default MatCap image (a glossy clay sphere) by the
+/// view-space normal, colours interpolated: no lights, the picture holds them.
+fn suzanne_matcap(models: &Models, display: &mut Display) -> SceneResult {
+    let side = fixtures::matcap::GLOSSY_64_SIDE_LOG2;
+    let image = fixtures::matcap::GLOSSY_64;
+    let matcap =
+        MatCap::<_, Rgb565>::new(side, image, &transforms().view).map_err(|e| e.to_string())?;
+    suzanne_filled(models, display, matcap)
 }
 
 /// Numerics with 4 x 4 ordered dithering.

@@ -83,6 +83,7 @@ const ORDER: &[&str] = &[
     "ours-m1_unlit",
     "ours-m1_flat",
     "ours-phong",
+    "ours-matcap",
     "ours-m1_wireframe",
     "ours-m1_band8",
     "ours-band16",
@@ -132,6 +133,8 @@ mod target {
     pub const M4_RATIO: f64 = 1.30;
     /// M1 with perspective-correct colours against the default, per frame.
     pub const PERSPECTIVE_RATIO: f64 = 1.30;
+    /// M1 with MatCap shading per vertex against the default (Gouraud), per frame.
+    pub const MATCAP_RATIO: f64 = 0.85;
     /// 64-bit divisions in one M1 frame.
     pub const M1_DIV64: f64 = 700.0;
     /// 64-bit divisions in one M4 frame.
@@ -946,7 +949,7 @@ fn targets(f: &Figures) -> String {
         None => "-",
     };
     let per = |scene: &str, r: &str| f.get(scene, r, "per_primitive");
-    let rows: [(&str, Option<f64>, f64, bool); 15] = [
+    let rows: [(&str, Option<f64>, f64, bool); 16] = [
         (
             "M1 whole frame, per triangle",
             per("M1", "ours"),
@@ -981,6 +984,12 @@ fn targets(f: &Figures) -> String {
             "M1 perspective-correct, against the default (per frame)",
             f.get("M1", "ours-perspective/ours", "ratio"),
             target::PERSPECTIVE_RATIO,
+            true,
+        ),
+        (
+            "M1 MatCap per vertex, against the default (Gouraud, per frame)",
+            f.get("M1", "ours-matcap/ours", "ratio"),
+            target::MATCAP_RATIO,
             true,
         ),
         (

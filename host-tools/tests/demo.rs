@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 /// The PNG files the demo promises (README.md links to them): the 2D ones, then the 3D ones.
-const FILES: [&str; 15] = [
+const FILES: [&str; 16] = [
     "lines_octants.png",
     "lines_gradient.png",
     "triangle_outlines.png",
@@ -17,6 +17,7 @@ const FILES: [&str; 15] = [
     "suzanne_flat.png",
     "suzanne_gouraud.png",
     "suzanne_phong.png",
+    "suzanne_matcap.png",
     "suzanne_dither.png",
     "suzanne_fog.png",
     "cube_inside.png",

@@ -711,3 +711,88 @@ fn integer_keys_name_their_range() {
     );
     expect_failure(&dir, "line_width", &shape("width = 0"), &["1 ..= 65535"]);
 }
+
+/// `shading = "matcap"`: the built-in sphere by default, a PNG by the `matcap` key (a flat red
+/// image paints every pixel of the mesh red), and the key's errors name the mesh and the cause.
+#[test]
+fn matcap_key_picks_the_image() {
+    let dir = scratch("matcap");
+    let suzanne = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models/suzanne.obj");
+    let png = |name: &str, w: u32, h: u32, rgb: [u8; 3]| {
+        let path = dir.join(name);
+        image::RgbImage::from_pixel(w, h, image::Rgb(rgb))
+            .save(&path)
+            .unwrap();
+        path
+    };
+    let red = png("red.png", 8, 8, [255, 0, 0]);
+    let wide = png("wide.png", 8, 4, [0, 255, 0]);
+    let big = png("big.png", 512, 512, [0, 0, 255]);
+    let mesh = |extra: &str| {
+        format!("{OUTPUT}[[meshes]]\npath = {suzanne:?}\nshading = \"matcap\"\n{extra}\n")
+    };
+    let builtin = render_scene(&dir, "builtin", &mesh(""));
+    let colours: std::collections::HashSet<&[u8]> = builtin.chunks(3).collect();
+    assert!(
+        colours.len() > 20,
+        "the sphere shades: {} colours",
+        colours.len()
+    );
+    let flat = render_scene(&dir, "red", &mesh(&format!("matcap = {:?}", red)));
+    let drawn: Vec<&[u8]> = flat.chunks(3).filter(|p| *p != [0, 0, 0]).collect();
+    assert!(!drawn.is_empty());
+    assert!(drawn.iter().all(|p| *p == [255, 0, 0]), "{:?}", &drawn[..4]);
+    // Fog mixes the MatCap colours as it does Gouraud's; opacity blends them.
+    let fogged = render_scene(
+        &dir,
+        "fogged",
+        &mesh("fog = { color = \"#8090a0\", start = 2.0, end = 4.0 }"),
+    );
+    assert_ne!(fogged, builtin);
+    let translucent = render_scene(&dir, "translucent", &mesh("opacity = 128"));
+    assert_ne!(translucent, builtin);
+    let cases: &[(&str, String, &[&str])] = &[
+        (
+            "matcap_gouraud",
+            format!("{OUTPUT}[[meshes]]\npath = {suzanne:?}\nmatcap = {red:?}\n"),
+            &["matcap applies only to shading = \"matcap\""],
+        ),
+        (
+            "matcap_missing",
+            mesh("matcap = \"no/such.png\""),
+            &["matcap", "no/such.png"],
+        ),
+        (
+            "matcap_wide",
+            mesh(&format!("matcap = {wide:?}")),
+            &["must be square", "8x4"],
+        ),
+        (
+            "matcap_big",
+            mesh(&format!("matcap = {big:?}")),
+            &["larger than 256x256"],
+        ),
+        (
+            "matcap_dither",
+            mesh("dither = \"bayer4\""),
+            &["dither does not apply to shading = \"matcap\""],
+        ),
+        (
+            "matcap_material",
+            mesh("material = { shininess = 4 }"),
+            &["material applies only to lit shading"],
+        ),
+    ];
+    for (name, scene, needles) in cases {
+        let mut all = vec!["suzanne.obj"];
+        all.extend_from_slice(needles);
+        expect_failure(&dir, name, scene, &all);
+    }
+    let unknown = format!("{OUTPUT}[[meshes]]\npath = {suzanne:?}\nshading = \"matcapp\"\n");
+    expect_failure(
+        &dir,
+        "matcap_unknown",
+        &unknown,
+        &["line 6", "matcapp", "matcap"],
+    );
+}

@@ -131,6 +131,15 @@ fn draw_3d(buf: &mut [u16]) -> u32 {
     drawn += pl
         .draw_wireframe(&mut fb, &mesh, &mut [], Rgb565::WHITE)
         .map_or(0, |s| s.drawn);
+    // MatCap per vertex with the default image, read from flash.
+    let glossy = fixtures::matcap::GLOSSY_64;
+    let side = black_box(fixtures::matcap::GLOSSY_64_SIDE_LOG2);
+    if let Ok(matcap) = rasterizer_core::shade::MatCap::<Fx16, Rgb565>::new(side, glossy, &xf.view)
+    {
+        let mut pl = Pipeline::new(&xf, vp, CullClockwise, NoDepth, matcap);
+        let mut scratch = [VertexSlot::EMPTY; 16];
+        drawn += pl.draw(&mut fb, &mesh, &mut scratch).map_or(0, |s| s.drawn);
+    }
     // Bands of 8 rows.
     let mut band_z = [u16::MAX; 64 * 8];
     if let Ok(depth) = DepthBuffer::new(&mut band_z, 64, 8, Compare::Less) {

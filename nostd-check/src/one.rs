@@ -3,7 +3,7 @@
 //! of one combination, `main` makes only the calls that combination needs, so the binary holds
 //! only their code.
 //!
-//! 3D: one shading feature (`unlit`, `flat`, `gouraud`, `phong`), optionally `depth` (a 16-bit
+//! 3D: one shading feature (`unlit`, `flat`, `gouraud`, `phong`, `matcap`), optionally `depth` (a 16-bit
 //! depth buffer, `Compare::Less`), `cull` (`CullClockwise`) and the draw call (`draw` by default,
 //! `banded` for `draw_banded` in 16-row bands), each with a vertex scratch of one slot per mesh
 //! vertex, or with an empty one with `noscratch`, `dither` for 4 x 4 ordered dithering of the
@@ -151,6 +151,8 @@ mod three_d {
     type Sh = rasterizer_core::shade::PhongLit<Fx16, Rgb565, 1>;
     #[cfg(feature = "textured")]
     type Sh = rasterizer_core::shade::TexturedLit<'static, Fx16, Rgb565, 1>;
+    #[cfg(feature = "matcap")]
+    type Sh = rasterizer_core::shade::MatCap<'static, Fx16, Rgb565>;
 
     /// The shading stage: the chosen model, fogged with `fog`.
     #[cfg(feature = "fog")]
@@ -183,11 +185,20 @@ mod three_d {
         })
     }
 
-    #[cfg(not(any(feature = "unlit", feature = "textured")))]
+    #[cfg(not(any(feature = "unlit", feature = "textured", feature = "matcap")))]
     fn shading(_: &PackedMesh<'static>) -> Option<Sh> {
         use fixtures::scenes3d::{light_direction, lighting_with};
         // The light's direction is opaque, so that its normalisation is not folded away.
         Some(Sh::new(lighting_with::<1>(black_box(light_direction()))))
+    }
+
+    /// The default image, in flash; the view matrix opaque, so that the per-frame transform is
+    /// not folded away.
+    #[cfg(feature = "matcap")]
+    fn shading(_: &PackedMesh<'static>) -> Option<Sh> {
+        use fixtures::matcap::{GLOSSY_64, GLOSSY_64_SIDE_LOG2};
+        let view = black_box(crate::m1::transforms()).view;
+        Sh::new(GLOSSY_64_SIDE_LOG2, GLOSSY_64, &view).ok()
     }
 
     /// The texture is the packed mesh's own.

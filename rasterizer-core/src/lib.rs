@@ -122,7 +122,7 @@
 //!   knobs, dithering), [`color`] (colour channels), [`geom`] (sub-pixel points, pixel lines, varyings).
 //! - [`surface`]: where pixels go (framebuffers, bands, any `DrawTarget`).
 //! - The 3D stages: [`mesh`] -> [`transform`] -> [`clip`] -> [`cull`] -> [`depth`] and
-//!   [`raster`] -> [`shade`] (lighting, fog), and [`pipeline`], which runs them.
+//!   [`raster`] -> [`shade`] (lighting, MatCap, fog), and [`pipeline`], which runs them.
 //! - [`prelude`]: one `use` for a typical program.
 //!
 //! # Conventions

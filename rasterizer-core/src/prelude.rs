@@ -27,7 +27,7 @@ pub use crate::raster::triangle::{
     draw_triangle, fill_triangle, fill_triangle_alpha, fill_triangle_gouraud,
 };
 pub use crate::shade::{
-    FlatLit, GouraudLit, Light, Lighting, Material, PhongLit, Specular, TexturedLit, Unlit,
+    FlatLit, GouraudLit, Light, Lighting, MatCap, Material, PhongLit, Specular, TexturedLit, Unlit,
     VertexColors,
 };
 pub use crate::surface::{AnyTarget, BlendError, Framebuffer, Surface, Translucent};

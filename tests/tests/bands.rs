@@ -389,6 +389,48 @@ fn fogged_bands_match_the_whole_frame() {
     }
 }
 
+/// MatCap colours are per vertex, so bands match the whole frame: with and without a depth
+/// test, fogged, and with a short scratch and none.
+#[test]
+fn matcap_bands_match_the_whole_frame() {
+    use fixtures::matcap::{GLOSSY_64, GLOSSY_64_SIDE_LOG2};
+    use rasterizer_core::shade::{Fog, FogCurve, FogSettings};
+    let m = suzanne();
+    let mesh = m.mesh();
+    let (w, h) = (160u32, 120u32);
+    // compare_bands' camera: the view is the same for any turn of the model.
+    let view = transforms(w, h, 23).view;
+    let matcap = || MatCap::<Fx16, Rgb565>::new(GLOSSY_64_SIDE_LOG2, GLOSSY_64, &view).unwrap();
+    let rows = [1u32, 5, 16, 33, 120];
+    let scratch = |rows: u32| vec![Scratch::ALL[rows as usize % 3]];
+    for depth in [Some(Compare::Less), None] {
+        compare_bands(
+            &mesh,
+            w,
+            h,
+            &|| (CullClockwise, matcap()),
+            depth,
+            &rows,
+            &scratch,
+        );
+    }
+    let fog = FogSettings {
+        color: Rgb888::new(128, 144, 160),
+        start: Fx16::from_ratio(5, 2),
+        end: Fx16::from_int(4),
+        curve: FogCurve::Linear,
+    };
+    compare_bands(
+        &mesh,
+        w,
+        h,
+        &|| (CullClockwise, Fog::new(matcap(), fog, &view)),
+        Some(Compare::Less),
+        &rows,
+        &scratch,
+    );
+}
+
 #[test]
 fn suzanne_m1_size_common_band_heights_with_and_without_scratch() {
     let m = suzanne();

@@ -7,7 +7,8 @@
 //! Files: [`config`] (the registry of pipeline types), [`blending`] (blending and
 //! anti-aliased lines), [`scene`] (the scenes on both sides),
 //! [`metrics`] (the error measures and the Pareto front), [`count`] (callgrind), [`breakdown`]
-//! (the limit sweeps), [`lighting`] (the shaders' directional-light plan), [`plot`] and
+//! (the limit sweeps), [`lighting`] (the shaders' directional-light plan), [`matcap`] (the
+//! MatCap lookup), [`plot`] and
 //! [`report`] (the output).
 
 pub mod blending;
@@ -16,6 +17,7 @@ pub mod config;
 pub mod count;
 pub mod fog;
 pub mod lighting;
+pub mod matcap;
 pub mod metrics;
 pub mod plot;
 pub mod report;

@@ -623,6 +623,7 @@ fn fogged_shading<'s, S: Real, K: MeshSink<'s, S>, U: DepthUse>(
             let phong = PhongLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
             with_fog::<S, K, U, _>(sink, job, phong)
         }
+        ShadingModel::Matcap => with_fog::<S, K, U, _>(sink, job, matcap::<S>(job)),
         _ => {
             let gouraud = GouraudLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
             with_fog::<S, K, U, _>(sink, job, gouraud)
@@ -844,7 +845,24 @@ fn by_shading<'s, S: Real, K: MeshSink<'s, S>, U: DepthUse, Cu: Stage>(
             let phong = PhongLit::<S, Rgb888, MAX_LIGHTS>::new(lighting);
             by_perspective::<S, K, U, _, _>(sink, job, cull, phong)
         }
+        ShadingModel::Matcap => {
+            let matcap = matcap::<S>(job);
+            by_perspective::<S, K, U, _, _>(sink, job, cull, matcap)
+        }
     }
+}
+
+/// The MatCap shader of a mesh with `shading = "matcap"` (the loader gives it an image, checked
+/// square; a missing one draws the 1 x 1 black image rather than nothing).
+fn matcap<'s, S: Real>(job: &Job<'s, S>) -> MatCap<'s, S, Rgb888> {
+    let view = &job.transforms.view;
+    job.mesh
+        .matcap
+        .as_ref()
+        .and_then(|m| MatCap::from_texture(m.image.texture(), view).ok())
+        .unwrap_or_else(|| {
+            MatCap::new(0, &[0, 0], view).unwrap_or_else(|_| unreachable!("a 1 x 1 image"))
+        })
 }
 
 /// Picks affine or perspective-correct interpolation.

@@ -164,6 +164,8 @@ pub enum ShadingModel {
     Gouraud,
     /// Lit per pixel (`PhongLit`).
     Phong,
+    /// Coloured per vertex from a MatCap image by the view-space normal (`MatCap`).
+    Matcap,
 }
 
 /// Ordered dithering (`Numerics::DITHER`).
@@ -307,6 +309,9 @@ pub struct MeshDef {
     pub texture_filter: Option<TextureFilterDef>,
     /// How coordinates outside the texture address it (needs `texture`).
     pub texture_wrap: Option<TextureWrapDef>,
+    /// A PNG MatCap image (square, a power-of-two side of at most 256), relative to the scene
+    /// file, for `shading = "matcap"`; without it the built-in glossy sphere.
+    pub matcap: Option<String>,
     /// Opacity 0 ..= 255 (default 255, opaque): below 255 the mesh is blended over what is
     /// drawn before it and tests depth without writing it.
     #[serde(default, deserialize_with = "opacity")]

@@ -59,6 +59,11 @@ impl Scene {
                     .iter()
                     .filter_map(|m| m.texture.as_ref()?.file.as_deref()),
             )
+            .chain(
+                self.meshes
+                    .iter()
+                    .filter_map(|m| m.matcap.as_ref()?.file.as_deref()),
+            )
             .collect()
     }
 }
@@ -96,6 +101,8 @@ pub struct SceneMesh {
     pub dither: DitherMode,
     /// The texture, for a mesh with texture coordinates.
     pub texture: Option<SceneTexture>,
+    /// The MatCap image, for `shading = "matcap"`.
+    pub matcap: Option<SceneMatCap>,
     /// Opacity: below 255, blended through `Translucent` with a read-only depth test.
     pub opacity: u8,
     /// Fog, when the mesh or `[render]` asks for it.
@@ -113,6 +120,15 @@ pub struct SceneTexture {
     pub filter: Filter,
     /// How coordinates outside `0 ..= 1` address the texture.
     pub wrap: Wrap,
+}
+
+/// A mesh's MatCap image, square, converted to Rgb565.
+#[derive(Debug, Clone)]
+pub struct SceneMatCap {
+    /// The PNG it was read from (`None`: the built-in glossy sphere).
+    pub file: Option<PathBuf>,
+    /// The texels.
+    pub image: TextureImage,
 }
 
 /// A checked `fog` table.
@@ -510,6 +526,7 @@ fn load_mesh(
         ));
     }
     check_stages_apply(&def, render, texture.is_some())?;
+    let matcap = load_matcap(dir, &def, shading)?;
     if texture.is_some() && def.opacity.is_some_and(|o| o < u8::MAX) {
         return Err(format!(
             "mesh {name}: opacity below 255 does not apply to a textured mesh; remove it or the \
@@ -553,6 +570,7 @@ fn load_mesh(
             .unwrap_or(render.perspective_correct),
         dither: def.dither.unwrap_or(render.dither),
         texture,
+        matcap,
         opacity: def.opacity.unwrap_or(u8::MAX),
         fog,
     })
@@ -603,7 +621,7 @@ fn check_stages_apply(def: &MeshDef, render: &RenderOptions, textured: bool) -> 
             .perspective_correct
             .unwrap_or(render.perspective_correct);
         let what = no_colour.or_else(|| match shading {
-            ShadingModel::Flat | ShadingModel::Phong => Some(format!(
+            ShadingModel::Flat | ShadingModel::Phong | ShadingModel::Matcap => Some(format!(
                 "shading = \"{}\" (it dithers the colour Gouraud and vertex-colour shading \
                  interpolate)",
                 shading_name(shading)
@@ -615,7 +633,11 @@ fn check_stages_apply(def: &MeshDef, render: &RenderOptions, textured: bool) -> 
             return refuse("dither", def.dither.is_some(), &what, "dithering");
         }
     }
-    let unlit = wireframe || matches!(shading, ShadingModel::None | ShadingModel::VertexColors);
+    let unlit = wireframe
+        || matches!(
+            shading,
+            ShadingModel::None | ShadingModel::VertexColors | ShadingModel::Matcap
+        );
     if def.material.is_some() && unlit {
         return Err(format!(
             "mesh {name}: material applies only to lit shading (flat, gouraud, phong), not to {}",
@@ -650,7 +672,52 @@ fn shading_name(s: ShadingModel) -> &'static str {
         ShadingModel::Flat => "flat",
         ShadingModel::Gouraud => "gouraud",
         ShadingModel::Phong => "phong",
+        ShadingModel::Matcap => "matcap",
     }
+}
+
+/// The MatCap image of a mesh with `shading = "matcap"`: the `matcap` key's PNG, else the
+/// built-in glossy sphere (`fixtures::matcap::GLOSSY_64`); `None` for other shading, where the
+/// key is an error.
+fn load_matcap(
+    dir: &Path,
+    def: &MeshDef,
+    shading: ShadingModel,
+) -> Result<Option<SceneMatCap>, String> {
+    let name = &def.path;
+    if shading != ShadingModel::Matcap {
+        return match &def.matcap {
+            Some(_) => Err(format!(
+                "mesh {name}: matcap applies only to shading = \"matcap\", not \"{}\"; remove \
+                 it or set the shading",
+                shading_name(shading)
+            )),
+            None => Ok(None),
+        };
+    }
+    let Some(m) = &def.matcap else {
+        return Ok(Some(SceneMatCap {
+            file: None,
+            image: TextureImage {
+                width_log2: fixtures::matcap::GLOSSY_64_SIDE_LOG2,
+                height_log2: fixtures::matcap::GLOSSY_64_SIDE_LOG2,
+                texels: fixtures::matcap::GLOSSY_64.to_vec(),
+            },
+        }));
+    };
+    let file = dir.join(m);
+    let image = TextureImage::load_png(&file, None)
+        .map_err(|e| format!("mesh {name}: matcap {}: {e}", file.display()))?;
+    // The shader's own check, so that the message is the core's.
+    rasterizer_core::shade::MatCap::<rasterizer_core::math::Fx16, Rgb888>::from_texture(
+        image.texture(),
+        &rasterizer_core::math::Mat4::identity(),
+    )
+    .map_err(|e| format!("mesh {name}: matcap {}: {e}", file.display()))?;
+    Ok(Some(SceneMatCap {
+        file: Some(file),
+        image,
+    }))
 }
 
 /// The mesh's texture: the `texture` key's PNG, else a packed mesh's own texture (`own`);

@@ -1,7 +1,7 @@
 //! Fog: a shading model's colour mixed toward a fog colour by the depth of each vertex.
 //!
 //! [`Fog`] wraps a shading model with a colour to mix. A colour-interpolating one ([`GouraudLit`],
-//! [`VertexColors`], or [`FlatLit`] once per triangle) has each vertex's colour mixed toward the
+//! [`VertexColors`], [`super::MatCap`], or [`FlatLit`] once per triangle) has each vertex's colour mixed toward the
 //! fog colour before the triangle interpolates it, so fogging costs a few integer operations per
 //! vertex and nothing per pixel: the span loop runs the inner model's own pixel code.
 //! [`PhongLit`], which makes its colour per pixel, interpolates the share of fog of its vertices
@@ -265,6 +265,14 @@ fn mix_channels(mut values: [i32; 3], fog: &FogColor, share: u32) -> [i32; 3] {
 }
 
 impl<S: Scalar, C: ShadeColor, const N: usize> Foggable<S> for GouraudLit<S, C, N> {
+    fogs_own_values!(S);
+    #[inline(always)]
+    fn fog_vertex(values: [i32; 3], fog: &FogColor, share: u32) -> [i32; 3] {
+        mix_channels(values, fog, share)
+    }
+}
+
+impl<S: Scalar, C: ShadeColor> Foggable<S> for super::MatCap<'_, S, C> {
     fogs_own_values!(S);
     #[inline(always)]
     fn fog_vertex(values: [i32; 3], fog: &FogColor, share: u32) -> [i32; 3] {

@@ -2,10 +2,12 @@
 //!
 //! [`Lighting`] turns a position and a normal into a lit colour, per vertex (Gouraud) or per pixel,
 //! with fixed-capacity light lists and no floats, so it runs on the same cores as the rasterizer.
-//! [`Fog`] mixes a shading model's colour toward a fog colour by depth.
+//! [`Fog`] mixes a shading model's colour toward a fog colour by depth. [`MatCap`] colours each
+//! vertex from a picture of a lit sphere by the direction its normal faces, with no lighting maths.
 
 pub mod fog;
 pub mod light;
+pub mod matcap;
 pub mod model;
 pub mod textured;
 
@@ -14,6 +16,7 @@ pub use fog::{
 };
 
 pub use light::{Light, Lighting, Material, Specular};
+pub use matcap::{MatCap, MatCapError, MATCAP_MAX_SIDE_LOG2};
 pub use model::{
     FlatLit, GouraudLit, Packed, PhongLit, Shading, Stored, Unlit, VertexColors, VertexIn,
 };

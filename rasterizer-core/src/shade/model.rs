@@ -231,7 +231,7 @@ pub(super) fn from_sums<C: ShadeColor>(sums: [u64; 3]) -> C {
 
 /// The colour from interpolated [`target_channels`] (each shifted back by `shift` bits first).
 #[inline(always)]
-fn from_target<C: ShadeColor>(v: [u32; 3], shift: u32) -> C {
+pub(super) fn from_target<C: ShadeColor>(v: [u32; 3], shift: u32) -> C {
     let ch = |c: usize| (v[c] >> (shift + channel_frac(C::MAX[c]))) as u8;
     C::from_shade([ch(0), ch(1), ch(2)])
 }
@@ -241,7 +241,7 @@ fn from_target<C: ShadeColor>(v: [u32; 3], shift: u32) -> C {
 /// `2^(16 + shift)`) keeps the sum below `2^32`, and the threshold is at least half a 256th,
 /// more than the interpolation's error, so it does not wrap below zero either.
 #[inline(always)]
-fn from_target_dithered<C: ShadeColor>(v: [u32; 3], shift: u32, threshold: u32) -> C {
+pub(super) fn from_target_dithered<C: ShadeColor>(v: [u32; 3], shift: u32, threshold: u32) -> C {
     let ch = |c: usize| {
         let s = shift + channel_frac(C::MAX[c]);
         let t = (threshold << (s - 8)).wrapping_sub(1 << (s - 1));
