@@ -5,10 +5,9 @@
 //! vertex costs a rotation of its normal, one reciprocal square root and a texel read: no lighting
 //! arithmetic, and the same fused span loop as [`super::GouraudLit`].
 
-use super::model::{from_target, from_target_dithered, target_channels};
+use super::model::{channel_pixels, target_channels};
 use super::{Shading, VertexIn};
 use crate::color::ShadeColor;
-use crate::geom::MAX_VARYINGS;
 use crate::math::{Mat4, Scalar};
 use crate::texture::{Texture, TextureError};
 use embedded_graphics_core::pixelcolor::raw::RawU16;
@@ -279,22 +278,5 @@ impl<S: Scalar, C: ShadeColor> Shading<S> for MatCap<'_, S, C> {
         target_channels::<C>([rgb.r(), rgb.g(), rgb.b()].map(u64::from), 1)
     }
 
-    #[inline(always)]
-    fn pixel(&self, v: &[i32; 3]) -> C {
-        from_target(v.map(|x| x.max(0) as u32), 0)
-    }
-
-    #[inline(always)]
-    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
-        from_target([acc[0], acc[1], acc[2]], <Self as Shading<S>>::FUSED_FRAC)
-    }
-
-    #[inline(always)]
-    fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> C {
-        from_target_dithered(
-            [acc[0], acc[1], acc[2]],
-            <Self as Shading<S>>::FUSED_FRAC,
-            threshold,
-        )
-    }
+    channel_pixels!();
 }

@@ -250,6 +250,38 @@ pub(super) fn from_target_dithered<C: ShadeColor>(v: [u32; 3], shift: u32, thres
     C::from_shade([ch(0), ch(1), ch(2)])
 }
 
+/// The pixel methods of a shader whose values are the three channels at the target's depth
+/// ([`target_channels`]): one definition for every such shader (vertex colours, Gouraud,
+/// MatCap). Expands inside an `impl Shading<S> for ...` whose colour is `C`.
+macro_rules! channel_pixels {
+    () => {
+        #[inline(always)]
+        fn pixel(&self, v: &[i32; 3]) -> C {
+            $crate::shade::model::from_target(v.map(|x| x.max(0) as u32), 0)
+        }
+        #[inline(always)]
+        fn pixel_fused(&self, acc: &[u32; $crate::geom::MAX_VARYINGS]) -> C {
+            $crate::shade::model::from_target(
+                [acc[0], acc[1], acc[2]],
+                <Self as $crate::shade::Shading<S>>::FUSED_FRAC,
+            )
+        }
+        #[inline(always)]
+        fn pixel_fused_dithered(
+            &self,
+            acc: &[u32; $crate::geom::MAX_VARYINGS],
+            threshold: u32,
+        ) -> C {
+            $crate::shade::model::from_target_dithered(
+                [acc[0], acc[1], acc[2]],
+                <Self as $crate::shade::Shading<S>>::FUSED_FRAC,
+                threshold,
+            )
+        }
+    };
+}
+pub(super) use channel_pixels;
+
 /// One colour, no lighting.
 #[derive(Debug, Clone, Copy)]
 pub struct Unlit<C> {
@@ -300,22 +332,7 @@ impl<S: Scalar, C: ShadeColor> Shading<S> for VertexColors<C> {
     fn vertex(&mut self, v: &VertexIn<S>) -> [i32; 3] {
         target_channels::<C>([v.color.r(), v.color.g(), v.color.b()].map(u64::from), 1)
     }
-    #[inline(always)]
-    fn pixel(&self, v: &[i32; 3]) -> C {
-        from_target(v.map(|x| x.max(0) as u32), 0)
-    }
-    #[inline(always)]
-    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
-        from_target([acc[0], acc[1], acc[2]], <Self as Shading<S>>::FUSED_FRAC)
-    }
-    #[inline(always)]
-    fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> C {
-        from_target_dithered(
-            [acc[0], acc[1], acc[2]],
-            <Self as Shading<S>>::FUSED_FRAC,
-            threshold,
-        )
-    }
+    channel_pixels!();
 }
 
 /// Lit once per triangle with the face normal (the cross product of its edges in world space).
@@ -467,22 +484,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
         target_channels::<C>(lighting.shade_sums(v.position, v.normal), 255 << 16)
     }
-    #[inline(always)]
-    fn pixel(&self, v: &[i32; 3]) -> C {
-        from_target(v.map(|x| x.max(0) as u32), 0)
-    }
-    #[inline(always)]
-    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> C {
-        from_target([acc[0], acc[1], acc[2]], <Self as Shading<S>>::FUSED_FRAC)
-    }
-    #[inline(always)]
-    fn pixel_fused_dithered(&self, acc: &[u32; MAX_VARYINGS], threshold: u32) -> C {
-        from_target_dithered(
-            [acc[0], acc[1], acc[2]],
-            <Self as Shading<S>>::FUSED_FRAC,
-            threshold,
-        )
-    }
+    channel_pixels!();
 }
 
 /// Lit per pixel: the normal and the world position are interpolated (in 16.16) and lit at every
