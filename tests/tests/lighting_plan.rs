@@ -8,25 +8,21 @@
 //! exact interpolated position and the renormalised interpolated unit normal.
 
 use fixtures::reference3d::{lit, RefLight};
+use fixtures::scenes::XorShift32;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::{Shading, VertexIn};
 
 type V3 = [f64; 3];
 
-struct Rng(u32);
+/// WORKLOADS.md's xorshift32 (`fixtures::scenes::XorShift32`) with the draws these scenes need.
+struct Rng(XorShift32);
 
 impl Rng {
     fn next(&mut self) -> u32 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        self.0 = x;
-        x
+        self.0.next_u32()
     }
-    /// Uniform in `[-1, 1]`.
     fn unit(&mut self) -> f64 {
-        f64::from(self.next()) / f64::from(u32::MAX) * 2.0 - 1.0
+        self.0.unit()
     }
     fn below(&mut self, n: u32) -> u32 {
         self.next() % n
@@ -175,7 +171,7 @@ impl Errors {
 
 /// `(plan, general)` errors of Gouraud vertices over `count` random scenes.
 fn gouraud(count: usize) -> (Errors, Errors) {
-    let mut r = Rng(0x1234_5678);
+    let mut r = Rng(XorShift32::seeded(0x1234_5678));
     let (mut plan, mut general) = (Errors::default(), Errors::default());
     for _ in 0..count {
         let scene = Scene::random(&mut r);
@@ -200,7 +196,7 @@ fn gouraud(count: usize) -> (Errors, Errors) {
 /// (their vertex normals up to about 25 degrees apart), over `count` pixels; with `one_light`
 /// each scene keeps only its first light and a Blinn-Phong highlight.
 fn phong(count: usize, size: f64, one_light: bool) -> (Errors, Errors) {
-    let mut r = Rng(0x8765_4321);
+    let mut r = Rng(XorShift32::seeded(0x8765_4321));
     let (mut plan, mut general) = (Errors::default(), Errors::default());
     for _ in 0..count {
         let mut scene = Scene::random(&mut r);

@@ -3,26 +3,10 @@
 //! vertex gets, the clamping of zero, tiny, huge and out-of-range normals, and the image checks.
 
 use embedded_graphics_core::pixelcolor::raw::RawU16;
+use fixtures::scenes::XorShift32;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::{MatCapError, Shading, VertexIn, MATCAP_MAX_SIDE_LOG2};
 use rasterizer_core::texture::TextureError;
-
-struct Rng(u32);
-
-impl Rng {
-    fn next(&mut self) -> u32 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        self.0 = x;
-        x
-    }
-    /// Uniform in `[-1, 1]`.
-    fn unit(&mut self) -> f64 {
-        f64::from(self.next()) / f64::from(u32::MAX) * 2.0 - 1.0
-    }
-}
 
 fn bits(v: Fx16) -> f64 {
     f64::from(v.to_bits()) / 65536.0
@@ -80,7 +64,7 @@ fn coordinate_image(side_log2: u8) -> Vec<u8> {
 /// the measurement: none.
 #[test]
 fn texel_matches_f64_reference() {
-    let mut rng = Rng(0x1234_5678);
+    let mut rng = XorShift32::seeded(0x1234_5678);
     let camera = fixtures::scenes3d::transforms();
     for side_log2 in 1..=MATCAP_MAX_SIDE_LOG2 {
         let side = 1u32 << side_log2;
@@ -91,9 +75,9 @@ fn texel_matches_f64_reference() {
         for case in 0..cases {
             if case % 1000 == 0 {
                 // A new model matrix every 1000 normals.
-                let a = Angle::from_degrees((rng.next() % 360) as i32);
-                let b = Angle::from_degrees((rng.next() % 360) as i32);
-                let s = [0.25, 1.0, 3.0][(rng.next() % 3) as usize];
+                let a = Angle::from_degrees((rng.next_u32() % 360) as i32);
+                let b = Angle::from_degrees((rng.next_u32() % 360) as i32);
+                let s = [0.25, 1.0, 3.0][(rng.next_u32() % 3) as usize];
                 let model = Mat4::rotation_x(a)
                     .then(&Mat4::rotation_y(b))
                     .then(&Mat4::scale(fx(s), fx(s), fx(s)));
@@ -101,7 +85,7 @@ fn texel_matches_f64_reference() {
                 assert!(sh.begin_frame(Some(&model)), "model-space normals");
                 current = Some((model.then(&camera.view), sh));
             }
-            let len = 2f64.powi((rng.next() % 13) as i32 - 6);
+            let len = 2f64.powi((rng.next_u32() % 13) as i32 - 6);
             let d = loop {
                 let d = [rng.unit(), rng.unit(), rng.unit()];
                 let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
@@ -189,9 +173,13 @@ fn extreme_normals_clamp_to_the_image() {
     assert_eq!(sh.texel_of([i32::MIN, i32::MIN, i32::MIN]), (13, 50));
     assert_eq!(sh.texel_of([1, 0, 0]), (63, 32));
     assert_eq!(sh.texel_of([0, -1, 0]), (32, 63));
-    let mut rng = Rng(99);
+    let mut rng = XorShift32::seeded(99);
     for _ in 0..100_000 {
-        let n = [rng.next() as i32, rng.next() as i32, rng.next() as i32];
+        let n = [
+            rng.next_u32() as i32,
+            rng.next_u32() as i32,
+            rng.next_u32() as i32,
+        ];
         let (x, y) = sh.texel_of(n);
         assert!(x < 64 && y < 64, "{n:?}");
     }

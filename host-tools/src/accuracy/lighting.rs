@@ -4,26 +4,22 @@
 //! Deterministic and quick (no scenes loaded, no callgrind).
 
 use fixtures::reference3d::{lit, RefLight};
+use fixtures::scenes::XorShift32;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::{Shading, VertexIn};
 use std::fmt::Write as _;
 
 type V3 = [f64; 3];
 
-/// xorshift32, as the workloads.
-struct Rng(u32);
+/// WORKLOADS.md's xorshift32 (`fixtures::scenes::XorShift32`) with the draws these scenes need.
+struct Rng(XorShift32);
 
 impl Rng {
     fn next(&mut self) -> u32 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        self.0 = x;
-        x
+        self.0.next_u32()
     }
     fn unit(&mut self) -> f64 {
-        f64::from(self.next()) / f64::from(u32::MAX) * 2.0 - 1.0
+        self.0.unit()
     }
     fn below(&mut self, n: u32) -> u32 {
         self.next() % n
@@ -164,7 +160,7 @@ impl Errors {
 
 /// Gouraud vertices: `(plan, general)`, channels with 8 fractional bits (Rgb888), unrounded.
 pub fn gouraud(count: usize) -> (Errors, Errors) {
-    let mut r = Rng(0x1234_5678);
+    let mut r = Rng(XorShift32::seeded(0x1234_5678));
     let (mut plan, mut general) = (Errors::default(), Errors::default());
     for _ in 0..count {
         let scene = Scene::random(&mut r);
@@ -187,7 +183,7 @@ pub fn gouraud(count: usize) -> (Errors, Errors) {
 /// Phong pixels inside triangles about `size` across whose vertex normals lie up to about 25
 /// degrees apart: `(plan, general, share of pixels where the two differ)`, Rgb888 pixels.
 pub fn phong(count: usize, size: f64) -> (Errors, Errors, f64) {
-    let mut r = Rng(0x8765_4321);
+    let mut r = Rng(XorShift32::seeded(0x8765_4321));
     let (mut plan, mut general, mut differ) = (Errors::default(), Errors::default(), 0usize);
     for _ in 0..count {
         let scene = Scene::random(&mut r);

@@ -4,33 +4,18 @@
 //! normals, and for M1's vertices. Deterministic and quick (no callgrind).
 
 use fixtures::reference3d::{look_at, mul, rotation_x, rotation_y, M4};
+use fixtures::scenes::XorShift32;
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 use std::fmt::Write as _;
 
-/// xorshift32, as the workloads.
-struct Rng(u32);
-
-impl Rng {
-    fn next(&mut self) -> u32 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        self.0 = x;
-        x
-    }
-    fn unit(&mut self) -> f64 {
-        f64::from(self.next()) / f64::from(u32::MAX) * 2.0 - 1.0
-    }
-    /// A unit vector, uniform on the sphere.
-    fn direction(&mut self) -> [f64; 3] {
-        loop {
-            let v = [self.unit(), self.unit(), self.unit()];
-            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            if l > 0.1 && l <= 1.0 {
-                return v.map(|c| c / l);
-            }
+/// A unit vector, uniform on the sphere.
+fn direction(rng: &mut XorShift32) -> [f64; 3] {
+    loop {
+        let v = [rng.unit(), rng.unit(), rng.unit()];
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if l > 0.1 && l <= 1.0 {
+            return v.map(|c| c / l);
         }
     }
 }
@@ -84,11 +69,11 @@ fn fx_bits(v: [f64; 3]) -> [i32; 3] {
 pub fn random_error(side_log2: u8, frames: u32, per_frame: u32) -> TexelError {
     let side = 1u32 << side_log2;
     let image = vec![0u8; 2 << (2 * side_log2)];
-    let mut rng = Rng(0x1234_5678 ^ u32::from(side_log2));
+    let mut rng = XorShift32::seeded(0x1234_5678 ^ u32::from(side_log2));
     let mut out = TexelError::default();
     for _ in 0..frames {
-        let (a, b) = ((rng.next() % 360) as i32, (rng.next() % 360) as i32);
-        let eye = rng.direction().map(|c| c * 3.0);
+        let (a, b) = ((rng.next_u32() % 360) as i32, (rng.next_u32() % 360) as i32);
+        let eye = direction(&mut rng).map(|c| c * 3.0);
         // A camera looking almost straight up or down has no view matrix.
         if eye[0].hypot(eye[2]) < 0.3 {
             continue;
@@ -111,7 +96,7 @@ pub fn random_error(side_log2: u8, frames: u32, per_frame: u32) -> TexelError {
             ),
         );
         for _ in 0..per_frame {
-            let n = rng.direction();
+            let n = direction(&mut rng);
             out.add(
                 sh.texel_of(fx_bits(n)),
                 reference_texel(apply(&exact, n), side),
