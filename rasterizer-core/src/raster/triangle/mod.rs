@@ -308,16 +308,31 @@ where
             let v = self.base[i] + self.g[i] * dx2 + self.h[i] * dy2;
             acc[i] = ((v + (1 << 15)) >> 16) as i32 + (1 << (FRAC - 1));
         }
-        let step = self.step;
-        self.surface
-            .shade_span_in_clip(x0, row, (x1 - x0) as u32, || {
-                let color = S::Color::from_fixed16(&acc);
-                for (a, st) in acc.iter_mut().zip(step).take(S::Color::COUNT) {
-                    *a = a.wrapping_add(st);
-                }
-                color
-            })
+        shade_stepped(self.surface, row, x0, x1, acc, self.step)
     }
+}
+
+/// The pixels of a Gouraud span: the channels `acc` (16.16, half a step added) packed per pixel
+/// and stepped by `step`, for both the plane and the exact span starts.
+#[inline(always)]
+fn shade_stepped<S: Surface>(
+    surface: &mut S,
+    row: i32,
+    x0: i32,
+    x1: i32,
+    mut acc: [i32; 4],
+    step: [i32; 4],
+) -> Result<(), S::Error>
+where
+    S::Color: Channels,
+{
+    surface.shade_span_in_clip(x0, row, (x1 - x0) as u32, || {
+        let color = S::Color::from_fixed16(&acc);
+        for (a, st) in acc.iter_mut().zip(step).take(S::Color::COUNT) {
+            *a = a.wrapping_add(st);
+        }
+        color
+    })
 }
 
 /// `round(n / (2 den))`, halves up, for `den > 0`.
@@ -376,17 +391,9 @@ where
             };
             acc[i] = v + (1 << (FRAC - 1));
         }
-        let step = self.step;
         // Within a span the value stays inside the triangle's colour range up to the stepping error
         // (at most 2^-17 per pixel, under 1/2 for any span), so no clamping is needed per pixel.
-        self.surface
-            .shade_span_in_clip(x0, row, (x1 - x0) as u32, || {
-                let color = S::Color::from_fixed16(&acc);
-                for (a, st) in acc.iter_mut().zip(step).take(S::Color::COUNT) {
-                    *a = a.wrapping_add(st);
-                }
-                color
-            })
+        shade_stepped(self.surface, row, x0, x1, acc, self.step)
     }
 }
 
