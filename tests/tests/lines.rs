@@ -4,6 +4,7 @@
 use proptest::prelude::*;
 use rasterizer_core::geom::line::Line;
 use rasterizer_core::prelude::*;
+use rasterizer_core::surface::Band;
 use tests::{reference_line, StrictMock};
 
 fn line_mock(w: u32, h: u32, a: (i32, i32), b: (i32, i32)) -> StrictMock<BinaryColor> {
@@ -253,6 +254,11 @@ fn small_coord() -> impl Strategy<Value = i32> {
     -40i32..80
 }
 
+/// Mostly on and around a small screen, where a walk has many pixels, sometimes anywhere.
+fn screen_coord() -> impl Strategy<Value = i32> {
+    prop_oneof![6 => -8i32..30, 1 => any_coord()]
+}
+
 fn any_coord() -> impl Strategy<Value = i32> {
     prop_oneof![
         -40i32..80,
@@ -312,6 +318,41 @@ proptest! {
         draw_line(&mut AnyTarget::new(&mut mock), a, b, BinaryColor::On).unwrap();
         let want = tests::reference_line_on_screen(a, b, 24, 16);
         prop_assert_eq!(mock.written(), want);
+    }
+
+    /// The framebuffer's own line walk (one word per pixel: Rgb565 and Gray8, whole and in a band)
+    /// lights exactly the reference pixels on screen, in buffers as narrow as one pixel.
+    #[test]
+    fn framebuffer_walk_equals_reference(
+        x0 in screen_coord(), y0 in screen_coord(), x1 in screen_coord(), y1 in screen_coord(),
+        w in 1u32..24, h in 1u32..20, band_y0 in -4i32..20,
+    ) {
+        let (a, b) = (Point::new(x0, y0), Point::new(x1, y1));
+        let want = tests::reference_line_on_screen(a, b, w as i32, h as i32);
+        let lit = |f: &dyn Fn(i32, i32) -> bool| -> std::collections::BTreeSet<(i32, i32)> {
+            (0..h as i32).flat_map(|y| (0..w as i32).map(move |x| (x, y))).filter(|&(x, y)| f(x, y)).collect()
+        };
+        let mut buf = vec![0u16; (w * h) as usize];
+        let mut fb = Framebuffer::<Rgb565>::new(&mut buf, w, h).unwrap();
+        draw_line(&mut fb, a, b, Rgb565::RED).unwrap();
+        prop_assert_eq!(&lit(&|x, y| fb.pixel(Point::new(x, y)) == Some(Rgb565::RED)), &want);
+        let mut gray = vec![0u8; (w * h) as usize];
+        let mut fb = Framebuffer::<Gray8>::new(&mut gray, w, h).unwrap();
+        draw_line(&mut fb, a, b, Gray8::WHITE).unwrap();
+        prop_assert_eq!(&lit(&|x, y| fb.pixel(Point::new(x, y)) == Some(Gray8::WHITE)), &want);
+        // A band of up to 5 rows stands for screen rows band_y0 ..: it lights those rows of the screen.
+        let rows = h.min(5);
+        let mut band_buf = vec![0u16; (w * rows) as usize];
+        let mut band = Band::new(Framebuffer::<Rgb565>::new(&mut band_buf, w, rows).unwrap(), band_y0);
+        draw_line(&mut band, a, b, Rgb565::RED).unwrap();
+        let got = lit(&|x, y| y < rows as i32 && band.framebuffer().pixel(Point::new(x, y)) == Some(Rgb565::RED));
+        // The reference of the band's rows: the line moved up by band_y0 (where that fits i32), on
+        // a screen of the band's size (the reference is exact, so moving moves its pixels).
+        let shift = |p: Point| p.y.checked_sub(band_y0).map(|y| Point::new(p.x, y));
+        if let (Some(sa), Some(sb)) = (shift(a), shift(b)) {
+            let want_band = tests::reference_line_on_screen(sa, sb, w as i32, rows as i32);
+            prop_assert_eq!(got, want_band);
+        }
     }
 
     #[test]

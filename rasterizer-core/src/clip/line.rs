@@ -120,9 +120,14 @@ fn last_step_within(line: &Line, q: i64) -> Option<i64> {
 impl Line {
     /// The pixels of the line that lie inside `area`, in walk order, found by Cohen-Sutherland
     /// clipping ([`crate::clip::line`]); `None` when no pixel is inside.
+    #[inline]
     pub fn clipped(&self, area: &Rectangle) -> Option<LinePoints> {
         let (k0, k1) = clip_steps(self, area)?;
-        Some(self.walk_from(k0, k1))
+        Some(if k0 == 0 && k1 == self.a {
+            self.points()
+        } else {
+            self.walk_from(k0, k1)
+        })
     }
 
     /// The step range of the clipped walk: the first and last step inside `area`.

@@ -99,8 +99,30 @@ impl Line {
     }
 
     /// All pixels of the line, from [`Line::start`] to [`Line::end`].
+    ///
+    /// The same walk as `walk_from(0, A)`, set up without its general cases (a start inside the
+    /// line, an end past the `i32` range), since every unclipped line and every line inside its clip
+    /// area starts here.
+    #[inline]
     pub fn points(&self) -> LinePoints {
-        self.walk_from(0, self.a)
+        let (step_x, step_y) = if self.major_x {
+            (1, self.minor_step)
+        } else {
+            (self.minor_step, 1)
+        };
+        LinePoints {
+            x: self.start.x,
+            y: self.start.y,
+            remaining: self.a as u64 + 1,
+            major_x: self.major_x,
+            step_x,
+            step_y,
+            // The remainder of (A - t) / 2A, whose quotient is 0 (0 for a one-pixel line).
+            err: if self.a == 0 { 0 } else { self.a - self.tie() },
+            two_minor: 2 * self.b,
+            two_major: 2 * self.a,
+            end: Some((self.end.x, self.end.y)),
+        }
     }
 
     /// True when `p` is one of the line's pixels.
@@ -224,5 +246,50 @@ impl Iterator for LinePoints {
     fn size_hint(&self) -> (usize, Option<usize>) {
         let n = usize::try_from(self.remaining).unwrap_or(usize::MAX);
         (n, usize::try_from(self.remaining).ok())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    extern crate std;
+    use std::format;
+
+    #[test]
+    fn points_is_the_general_walk_from_the_start() {
+        let coords = [
+            i32::MIN,
+            i32::MIN + 1,
+            -70_000,
+            -3,
+            -1,
+            0,
+            1,
+            2,
+            5,
+            9,
+            70_001,
+            i32::MAX,
+        ];
+        for &x0 in &coords {
+            for &y0 in &coords {
+                for &(x1, y1) in &[
+                    (0, 0),
+                    (7, -2),
+                    (-5, 11),
+                    (i32::MAX, 3),
+                    (4, i32::MIN),
+                    (x0, y0),
+                ] {
+                    let line = Line::new(Point::new(x0, y0), Point::new(x1, y1));
+                    // Every field of the walk, through its Debug form.
+                    assert_eq!(
+                        format!("{:?}", line.points()),
+                        format!("{:?}", line.walk_from(0, line.a)),
+                        "{x0},{y0} -> {x1},{y1}"
+                    );
+                }
+            }
+        }
     }
 }

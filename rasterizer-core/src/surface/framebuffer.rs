@@ -135,36 +135,79 @@ pub trait Storage: Channels {
     }
 }
 
-/// Steps a buffer index along a line walk: one add per pixel on the major axis, one more when the
-/// minor axis moves. For formats with one word per pixel.
+/// Walks a line through the whole buffer (`stride` words per row), for formats with one word per
+/// pixel. Every pixel of the walk lies in the buffer.
+///
+/// No pixel is counted: an x-major line is drawn as one run per row, which a carry of the
+/// Bresenham remainder ends (the rows are counted, and the last row's run is a plain fill); a
+/// y-major line steps a strictly increasing index through the buffer cut just after its last
+/// pixel, so the store's bounds check is also the loop's exit. Any inconsistent walk still ends
+/// without a write outside the buffer: the rows are counted, a run stops at the buffer's end, and
+/// the y-major index grows by at least one word a step.
 #[inline]
 fn walk_words<W: Copy>(buf: &mut [W], stride: usize, p: LinePoints, value: W) {
-    let mut idx = p.y as usize * stride + p.x as usize;
-    let (dx, dy) = (p.step_x as isize, p.step_y as isize * stride as isize);
-    let (major, minor) = if p.major_x { (dx, dy) } else { (dy, dx) };
-    // The remainder biased by -2A: the carry test becomes a sign test on the sum just computed.
-    // The loop is nested (a run along the major axis, then one minor step) so that the common case,
-    // no carry, is a straight fall-through.
-    let mut err = p.err - p.two_major;
-    let mut n = p.remaining;
-    if n == 0 {
+    let Some((ex, ey)) = p.last_pixel().filter(|_| stride > 0) else {
         return;
-    }
-    loop {
-        loop {
-            buf[idx] = value;
-            idx = idx.wrapping_add_signed(major);
-            n -= 1;
-            if n == 0 {
-                return;
+    };
+    let (x, y, ex, ey) = (p.x as usize, p.y as usize, ex as usize, ey as usize);
+    let (two_a, two_b) = (p.two_major, p.two_minor);
+    // The remainder biased by -2A: the carry test becomes a sign test on the sum just computed.
+    let mut err = p.err - two_a;
+    let last = ey.wrapping_mul(stride).wrapping_add(ex);
+    let mut idx = y.wrapping_mul(stride).wrapping_add(x);
+    if p.major_x {
+        let row_step = if p.step_y < 0 {
+            stride.wrapping_neg()
+        } else {
+            stride
+        };
+        for _ in 0..y.abs_diff(ey) {
+            // A row's run: the walk stays in the row until a carry moves it to the next one.
+            loop {
+                let Some(w) = buf.get_mut(idx) else {
+                    return;
+                };
+                *w = value;
+                idx += 1;
+                err += two_b;
+                if err >= 0 {
+                    break;
+                }
             }
-            err += p.two_minor;
-            if err >= 0 {
-                break;
+            err -= two_a;
+            idx = idx.wrapping_add(row_step);
+        }
+        if let Some(run) = buf.get_mut(idx..=last) {
+            fill_words(run, value);
+        }
+    } else {
+        // The index grows at each step: cut just after the last pixel, the buffer ends the walk.
+        let Some(s) = buf.get_mut(..=last) else {
+            return;
+        };
+        // In a one-word-wide buffer no pixel of the walk can move sideways; a zero minor step keeps
+        // the index strictly increasing there too.
+        let minor = if stride > 1 { p.step_x as isize } else { 0 };
+        // Two loops, one after a step without a carry and one after a step with, so that the carry
+        // is a branch between them rather than selects on every pixel.
+        loop {
+            let Some(w) = s.get_mut(idx) else {
+                return;
+            };
+            *w = value;
+            idx = idx.wrapping_add(stride);
+            err += two_b;
+            while err >= 0 {
+                err -= two_a;
+                idx = idx.wrapping_add_signed(minor);
+                let Some(w) = s.get_mut(idx) else {
+                    return;
+                };
+                *w = value;
+                idx = idx.wrapping_add(stride);
+                err += two_b;
             }
         }
-        err -= p.two_major;
-        idx = idx.wrapping_add_signed(minor);
     }
 }
 
