@@ -28,14 +28,13 @@ pub fn draw_line<S: Surface>(
     b: Point,
     color: S::Color,
 ) -> Result<(), S::Error> {
-    let line = Line::new(a, b);
     let area = surface.clip_area();
     let inside = PixelRect::from_rectangle(&area);
     // Most lines lie inside the clip area: they skip the clipping and its general walk set-up.
     if inside.contains(a) && inside.contains(b) {
-        return surface.draw_line_points_in_clip(line.points(), color);
+        return surface.draw_line_points_in_clip(Line::new(a, b).points(), color);
     }
-    match line.clipped(&area) {
+    match Line::new(a, b).clipped(&area) {
         Some(points) => surface.draw_line_points_in_clip(points, color),
         None => Ok(()),
     }
