@@ -84,21 +84,22 @@ pub(crate) fn walk_spans<K: SpanSink>(
     let short_is_left = t.cross < 0;
     if top < mid {
         let mut upper = EdgeWalk::new(v0, v1, s, top);
-        let (l, r) = if short_is_left {
-            (&mut upper, &mut long)
+        let rows = top..mid.min(bottom);
+        // One call per side, not references chosen at run time: the loop then reads each edge
+        // from its own registers instead of selecting them every row.
+        if short_is_left {
+            rows_of(&mut upper, &mut long, rows, clip, inside_x, sink)?;
         } else {
-            (&mut long, &mut upper)
-        };
-        rows_of(l, r, top..mid.min(bottom), clip, inside_x, sink)?;
+            rows_of(&mut long, &mut upper, rows, clip, inside_x, sink)?;
+        }
     }
     if mid < bottom {
         let mut lower = EdgeWalk::new(v1, v2, s, mid);
-        let (l, r) = if short_is_left {
-            (&mut lower, &mut long)
+        if short_is_left {
+            rows_of(&mut lower, &mut long, mid..bottom, clip, inside_x, sink)?;
         } else {
-            (&mut long, &mut lower)
-        };
-        rows_of(l, r, mid..bottom, clip, inside_x, sink)?;
+            rows_of(&mut long, &mut lower, mid..bottom, clip, inside_x, sink)?;
+        }
     }
     Ok(())
 }
