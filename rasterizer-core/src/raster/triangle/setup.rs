@@ -83,23 +83,26 @@ pub(crate) fn walk_spans<K: SpanSink>(
     let mut long = EdgeWalk::new(v0, v2, s, top);
     let short_is_left = t.cross < 0;
     if top < mid {
-        let mut upper = EdgeWalk::new(v0, v1, s, top);
-        let rows = top..mid.min(bottom);
-        // One call per side, not references chosen at run time: the loop then reads each edge
-        // from its own registers instead of selecting them every row.
-        if short_is_left {
-            rows_of(&mut upper, &mut long, rows, clip, inside_x, sink)?;
+        let upper = EdgeWalk::new(v0, v1, s, top);
+        // The walks are copied into left and right before the loop and the long one copied back
+        // after it: references chosen at run time made the loop select both edges every row,
+        // and a loop per side doubled the code of every fill.
+        let (mut l, mut r) = if short_is_left {
+            (upper, long)
         } else {
-            rows_of(&mut long, &mut upper, rows, clip, inside_x, sink)?;
-        }
+            (long, upper)
+        };
+        rows_of(&mut l, &mut r, top..mid.min(bottom), clip, inside_x, sink)?;
+        long = if short_is_left { r } else { l };
     }
     if mid < bottom {
-        let mut lower = EdgeWalk::new(v1, v2, s, mid);
-        if short_is_left {
-            rows_of(&mut lower, &mut long, mid..bottom, clip, inside_x, sink)?;
+        let lower = EdgeWalk::new(v1, v2, s, mid);
+        let (mut l, mut r) = if short_is_left {
+            (lower, long)
         } else {
-            rows_of(&mut long, &mut lower, mid..bottom, clip, inside_x, sink)?;
-        }
+            (long, lower)
+        };
+        rows_of(&mut l, &mut r, mid..bottom, clip, inside_x, sink)?;
     }
     Ok(())
 }
