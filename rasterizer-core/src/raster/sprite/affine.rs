@@ -199,7 +199,10 @@ mod tests {
         // Nearly singular: det = (2^30 + 1)(2^30 - 1) - 2^60 = -1 raw, 2^-32, for entries of
         // 2^14: an inverse of 2^46 texels a pixel, past the range.
         let f = Fx16::from_bits;
-        a.m = [[f((1 << 30) + 1), f(1 << 30)], [f(1 << 30), f((1 << 30) - 1)]];
+        a.m = [
+            [f((1 << 30) + 1), f(1 << 30)],
+            [f(1 << 30), f((1 << 30) - 1)],
+        ];
         assert_eq!(Inverse::new(&a), None);
         // The largest entries: det = (2^31 - 1)^2 - 2^62 = 1 - 2^32 raw, an inverse of 2^15.
         a.m = [[Fx16::MAX, Fx16::MIN], [Fx16::MIN, Fx16::MAX]];

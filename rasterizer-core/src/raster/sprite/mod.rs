@@ -187,11 +187,10 @@ struct Bilinear;
 impl Sample for Bilinear {
     #[inline(always)]
     fn sample(self, sprite: &Sprite<'_>, max: (i64, i64), u: i64, v: i64) -> (u16, u8) {
-        // Texel centres sit at half-texels: offset by one half, then split whole and fraction.
-        let (us, vs) = (
-            u.wrapping_sub(1 << (TEXEL_FRAC - 1)),
-            v.wrapping_sub(1 << (TEXEL_FRAC - 1)),
-        );
+        // Texel centres sit at half-texels: offset by one half, round to the nearest 1/256
+        // (half a weight step off at most, not a whole one), then split whole and fraction.
+        let off = (1 << (TEXEL_FRAC - 1)) - (1 << (TEXEL_FRAC - 9));
+        let (us, vs) = (u.wrapping_sub(off), v.wrapping_sub(off));
         let (x0, y0) = (us >> TEXEL_FRAC, vs >> TEXEL_FRAC);
         let fx = ((us >> (TEXEL_FRAC - 8)) & 0xFF) as u32;
         let fy = ((vs >> (TEXEL_FRAC - 8)) & 0xFF) as u32;
