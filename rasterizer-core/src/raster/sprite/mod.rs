@@ -67,33 +67,24 @@ pub fn draw_sprite<S: Surface<Color = Rgb565>>(
     transform: &Affine,
     filter: Filter,
 ) -> Result<(), BlendError<S::Error>> {
-    let mode = match sprite.alpha_bits() {
-        AlphaBits::None => Mode::Opaque,
-        AlphaBits::One => Mode::Test,
-        AlphaBits::Four | AlphaBits::Eight => Mode::Blend,
-    };
-    if mode == Mode::Blend && !S::READ_BACK {
+    let blends = matches!(sprite.alpha_bits(), AlphaBits::Four | AlphaBits::Eight);
+    if blends && !S::READ_BACK {
         return Err(BlendError::CannotReadBack);
     }
     let Some(quad) = Quad::new(sprite, transform) else {
         return Ok(());
     };
-    let clip = PixelRect::from_rectangle(&surface.clip_area());
-    match filter {
-        Filter::Nearest => quad.draw(surface, sprite, &clip, mode, Nearest),
-        Filter::Bilinear => quad.draw(surface, sprite, &clip, mode, Bilinear),
+    // One copy of the span loop per alpha depth and filter, so that neither is decided per pixel.
+    match (sprite.alpha_bits(), filter) {
+        (AlphaBits::None, Filter::Nearest) => quad.draw::<_, NoAlpha, Nearest>(surface, sprite),
+        (AlphaBits::None, Filter::Bilinear) => quad.draw::<_, NoAlpha, Bilinear>(surface, sprite),
+        (AlphaBits::One, Filter::Nearest) => quad.draw::<_, Alpha1, Nearest>(surface, sprite),
+        (AlphaBits::One, Filter::Bilinear) => quad.draw::<_, Alpha1, Bilinear>(surface, sprite),
+        (AlphaBits::Four, Filter::Nearest) => quad.draw::<_, Alpha4, Nearest>(surface, sprite),
+        (AlphaBits::Four, Filter::Bilinear) => quad.draw::<_, Alpha4, Bilinear>(surface, sprite),
+        (AlphaBits::Eight, Filter::Nearest) => quad.draw::<_, Alpha8, Nearest>(surface, sprite),
+        (AlphaBits::Eight, Filter::Bilinear) => quad.draw::<_, Alpha8, Bilinear>(surface, sprite),
     }
-}
-
-/// How a sampled texel's opacity is applied.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Mode {
-    /// Every pixel written: whole spans through the surface's span fast path.
-    Opaque,
-    /// Written when the opacity is at least one half.
-    Test,
-    /// Blended by the opacity.
-    Blend,
 }
 
 /// A sprite's set-up: the two triangles of its quad and the inverse mapping.
@@ -119,14 +110,6 @@ impl Quad {
         let second = Sorted::new(&[p0, p2, p3])?;
         // The halves of a true parallelogram turn the same way; opposite turns mean the rounded
         // quad folded over (a sliver thinner than the grid), which would draw pixels twice.
-        let turn = |p: SubPoint<QUAD_BITS>, q: SubPoint<QUAD_BITS>, r: SubPoint<QUAD_BITS>| {
-            let (ax, ay) = (i64::from(q.x - p.x), i64::from(q.y - p.y));
-            let (bx, by) = (
-                i64::from(r.x) - i64::from(p.x),
-                i64::from(r.y) - i64::from(p.y),
-            );
-            (ax * by - ay * bx).signum()
-        };
         if turn(p0, p1, p2) != turn(p0, p2, p3) {
             return None;
         }
@@ -136,77 +119,191 @@ impl Quad {
         })
     }
 
-    fn draw<S: Surface<Color = Rgb565>, F: Sample>(
+    fn draw<S: Surface<Color = Rgb565>, A: Alpha, F: Sample>(
         &self,
         surface: &mut S,
         sprite: &Sprite<'_>,
-        clip: &PixelRect,
-        mode: Mode,
-        filter: F,
     ) -> Result<(), BlendError<S::Error>> {
-        let mut sink = Spans {
+        let clip = PixelRect::from_rectangle(&surface.clip_area());
+        let mut sink = Spans::<S, A, F> {
             surface,
-            sprite,
+            texels: Texels {
+                colors: sprite.color_bytes(),
+                alpha: sprite.alpha_bytes(),
+                width: sprite.width() as usize,
+                alpha_row: sprite.alpha_bits().row_bytes(sprite.width()),
+                max: (
+                    i64::from(sprite.width()) - 1,
+                    i64::from(sprite.height()) - 1,
+                ),
+            },
             inverse: &self.inverse,
-            mode,
-            filter,
-            max: (
-                i64::from(sprite.width()) - 1,
-                i64::from(sprite.height()) - 1,
-            ),
+            _kind: core::marker::PhantomData,
         };
         for half in &self.halves {
-            walk_spans(half, 1 << QUAD_BITS, clip, &mut sink)?;
+            walk_spans(half, 1 << QUAD_BITS, &clip, &mut sink)?;
         }
         Ok(())
     }
 }
 
-/// A texel lookup at a texel point (32.32), giving the raw Rgb565 colour and the opacity.
-trait Sample: Copy {
-    fn sample(self, sprite: &Sprite<'_>, max: (i64, i64), u: i64, v: i64) -> (u16, u8);
+/// The sign of the triangle `p q r`'s area (its turn), in `i64`: exact for any `i32` points.
+fn turn(p: SubPoint<QUAD_BITS>, q: SubPoint<QUAD_BITS>, r: SubPoint<QUAD_BITS>) -> i64 {
+    let d = |a: i32, b: i32| i64::from(a) - i64::from(b);
+    (d(q.x, p.x) * d(r.y, p.y) - d(q.y, p.y) * d(r.x, p.x)).signum()
 }
 
-/// The texel the point falls in, its coordinates clamped to the image.
+/// The texels and alpha plane of a sprite, read by index (the sampler keeps indices inside).
 #[derive(Clone, Copy)]
+struct Texels<'a> {
+    colors: &'a [u8],
+    alpha: &'a [u8],
+    width: usize,
+    /// Bytes of an alpha row.
+    alpha_row: usize,
+    /// The last texel column and row.
+    max: (i64, i64),
+}
+
+impl Texels<'_> {
+    /// Texel `(x, y)`, inside the image: raw colour and opacity. A slice read that could fail
+    /// only gives a zero (the sprite's checks make its lengths right).
+    #[inline(always)]
+    fn get<A: Alpha>(&self, x: usize, y: usize) -> (u16, u8) {
+        let i = y * self.width + x;
+        let c = match self.colors.get(2 * i..2 * i + 2) {
+            Some(&[lo, hi]) => u16::from_le_bytes([lo, hi]),
+            _ => 0,
+        };
+        (c, A::read(self.alpha, y * self.alpha_row, x))
+    }
+}
+
+/// An alpha depth: how a texel's opacity is read, and whether anything blends.
+trait Alpha {
+    /// Every texel is opaque: spans go through the surface's plain span fast path.
+    const OPAQUE: bool = false;
+    /// The opacity, `0 ..= 255`, of texel `x` of the alpha row starting at byte `row`.
+    fn read(plane: &[u8], row: usize, x: usize) -> u8;
+    /// The opacity drawn for a filtered one: a 1-bit sprite tests it at one half.
+    #[inline(always)]
+    fn drawn(alpha: u8) -> u8 {
+        alpha
+    }
+}
+
+struct NoAlpha;
+struct Alpha1;
+struct Alpha4;
+struct Alpha8;
+
+impl Alpha for NoAlpha {
+    const OPAQUE: bool = true;
+    #[inline(always)]
+    fn read(_: &[u8], _: usize, _: usize) -> u8 {
+        255
+    }
+}
+
+impl Alpha for Alpha1 {
+    #[inline(always)]
+    fn read(plane: &[u8], row: usize, x: usize) -> u8 {
+        let byte = plane.get(row + x / 8).copied().unwrap_or(0);
+        0u8.wrapping_sub((byte >> (7 - x % 8)) & 1)
+    }
+    #[inline(always)]
+    fn drawn(alpha: u8) -> u8 {
+        if alpha >= 128 {
+            255
+        } else {
+            0
+        }
+    }
+}
+
+impl Alpha for Alpha4 {
+    #[inline(always)]
+    fn read(plane: &[u8], row: usize, x: usize) -> u8 {
+        let byte = plane.get(row + x / 2).copied().unwrap_or(0);
+        ((byte >> (4 * (1 - x % 2))) & 0xF) * 17
+    }
+}
+
+impl Alpha for Alpha8 {
+    #[inline(always)]
+    fn read(plane: &[u8], row: usize, x: usize) -> u8 {
+        plane.get(row + x).copied().unwrap_or(0)
+    }
+}
+
+/// A filter: the colour and opacity at a texel point (32.32).
+trait Sample {
+    /// Whether the point samples only texels inside the image without clamping, so that a
+    /// span whose two ends do (and so, the texel map being linear, every pixel between) skips
+    /// the clamps.
+    fn inside(t: &Texels<'_>, u: i64, v: i64) -> bool;
+    /// The sample; `CLAMP` false only where [`Sample::inside`] holds.
+    fn sample<A: Alpha, const CLAMP: bool>(t: &Texels<'_>, u: i64, v: i64) -> (u16, u8);
+}
+
+/// The texel the point falls in.
 struct Nearest;
 
 impl Sample for Nearest {
     #[inline(always)]
-    fn sample(self, sprite: &Sprite<'_>, max: (i64, i64), u: i64, v: i64) -> (u16, u8) {
-        let x = (u >> TEXEL_FRAC).clamp(0, max.0) as u32;
-        let y = (v >> TEXEL_FRAC).clamp(0, max.1) as u32;
-        sprite.texel(x, y)
+    fn inside(t: &Texels<'_>, u: i64, v: i64) -> bool {
+        let (x, y) = (u >> TEXEL_FRAC, v >> TEXEL_FRAC);
+        0 <= x && x <= t.max.0 && 0 <= y && y <= t.max.1
+    }
+
+    #[inline(always)]
+    fn sample<A: Alpha, const CLAMP: bool>(t: &Texels<'_>, u: i64, v: i64) -> (u16, u8) {
+        let (mut x, mut y) = (u >> TEXEL_FRAC, v >> TEXEL_FRAC);
+        if CLAMP {
+            x = x.clamp(0, t.max.0);
+            y = y.clamp(0, t.max.1);
+        }
+        t.get::<A>(x as usize, y as usize)
     }
 }
 
 /// The four texels around the point, weighted in 1/256 steps, colours by opacity.
-#[derive(Clone, Copy)]
 struct Bilinear;
+
+impl Bilinear {
+    /// The point moved so that texel centres are whole numbers and rounded to the nearest 1/256
+    /// (half a weight step off at most): its whole part and the weight of the next texel.
+    #[inline(always)]
+    fn split(t: i64) -> (i64, u32) {
+        let off = (1 << (TEXEL_FRAC - 1)) - (1 << (TEXEL_FRAC - 9));
+        let s = t.wrapping_sub(off);
+        (s >> TEXEL_FRAC, ((s >> (TEXEL_FRAC - 8)) & 0xFF) as u32)
+    }
+}
 
 impl Sample for Bilinear {
     #[inline(always)]
-    fn sample(self, sprite: &Sprite<'_>, max: (i64, i64), u: i64, v: i64) -> (u16, u8) {
-        // Texel centres sit at half-texels: offset by one half, round to the nearest 1/256
-        // (half a weight step off at most, not a whole one), then split whole and fraction.
-        let off = (1 << (TEXEL_FRAC - 1)) - (1 << (TEXEL_FRAC - 9));
-        let (us, vs) = (u.wrapping_sub(off), v.wrapping_sub(off));
-        let (x0, y0) = (us >> TEXEL_FRAC, vs >> TEXEL_FRAC);
-        let fx = ((us >> (TEXEL_FRAC - 8)) & 0xFF) as u32;
-        let fy = ((vs >> (TEXEL_FRAC - 8)) & 0xFF) as u32;
-        let cx = |x: i64| x.clamp(0, max.0) as u32;
-        let cy = |y: i64| y.clamp(0, max.1) as u32;
-        let (xa, xb, ya, yb) = (
-            cx(x0),
-            cx(x0.saturating_add(1)),
-            cy(y0),
-            cy(y0.saturating_add(1)),
-        );
-        let t = [
-            sprite.texel(xa, ya),
-            sprite.texel(xb, ya),
-            sprite.texel(xa, yb),
-            sprite.texel(xb, yb),
+    fn inside(t: &Texels<'_>, u: i64, v: i64) -> bool {
+        let ((x, _), (y, _)) = (Self::split(u), Self::split(v));
+        0 <= x && x < t.max.0 && 0 <= y && y < t.max.1
+    }
+
+    #[inline(always)]
+    fn sample<A: Alpha, const CLAMP: bool>(t: &Texels<'_>, u: i64, v: i64) -> (u16, u8) {
+        let ((x0, fx), (y0, fy)) = (Self::split(u), Self::split(v));
+        let (mut xa, mut xb, mut ya, mut yb) = (x0, x0.wrapping_add(1), y0, y0.wrapping_add(1));
+        if CLAMP {
+            xa = xa.clamp(0, t.max.0);
+            xb = xb.clamp(0, t.max.0);
+            ya = ya.clamp(0, t.max.1);
+            yb = yb.clamp(0, t.max.1);
+        }
+        let (xa, xb, ya, yb) = (xa as usize, xb as usize, ya as usize, yb as usize);
+        let texels = [
+            t.get::<A>(xa, ya),
+            t.get::<A>(xb, ya),
+            t.get::<A>(xa, yb),
+            t.get::<A>(xb, yb),
         ];
         // Weights summing to 2^16.
         let w = [
@@ -224,20 +321,20 @@ impl Sample for Bilinear {
         };
         let mut out = [0u32; 3];
         let alpha;
-        if t.iter().all(|x| x.1 == t[0].1) {
-            // One opacity (always, without alpha): the plain weighted mean, rounded.
-            for (tex, wt) in t.iter().zip(w) {
+        if A::OPAQUE || texels.iter().all(|x| x.1 == texels[0].1) {
+            // One opacity: the plain weighted mean, rounded.
+            for (tex, wt) in texels.iter().zip(w) {
                 for (o, c) in out.iter_mut().zip(channels(tex.0)) {
                     *o += wt * c;
                 }
             }
             out = out.map(|o| (o + (1 << 15)) >> 16);
-            alpha = t[0].1;
+            alpha = texels[0].1;
         } else {
-            // Opacity-weighted: sum(w a c) / sum(w a), below 2^24 and 2^30. Only where the
+            // Opacity-weighted: sum(w a c) / sum(w a), below 2^30 and 2^24. Only where the
             // opacities differ (a sprite's rim), so the division is rare.
             let mut total = 0u32;
-            for (tex, wt) in t.iter().zip(w) {
+            for (tex, wt) in texels.iter().zip(w) {
                 let wa = wt * u32::from(tex.1);
                 total += wa;
                 for (o, c) in out.iter_mut().zip(channels(tex.0)) {
@@ -250,63 +347,65 @@ impl Sample for Bilinear {
             out = out.map(|o| (o + total / 2) / total);
             alpha = ((total + (1 << 15)) >> 16) as u8;
         }
-        let raw = (out[0] << 11 | out[1] << 5 | out[2]) as u16;
-        (raw, alpha)
+        ((out[0] << 11 | out[1] << 5 | out[2]) as u16, alpha)
     }
 }
 
 /// The spans of a sprite's quad, sampled and written.
-struct Spans<'a, S, F> {
+struct Spans<'a, S, A, F> {
     surface: &'a mut S,
-    sprite: &'a Sprite<'a>,
+    texels: Texels<'a>,
     inverse: &'a Inverse,
-    mode: Mode,
-    filter: F,
-    /// The last texel column and row.
-    max: (i64, i64),
+    _kind: core::marker::PhantomData<(A, F)>,
 }
 
-impl<S: Surface<Color = Rgb565>, F: Sample> SpanSink for Spans<'_, S, F> {
+impl<S: Surface<Color = Rgb565>, A: Alpha, F: Sample> Spans<'_, S, A, F> {
+    #[inline(always)]
+    fn run<const CLAMP: bool>(
+        &mut self,
+        row: i32,
+        x0: i32,
+        len: u32,
+        (mut u, mut v): (i64, i64),
+    ) -> Result<(), BlendError<S::Error>> {
+        let (t, du, dv) = (self.texels, self.inverse.du_dx, self.inverse.dv_dx);
+        let mut next = || {
+            let s = F::sample::<A, CLAMP>(&t, u, v);
+            u = u.wrapping_add(du);
+            v = v.wrapping_add(dv);
+            s
+        };
+        if A::OPAQUE {
+            self.surface
+                .shade_span_in_clip(x0, row, len, || Rgb565::from(RawU16::new(next().0)))?;
+        } else {
+            self.surface.blend_shade_span_in_clip(x0, row, len, || {
+                let (c, a) = next();
+                (Rgb565::from(RawU16::new(c)), A::drawn(a))
+            })?;
+        }
+        Ok(())
+    }
+}
+
+impl<S: Surface<Color = Rgb565>, A: Alpha, F: Sample> SpanSink for Spans<'_, S, A, F> {
     type Error = BlendError<S::Error>;
 
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), Self::Error> {
         let inv = self.inverse;
-        let (mut u, mut v) = inv.at(x0, row);
-        let (sprite, max, filter) = (self.sprite, self.max, self.filter);
-        let mut next = || {
-            let t = filter.sample(sprite, max, u, v);
-            u = u.wrapping_add(inv.du_dx);
-            v = v.wrapping_add(inv.dv_dx);
-            t
-        };
-        match self.mode {
-            Mode::Opaque => {
-                let len = (x1 - x0) as u32;
-                self.surface
-                    .shade_span_in_clip(x0, row, len, || Rgb565::from(RawU16::new(next().0)))?;
-            }
-            Mode::Test => {
-                for x in x0..x1 {
-                    let (c, a) = next();
-                    if a >= 128 {
-                        let c = Rgb565::from(RawU16::new(c));
-                        self.surface.fill_span_in_clip(x, row, 1, c)?;
-                    }
-                }
-            }
-            Mode::Blend => {
-                for x in x0..x1 {
-                    let (c, a) = next();
-                    let c = Rgb565::from(RawU16::new(c));
-                    if a == 255 {
-                        self.surface.fill_span_in_clip(x, row, 1, c)?;
-                    } else if a != 0 {
-                        self.surface.blend_span_in_clip(x, row, 1, c, a)?;
-                    }
-                }
-            }
+        let start = inv.at(x0, row);
+        let len = (x1 - x0) as u32;
+        // The last pixel's point, exact as every pixel's is (wrapping, see `Inverse`).
+        let n = i64::from(len - 1);
+        let end = (
+            start.0.wrapping_add(inv.du_dx.wrapping_mul(n)),
+            start.1.wrapping_add(inv.dv_dx.wrapping_mul(n)),
+        );
+        if F::inside(&self.texels, start.0, start.1) && F::inside(&self.texels, end.0, end.1) {
+            self.run::<false>(row, x0, len, start)
+        } else {
+            self.run::<true>(row, x0, len, start)
         }
-        Ok(())
     }
 }
