@@ -37,7 +37,7 @@ fn main() {
     if on("double") && !on("framelist") {
         panic!("double renders the frame list double-buffered: with framelist");
     }
-    if ["line2d", "triangle2d", "gouraud2d", "polygon2d", "aa2d"]
+    if ["line2d", "triangle2d", "gouraud2d", "polygon2d", "aa2d", "sprite"]
         .into_iter()
         .any(on)
     {
