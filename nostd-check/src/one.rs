@@ -14,7 +14,7 @@
 //! texture) through M1's camera instead.
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, `aa2d` (an anti-aliased line 3 pixels
 //! wide), each one call into a 320 x 240 Rgb565
-//! framebuffer. A whole screen: `framelist` for workload S1 through the frame list in 16-row
+//! framebuffer; `sprite`, a few of workload I1's sprites. A whole screen: `framelist` for workload S1 through the frame list in 16-row
 //! bands (module `s1`; `double` for two band buffers). No feature at all gives the empty
 //! baseline (start-up and panic handler only).
 //!
