@@ -128,7 +128,7 @@ impl Quad {
         let mut sink = Spans::<S, A, F> {
             surface,
             texels: Texels {
-                colors: sprite.color_bytes(),
+                colors: sprite.color_bytes().as_chunks::<2>().0,
                 alpha: sprite.alpha_bytes(),
                 width: sprite.width() as usize,
                 alpha_row: sprite.alpha_bits().row_bytes(sprite.width()),
@@ -156,7 +156,8 @@ fn turn(p: SubPoint<QUAD_BITS>, q: SubPoint<QUAD_BITS>, r: SubPoint<QUAD_BITS>) 
 /// The texels and alpha plane of a sprite, read by index (the sampler keeps indices inside).
 #[derive(Clone, Copy)]
 struct Texels<'a> {
-    colors: &'a [u8],
+    /// Little-endian Rgb565 texels, one pair of bytes each.
+    colors: &'a [[u8; 2]],
     alpha: &'a [u8],
     width: usize,
     /// Bytes of an alpha row.
@@ -171,10 +172,7 @@ impl Texels<'_> {
     #[inline(always)]
     fn get<A: Alpha>(&self, x: usize, y: usize) -> (u16, u8) {
         let i = y * self.width + x;
-        let c = match self.colors.get(2 * i..2 * i + 2) {
-            Some(&[lo, hi]) => u16::from_le_bytes([lo, hi]),
-            _ => 0,
-        };
+        let c = self.colors.get(i).map_or(0, |&b| u16::from_le_bytes(b));
         (c, A::read(self.alpha, y * self.alpha_row, x))
     }
 }
