@@ -378,7 +378,10 @@ fn draw_sprites() -> usize {
         degrees: 33,
         scale_128: 150,
     });
-    for s in [Ok(sprite), keyed, soft, Ok(sprite.without_alpha())].into_iter().flatten() {
+    for s in [Ok(sprite), keyed, soft, Ok(sprite.without_alpha())]
+        .into_iter()
+        .flatten()
+    {
         for filter in [Filter::Nearest, Filter::Bilinear] {
             if let Ok(mut fb) = Framebuffer::<Rgb565>::new(&mut buf, 64, 48) {
                 drawn += usize::from(draw_sprite(&mut fb, &s, &p.transform(), filter).is_ok());
