@@ -506,6 +506,9 @@ impl Surface for Recorder {
 #[test]
 fn clipped_drawing_is_the_unclipped_drawing_cut() {
     let mut r = XorShift32::seeded(0x5eed_0007);
+    // Pixels drawn inside the clip rectangle and cut off at the frame's border, over all cases:
+    // both must occur for the comparison to mean something.
+    let (mut in_rect, mut cut) = (0, 0);
     for case in 0..300 {
         let (w, h) = (1 + r.next_u32() % 20, 1 + r.next_u32() % 20);
         let texels = random_texels(&mut r, (w * h) as usize);
@@ -536,11 +539,19 @@ fn clipped_drawing_is_the_unclipped_drawing_cut() {
                 let want = big[(y + 40) * 140 + x + 40];
                 assert_eq!(small[y * 60 + x], want, "case {case} frame ({x}, {y})");
                 let inside = rect.contains(Point::new(x as i32, y as i32));
+                in_rect += usize::from(inside && want != 0);
                 let want = if inside { want } else { 0 };
                 assert_eq!(clipped[y * 60 + x], want, "case {case} clip ({x}, {y})");
             }
         }
+        let shown: usize = small.iter().filter(|&&p| p != 0).count();
+        let whole: usize = big.iter().filter(|&&p| p != 0).count();
+        cut += whole - shown;
     }
+    assert!(
+        in_rect > 1000 && cut > 1000,
+        "{in_rect} pixels in the rectangle, {cut} cut off"
+    );
 }
 
 #[test]
@@ -553,6 +564,8 @@ fn bands_equal_the_whole_frame() {
         for p in &placements {
             draw_sprite(&mut fb, &sprite, &p.transform(), filter).unwrap();
         }
+        let drawn = whole.iter().filter(|&&p| p != 0).count();
+        assert!(drawn > 50_000, "{filter:?}: only {drawn} pixels drawn");
         for rows in [1u32, 7, 16] {
             let mut frame = vec![0u16; 320 * 240];
             for y0 in (0..240).step_by(rows as usize) {
