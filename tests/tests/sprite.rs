@@ -173,6 +173,7 @@ fn random_affine(r: &mut XorShift32, w: u32, h: u32) -> Affine {
 #[test]
 fn coverage_is_the_top_left_rule_on_both_halves() {
     let mut r = XorShift32::seeded(0x5eed_0001);
+    let mut pixels = 0;
     for case in 0..400 {
         let (w, h) = (1 + r.next_u32() % 12, 1 + r.next_u32() % 12);
         let a = random_affine(&mut r, w, h);
@@ -180,12 +181,15 @@ fn coverage_is_the_top_left_rule_on_both_halves() {
         let mock = draw_mock(w, h, &a, (60, 50));
         let want = reference_cover(&a, w, h, (60, 50));
         assert_eq!(mock.written(), want, "case {case}: {a:?} {w}x{h}");
+        pixels += want.len();
     }
+    assert!(pixels > 10_000, "{pixels}");
 }
 
 #[test]
 fn sprites_sharing_edges_leave_no_gap_and_no_double_pixel() {
     let mut r = XorShift32::seeded(0x5eed_0002);
+    let mut pixels = 0;
     for case in 0..300 {
         let (w, h) = (1 + r.next_u32() % 9, 1 + r.next_u32() % 9);
         // Entries and translation on the 1/256 grid, so that every tile corner is exact and the
@@ -212,7 +216,9 @@ fn sprites_sharing_edges_leave_no_gap_and_no_double_pixel() {
         // No pixel twice (the mock), and no gap: the tiles cover exactly the whole image's quad.
         let whole = reference_cover(&a, 2 * w, 2 * h, (60, 50));
         assert_eq!(mock.written(), whole, "case {case}: {a:?} {w}x{h}");
+        pixels += whole.len();
     }
+    assert!(pixels > 10_000, "{pixels}");
 }
 
 /// The texel point of pixel `(x, y)`'s centre by the transform inverted in `f64`.
