@@ -10,6 +10,7 @@ use embedded_graphics::image::{Image, ImageRawLE};
 use embedded_graphics::Drawable;
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use fixtures::scenes::XorShift32;
+use fixtures::sprite::Recorder;
 use rasterizer_core::prelude::*;
 use rasterizer_core::raster::sprite::{
     draw_sprite, header, Affine, AlphaBits, Sprite, SpriteError,
@@ -33,10 +34,6 @@ fn coordinate_texels(w: u32, h: u32) -> Vec<u8> {
 
 fn random_texels(r: &mut XorShift32, n: usize) -> Vec<u8> {
     (0..2 * n).map(|_| r.next_u32() as u8).collect()
-}
-
-fn raw(c: Rgb565) -> u16 {
-    RawU16::from(c).into_inner()
 }
 
 fn fx(v: f64) -> Fx16 {
@@ -441,7 +438,7 @@ fn bilinear_colours_match_the_f64_reference() {
         let sprite = Sprite::from_parts(w, h, bits, &texels, plane).unwrap();
         let a = random_affine(&mut r, w, h);
         // Each pixel's colour and opacity as the sprite hands them to the target.
-        let mut rec = Recorder::default();
+        let mut rec = Recorder::new(60, 50);
         draw_sprite(&mut rec, &sprite, &a, Filter::Bilinear).unwrap();
         for ((x, y), (c, alpha)) in rec.pixels {
             let (u, v) = texel_point(&a, x, y);
@@ -464,49 +461,6 @@ fn bilinear_colours_match_the_f64_reference() {
     assert!(worst <= 1.3, "channel error {worst}");
     assert!(worst_over <= 1.2, "channel error over black {worst_over}");
     assert!(worst_alpha <= 2.1, "opacity error {worst_alpha}");
-}
-
-/// A surface that records each pixel's colour and opacity (255 for written ones).
-#[derive(Default)]
-struct Recorder {
-    pixels: Vec<((i32, i32), (u16, u8))>,
-}
-
-impl OriginDimensions for Recorder {
-    fn size(&self) -> Size {
-        Size::new(60, 50)
-    }
-}
-
-impl DrawTarget for Recorder {
-    type Color = Rgb565;
-    type Error = core::convert::Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
-        &mut self,
-        it: I,
-    ) -> Result<(), Self::Error> {
-        for Pixel(p, c) in it {
-            self.pixels.push(((p.x, p.y), (raw(c), 255)));
-        }
-        Ok(())
-    }
-}
-
-impl Surface for Recorder {
-    const READ_BACK: bool = true;
-    fn blend_span_in_clip(
-        &mut self,
-        x: i32,
-        y: i32,
-        len: u32,
-        color: Rgb565,
-        alpha: u8,
-    ) -> Result<(), BlendError<Self::Error>> {
-        for i in 0..len as i32 {
-            self.pixels.push(((x + i, y), (raw(color), alpha)));
-        }
-        Ok(())
-    }
 }
 
 #[test]

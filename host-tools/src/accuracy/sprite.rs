@@ -4,55 +4,14 @@
 //! and quick (no callgrind).
 
 use fixtures::scenes::XorShift32;
+use fixtures::sprite::Recorder;
 use rasterizer_core::prelude::*;
 use rasterizer_core::raster::sprite::{draw_sprite, Affine, AlphaBits, Sprite};
-use rasterizer_core::surface::BlendError;
 use rasterizer_core::texture::Filter;
-use std::convert::Infallible;
 use std::fmt::Write as _;
 
 /// Transforms per measurement.
 pub const TRANSFORMS: u32 = 1000;
-
-/// Records each pixel's colour and opacity as a sprite hands them over.
-struct Recorder(Vec<((i32, i32), (u16, u8))>);
-
-impl OriginDimensions for Recorder {
-    fn size(&self) -> Size {
-        Size::new(96, 80)
-    }
-}
-
-impl DrawTarget for Recorder {
-    type Color = Rgb565;
-    type Error = Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
-        &mut self,
-        it: I,
-    ) -> Result<(), Infallible> {
-        for Pixel(p, c) in it {
-            self.0.push(((p.x, p.y), (raw(c), 255)));
-        }
-        Ok(())
-    }
-}
-
-impl Surface for Recorder {
-    const READ_BACK: bool = true;
-    fn blend_span_in_clip(
-        &mut self,
-        x: i32,
-        y: i32,
-        len: u32,
-        c: Rgb565,
-        alpha: u8,
-    ) -> Result<(), BlendError<Infallible>> {
-        for i in 0..len as i32 {
-            self.0.push(((x + i, y), (raw(c), alpha)));
-        }
-        Ok(())
-    }
-}
 
 fn raw(c: Rgb565) -> u16 {
     embedded_graphics_core::pixelcolor::raw::RawU16::from(c).into_inner()
@@ -128,11 +87,11 @@ pub fn nearest_error(transforms: u32) -> NearestError {
             continue;
         };
         let a = random_affine(&mut r, w, h);
-        let mut rec = Recorder(Vec::new());
+        let mut rec = Recorder::new(96, 80);
         if draw_sprite(&mut rec, &sprite, &a, Filter::Nearest).is_err() {
             continue; // the recorder reads back: never
         }
-        for ((x, y), (c, _)) in rec.0 {
+        for ((x, y), (c, _)) in rec.pixels {
             let (u, v) = texel_point(&a, x, y);
             let pick = |t: f64, n: u32| t.floor().clamp(0.0, f64::from(n - 1)) as u32;
             let want = (pick(u, w), pick(v, h));
@@ -193,11 +152,11 @@ pub fn bilinear_error(transforms: u32) -> BilinearError {
             continue;
         };
         let a = random_affine(&mut r, w, h);
-        let mut rec = Recorder(Vec::new());
+        let mut rec = Recorder::new(96, 80);
         if draw_sprite(&mut rec, &sprite, &a, Filter::Bilinear).is_err() {
             continue; // the recorder reads back: never
         }
-        for ((x, y), (c, got_alpha)) in rec.0 {
+        for ((x, y), (c, got_alpha)) in rec.pixels {
             let (u, v) = texel_point(&a, x, y);
             let (us, vs) = (u - 0.5, v - 0.5);
             let (x0, y0) = (us.floor(), vs.floor());
