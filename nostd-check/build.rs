@@ -37,9 +37,16 @@ fn main() {
     if on("double") && !on("framelist") {
         panic!("double renders the frame list double-buffered: with framelist");
     }
-    if ["line2d", "triangle2d", "gouraud2d", "polygon2d", "aa2d"]
-        .into_iter()
-        .any(on)
+    if [
+        "line2d",
+        "triangle2d",
+        "gouraud2d",
+        "polygon2d",
+        "aa2d",
+        "sprite",
+    ]
+    .into_iter()
+    .any(on)
     {
         println!("cargo::rustc-cfg=two_d");
     }

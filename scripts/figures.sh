@@ -9,7 +9,7 @@
 # Usage (from anywhere; paths are relative to the repo root):
 #   scripts/figures.sh                  # every figure
 #   scripts/figures.sh --quick          # only the lines WORKLOADS.md's table requires
-#   scripts/figures.sh T2 M1            # only these scenes (L1 T1 T2 G1 P1 LIMIT, the mesh scenes, S1)
+#   scripts/figures.sh T2 M1            # only these scenes (L1 T1 T2 G1 P1 LIMIT, the mesh scenes, S1, I1)
 #   scripts/figures.sh -o FILE          # also write the lines to FILE (or FIGURES_OUT=FILE), which is
 #                                       # replaced only once every count has succeeded
 #   ANNOTATE=1 scripts/figures.sh ...   # also callgrind_annotate reports next to the outputs
@@ -98,7 +98,7 @@ cd "$ROOT"
 # Every scene this script knows, in output order.
 ALL_SCENES=("${SCENES_2D[@]}" LIMIT)
 for line in "${MESH_SCENES[@]}"; do ALL_SCENES+=("${line%% *}"); done
-ALL_SCENES+=(S1)
+ALL_SCENES+=(S1 I1)
 declare -A WANT
 if [ "${#SELECTED[@]}" -eq 0 ]; then
     for s in "${ALL_SCENES[@]}"; do WANT[$s]=1; done
@@ -512,6 +512,29 @@ if wanted S1; then
     emit_count S1 ours-band16 text_bytes "$(section_bytes s1_band16 text)"
     emit_count S1 ours-band16 rodata_bytes "$(section_bytes s1_band16 rodata)"
     unset S1 MEM_S1
+fi
+
+# --- I1: sprites, and I1id against embedded-graphics' Image (count_i1) ---
+
+if wanted I1; then
+    build_example count_i1
+    declare -A I1N=()
+    for job in ours=frame_i1_ours ours-id=frame_i1id_ours eg-id=frame_i1id_eg; do
+        r="${job%%=*}"
+        echo "counting I1 $r..." >&2
+        I1N[$r]="$(callgrind_count "$OUT/I1-$r" "*${job#*=}*" "$BIN" "$r")"
+    done
+    prims="$(field "$OUT/I1-ours.stdout" primitives)"
+    "$BIN" ours --stats >"$OUT/I1-ours-stats.txt"
+    emit_count I1 ours instructions "${I1N[ours]}"
+    emit_count I1 ours per_primitive "$(div "${I1N[ours]}" "$prims" 1)"
+    emit_count I1 ours pixels "$(field "$OUT/I1-ours-stats.txt" pixels)"
+    for r in ours eg; do
+        emit_count I1id "$r" instructions "${I1N[$r-id]}"
+        emit_count I1id "$r" per_primitive "$(div "${I1N[$r-id]}" "$prims" 1)"
+    done
+    emit_count I1id ours/eg ratio "$(div "${I1N[ours-id]}" "${I1N[eg-id]}" 4)"
+    unset I1N
 fi
 
 if [ -n "$FILE" ]; then

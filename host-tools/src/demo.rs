@@ -106,7 +106,7 @@ pub struct Scene {
 }
 
 /// Every demo picture, in the order they are written.
-pub const SCENES: [Scene; 7] = [
+pub const SCENES: [Scene; 8] = [
     Scene {
         file: "lines_octants.png",
         draw: lines_octants,
@@ -134,6 +134,10 @@ pub const SCENES: [Scene; 7] = [
     Scene {
         file: "clipping.png",
         draw: clipping,
+    },
+    Scene {
+        file: "sprites.png",
+        draw: sprites,
     },
 ];
 
@@ -650,6 +654,89 @@ fn polygons(display: &mut Display) -> SceneResult {
     for (x, label) in [(33, "concave"), (100, "EvenOdd"), (166, "NonZero")] {
         let text = Text::with_alignment(label, Point::new(x, 147), style, Alignment::Center);
         let Ok(_) = text.draw(t.inner());
+    }
+    Ok(())
+}
+
+/// Sprites: workload I1's image (8-bit alpha) turned and scaled, nearest and bilinear; a mosaic of
+/// opaque tiles sharing their edges under one turn; and a ring of small blended sprites.
+///
+/// Drawn into an Rgb565 framebuffer (blending reads the pixels back, which the simulator's
+/// display cannot through `AnyTarget`), then copied onto the display where it changed.
+fn sprites(display: &mut Display) -> SceneResult {
+    use rasterizer_core::raster::sprite::{draw_sprite, Affine, Sprite};
+    use rasterizer_core::texture::Filter;
+    let sprite = Sprite::from_bytes(fixtures::sprite::I1_IMAGE).map_err(|e| e.to_string())?;
+    let background = Rgb565::from(BACKGROUND);
+    let mut buf = vec![0u16; (WIDTH * HEIGHT) as usize];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, WIDTH, HEIGHT).map_err(|e| e.to_string())?;
+    let Ok(()) = fb.clear(background);
+    let fx = |v: f64| Fx16::from_bits((v * 65536.0).round() as i32);
+    let place = |cx: f64, cy: f64, deg: f64, scale: f64| {
+        let (sin, cos) = deg.to_radians().sin_cos();
+        let m = [[cos * scale, -sin * scale], [sin * scale, cos * scale]];
+        Affine {
+            m: m.map(|r| r.map(fx)),
+            t: [
+                cx - (m[0][0] + m[0][1]) * 16.0,
+                cy - (m[1][0] + m[1][1]) * 16.0,
+            ]
+            .map(fx),
+        }
+    };
+    let draw = |fb: &mut Framebuffer<Rgb565>, s: &Sprite, a: &Affine, f: Filter| {
+        draw_sprite(fb, s, a, f).map_err(|e| format!("{e:?}"))
+    };
+    draw(
+        &mut fb,
+        &sprite,
+        &place(36.0, 44.0, 25.0, 1.9),
+        Filter::Nearest,
+    )?;
+    draw(
+        &mut fb,
+        &sprite,
+        &place(100.0, 44.0, 25.0, 1.9),
+        Filter::Bilinear,
+    )?;
+    // Nine opaque tiles of the image, one turn: tile (i, j) moved by m (32 i, 32 j), exact in
+    // 16.16, so that neighbours share their edges.
+    let tile = sprite.without_alpha();
+    let grid = place(166.0, 40.0, -20.0, 0.42);
+    for j in -1..2 {
+        for i in -1..2 {
+            let mut a = grid;
+            for k in 0..2 {
+                let m = |c: usize| i64::from(a.m[k][c].to_bits());
+                let t = i64::from(grid.t[k].to_bits()) + m(0) * 32 * i + m(1) * 32 * j;
+                a.t[k] = Fx16::from_bits(t as i32);
+            }
+            draw(&mut fb, &tile, &a, Filter::Nearest)?;
+        }
+    }
+    // A ring of small sprites, each turned to face the centre.
+    for k in 0..12 {
+        let turn = f64::from(k) / 12.0;
+        let (cx, cy) = (
+            100.0 + 34.0 * (turn * TAU).cos(),
+            112.0 + 22.0 * (turn * TAU).sin(),
+        );
+        draw(
+            &mut fb,
+            &sprite,
+            &place(cx, cy, turn * 360.0, 0.3 + 0.25 * turn),
+            Filter::Nearest,
+        )?;
+    }
+    let changed = fb.bounding_box().points().filter_map(|p| {
+        let c = fb.pixel(p)?;
+        (c != background).then(|| Pixel(p, Rgb888::from(c)))
+    });
+    let Ok(()) = display.draw_iter(changed);
+    let style = MonoTextStyle::new(&FONT_6X10, Rgb888::new(200, 204, 220));
+    for (x, label) in [(36, "nearest"), (100, "bilinear"), (166, "tiles")] {
+        let text = Text::with_alignment(label, Point::new(x, 84), style, Alignment::Center);
+        let Ok(_) = text.draw(display);
     }
     Ok(())
 }

@@ -77,6 +77,13 @@ pub const REQUIRED: &[(&str, &str, &str)] = &[
     ("S1", "ours-band16", "ram_bytes"),
     ("S1", "ours-band16x2", "ram_bytes"),
     ("S1", "ours-band16", "text_bytes"),
+    ("I1", "ours", "instructions"),
+    ("I1", "ours", "per_primitive"),
+    ("I1", "ours", "pixels"),
+    ("I1id", "ours", "instructions"),
+    ("I1id", "ours", "per_primitive"),
+    ("I1id", "eg", "instructions"),
+    ("I1id", "eg", "per_primitive"),
 ];
 
 /// The order of renderers in the tables: the default first, then the same pipeline without its
@@ -405,7 +412,7 @@ fn speed_2d(f: &Figures) -> String {
         ],
         "lrrrrrll",
     );
-    for scene in ["L1", "T1", "T2", "G1", "P1"] {
+    for scene in ["L1", "T1", "T2", "G1", "P1", "I1", "I1id"] {
         let ours = f.get(scene, "ours", "per_primitive");
         let target = target::PER_PRIMITIVE_2D
             .iter()

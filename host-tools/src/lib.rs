@@ -7,5 +7,6 @@ pub mod figures;
 pub mod output;
 pub mod progress;
 pub mod scenefile;
+pub mod sprite;
 #[cfg(feature = "view")]
 pub mod view;

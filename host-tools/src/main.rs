@@ -36,6 +36,8 @@ enum Command {
     Demo(DemoArgs),
     /// Convert an OBJ file into the packed fixed-point mesh firmware embeds (or Rust source).
     Convert(host_tools::convert::ConvertArgs),
+    /// Convert a PNG into a sprite (Rgb565 with 0, 1, 4 or 8 bits of alpha) firmware reads in place.
+    Sprite(host_tools::sprite::SpriteArgs),
     /// Show a scene file in a live window, turned with the arrow keys or the mouse (feature `view`).
     ///
     /// Needs a display: X11 (DISPLAY) or Wayland (WAYLAND_DISPLAY), or a driver chosen with
@@ -108,6 +110,7 @@ fn main() -> ExitCode {
             ),
         },
         Command::Convert(args) => host_tools::convert::run(&args),
+        Command::Sprite(args) => host_tools::sprite::run(&args),
         #[cfg(feature = "view")]
         Command::View(args) => host_tools::view::run(&args),
         Command::Render(args) => host_tools::scenefile::render(&args),

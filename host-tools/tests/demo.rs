@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 /// The PNG files the demo promises (README.md links to them): the 2D ones, then the 3D ones.
-const FILES: [&str; 16] = [
+const FILES: [&str; 17] = [
     "lines_octants.png",
     "lines_gradient.png",
     "triangle_outlines.png",
@@ -13,6 +13,7 @@ const FILES: [&str; 16] = [
     "triangles_gouraud.png",
     "polygons.png",
     "clipping.png",
+    "sprites.png",
     "suzanne_wireframe.png",
     "suzanne_flat.png",
     "suzanne_gouraud.png",

@@ -796,3 +796,75 @@ fn matcap_key_picks_the_image() {
         &["line 6", "matcapp", "matcap"],
     );
 }
+
+/// `kind = "sprite"`: a PNG or a sprite file placed by its centre (an untransformed 2x2 red image
+/// covers exactly its four pixels), and the key's errors name the item and the cause.
+#[test]
+fn sprite_shapes_place_images() {
+    let dir = scratch("sprite");
+    let red = dir.join("red.png");
+    image::RgbImage::from_pixel(2, 2, image::Rgb([255, 0, 0]))
+        .save(&red)
+        .unwrap();
+    let shape = |extra: &str| {
+        format!(
+            "{OUTPUT}[[shapes]]\nkind = \"sprite\"\nimage = {red:?}\nat = [5.0, 7.0]\n{extra}\n"
+        )
+    };
+    let pixels = render_scene(&dir, "plain", &shape(""));
+    let drawn: Vec<usize> = pixels
+        .chunks(3)
+        .enumerate()
+        .filter(|(_, p)| *p != [0, 0, 0])
+        .map(|(i, p)| {
+            assert_eq!(p, [255, 0, 0]);
+            i
+        })
+        .collect();
+    assert_eq!(drawn, [6 * 32 + 4, 6 * 32 + 5, 7 * 32 + 4, 7 * 32 + 5]);
+    // Turned, scaled, translucent and bilinear all draw, and differently.
+    let turned = render_scene(&dir, "turned", &shape("angle = 30.0\nscale = [3.0, 2.0]"));
+    let faint = render_scene(&dir, "faint", &shape("scale = 3.0\nopacity = 100"));
+    assert_ne!(turned, pixels);
+    assert!(faint.chunks(3).any(|p| p[0] > 0 && p[0] < 255));
+    let i1 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/sprites/i1.bin");
+    let from_bin = render_scene(
+        &dir,
+        "bin",
+        &format!("{OUTPUT}[[shapes]]\nkind = \"sprite\"\nimage = {i1:?}\nat = [16.0, 12.0]\nfilter = \"bilinear\"\n"),
+    );
+    assert!(from_bin.chunks(3).filter(|p| *p != [0, 0, 0]).count() > 300);
+    let junk = dir.join("junk.bin");
+    std::fs::write(&junk, b"RSPR junk").unwrap();
+    let cases: &[(&str, String, &[&str])] = &[
+        (
+            "missing",
+            shape("").replace("red.png", "none.png"),
+            &["[[shapes]]", "sprite image", "none.png"],
+        ),
+        (
+            "junk",
+            shape("").replace(&*red.to_string_lossy(), &junk.to_string_lossy()),
+            &["[[shapes]]", "junk.bin", "bytes where the sprite needs"],
+        ),
+        (
+            "flat",
+            shape("scale = [1.0, 0.0]"),
+            &["[[shapes]]", "sprite", "singular"],
+        ),
+        (
+            "huge",
+            shape("scale = 40000.0"),
+            &["[[shapes]]", "sprite", "16.16"],
+        ),
+        (
+            "far",
+            shape("").replace("at = [5.0, 7.0]", "at = [1e9, 7.0]"),
+            &["[[shapes]]", "sprite"],
+        ),
+        ("bad_filter", shape("filter = \"cubic\""), &["cubic"]),
+    ];
+    for (name, scene, needles) in cases {
+        expect_failure(&dir, name, scene, needles);
+    }
+}

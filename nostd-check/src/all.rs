@@ -358,6 +358,44 @@ fn draw_frame_list() -> u32 {
     opaque.stats().drawn + glass.stats().drawn
 }
 
+/// Workload I1's sprite from flash, turned and scaled into a framebuffer and a band, every
+/// filter, blended and opaque, and a 1-bit and a 4-bit sprite of the same texels.
+fn draw_sprites() -> usize {
+    use rasterizer_core::raster::sprite::{draw_sprite, AlphaBits, Sprite};
+    use rasterizer_core::texture::Filter;
+    let Ok(sprite) = Sprite::from_bytes(fixtures::sprite::I1_IMAGE) else {
+        return 0;
+    };
+    let colors = sprite.color_bytes();
+    let keyed = Sprite::from_parts(32, 32, AlphaBits::One, colors, &[0xA5; 4 * 32]);
+    let soft = Sprite::from_parts(32, 32, AlphaBits::Four, colors, &[0x9C; 16 * 32]);
+    let mut drawn = 0;
+    let mut buf = [0u16; 64 * 48];
+    let mut strip = [0u16; 64 * 8];
+    let p = black_box(fixtures::sprite::Placement {
+        cx: 30,
+        cy: 20,
+        degrees: 33,
+        scale_128: 150,
+    });
+    for s in [Ok(sprite), keyed, soft, Ok(sprite.without_alpha())]
+        .into_iter()
+        .flatten()
+    {
+        for filter in [Filter::Nearest, Filter::Bilinear] {
+            if let Ok(mut fb) = Framebuffer::<Rgb565>::new(&mut buf, 64, 48) {
+                drawn += usize::from(draw_sprite(&mut fb, &s, &p.transform(), filter).is_ok());
+            }
+            if let Ok(fb) = Framebuffer::<Rgb565>::new(&mut strip, 64, 8) {
+                let mut band = Band::new(fb, 16);
+                drawn += usize::from(draw_sprite(&mut band, &s, &p.transform(), filter).is_ok());
+            }
+        }
+    }
+    black_box((&buf, &strip));
+    drawn
+}
+
 #[unsafe(no_mangle)]
 pub extern "C" fn main() -> i32 {
     // Rgb565 through the framebuffer's own fast paths, in a static buffer as firmware would.
@@ -399,6 +437,7 @@ pub extern "C" fn main() -> i32 {
         );
     }
     black_box(&strip);
+    black_box(draw_sprites());
     let mut small = [0u16; 64 * 48];
     black_box(draw_3d(&mut small));
     // Nothing drawn through the list means it refused something: fail the run.

@@ -14,7 +14,7 @@
 //! texture) through M1's camera instead.
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, `aa2d` (an anti-aliased line 3 pixels
 //! wide), each one call into a 320 x 240 Rgb565
-//! framebuffer. A whole screen: `framelist` for workload S1 through the frame list in 16-row
+//! framebuffer; `sprite`, a few of workload I1's sprites. A whole screen: `framelist` for workload S1 through the frame list in 16-row
 //! bands (module `s1`; `double` for two band buffers). No feature at all gives the empty
 //! baseline (start-up and panic handler only).
 //!
@@ -89,6 +89,28 @@ fn draw_2d() {
             black_box(3),
             Rgb565::WHITE,
         );
+    }
+    #[cfg(feature = "sprite")]
+    {
+        use rasterizer_core::raster::sprite::{draw_sprite, Affine, Sprite};
+        use rasterizer_core::texture::Filter;
+        // I1's image from flash, a few of its placements (opaque, so the compiler cannot fold
+        // the transforms away), over a cleared frame.
+        let _ = fb.clear(Rgb565::BLACK);
+        if let Ok(sprite) = Sprite::from_bytes(fixtures::sprite::I1_IMAGE) {
+            for (i, deg) in [0, 37, 90, 211].into_iter().enumerate() {
+                let p = black_box(fixtures::sprite::Placement {
+                    cx: 40 + 80 * i as i32,
+                    cy: 120,
+                    degrees: deg,
+                    scale_128: 64 + 48 * i as i32,
+                });
+                let _ = draw_sprite(&mut fb, &sprite, &p.transform(), Filter::Nearest);
+                let _ = draw_sprite(&mut fb, &sprite, &p.transform(), Filter::Bilinear);
+                let opaque: Affine = p.identity_transform();
+                let _ = draw_sprite(&mut fb, &sprite.without_alpha(), &opaque, Filter::Nearest);
+            }
+        }
     }
     #[cfg(feature = "polygon2d")]
     {

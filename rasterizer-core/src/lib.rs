@@ -1,9 +1,9 @@
 //! A `no_std`, allocation-free, integer-only rasterizer for microcontroller displays.
 //!
-//! Draw points, lines, triangles and polygons into a [`surface::Framebuffer`] over a slice you own,
-//! or into any embedded-graphics `DrawTarget` through [`surface::AnyTarget`]; draw lit meshes
-//! through [`pipeline::Pipeline`], whole or in bands. One `use` of the [`prelude`] brings what a
-//! typical program names. Each task below is a doc test.
+//! Draw points, lines, triangles, polygons and sprites into a [`surface::Framebuffer`] over a
+//! slice you own, or into any embedded-graphics `DrawTarget` through [`surface::AnyTarget`]; draw
+//! lit meshes through [`pipeline::Pipeline`], whole or in bands. One `use` of the [`prelude`]
+//! brings what a typical program names. Each task below is a doc test.
 //!
 //! # A line
 //! ```
@@ -26,6 +26,24 @@
 //! let v = [SubPoint::new(160 * 16, 8), SubPoint::new(300 * 16, 230 * 16), SubPoint::new(20 * 16, 200 * 16)];
 //! fill_triangle_gouraud(&mut fb, v, [Rgb565::RED, Rgb565::GREEN, Rgb565::BLUE]).unwrap();
 //! assert_ne!(fb.pixel(Point::new(160, 150)), Some(Rgb565::BLACK));
+//! ```
+//!
+//! # A sprite
+//! An image in the sprite format, read in place (firmware uses `include_bytes!` on a file that
+//! `host-tools sprite` made from a PNG), turned 30 degrees and doubled about its centre.
+//! ```
+//! use rasterizer_core::prelude::*;
+//! use rasterizer_core::texture::Filter;
+//!
+//! // A 1x1 white sprite without alpha: the 12-byte header, then one little-endian texel.
+//! let bytes = [b'R', b'S', b'P', b'R', 1, 0, 1, 0, 1, 0, 0, 0, 0xFF, 0xFF];
+//! let sprite = Sprite::from_bytes(&bytes).unwrap();
+//! let mut buf = [0u16; 32 * 32];
+//! let mut fb = Framebuffer::<Rgb565>::new(&mut buf, 32, 32).unwrap();
+//! let at = [Fx16::from_int(16), Fx16::from_int(16)];
+//! let turn = Affine::rotate_scale(1, 1, Angle::from_degrees(30), Fx16::from_int(2), at);
+//! draw_sprite(&mut fb, &sprite, &turn, Filter::Nearest).unwrap();
+//! assert_eq!(fb.pixel(Point::new(16, 16)), Some(Rgb565::WHITE));
 //! ```
 //!
 //! # A lit mesh

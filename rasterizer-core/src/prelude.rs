@@ -23,6 +23,7 @@ pub use crate::raster::line::{
 };
 pub use crate::raster::point::draw_point;
 pub use crate::raster::polygon::{fill_polygon, FillRule, Polygon};
+pub use crate::raster::sprite::{draw_sprite, Affine, Sprite};
 pub use crate::raster::triangle::{
     draw_triangle, fill_triangle, fill_triangle_alpha, fill_triangle_gouraud,
 };

@@ -569,6 +569,7 @@ fn plan<C: SceneColor>(shape: &Shape) -> Plan<'_, C> {
             let bounds = Rectangle::new(pixel(*at), Size::new(1, 1));
             return item(shape, bounds, clip);
         }
+        Shape::Sprite { .. } => return item(shape, super::sprite::bounds(shape), clip),
         Shape::Polygon {
             vertices,
             fill_rule,

@@ -1110,7 +1110,8 @@ pub(super) fn clip_and_opacity(shape: &Shape) -> (Option<Rectangle>, Option<u8>)
         | Shape::Line { clip, opacity, .. }
         | Shape::Triangle { clip, opacity, .. }
         | Shape::Outline { clip, opacity, .. }
-        | Shape::Polygon { clip, opacity, .. } => (*clip, *opacity),
+        | Shape::Polygon { clip, opacity, .. }
+        | Shape::Sprite { clip, opacity, .. } => (*clip, *opacity),
     };
     // The loader checked that width and height are not negative.
     let clip = clip.map(|[x, y, w, h]| {
@@ -1201,7 +1202,7 @@ pub(super) fn list_shape<C: From<Rgb888>>(shape: &Shape) -> Option<frame::Shape<
             vertices: vertices.map(pixel),
             color: color(*c),
         }),
-        Shape::Point { .. } | Shape::Polygon { .. } => None,
+        Shape::Point { .. } | Shape::Polygon { .. } | Shape::Sprite { .. } => None,
     }
 }
 
@@ -1229,6 +1230,10 @@ where
                 // The loader checked the vertex count.
                 Err(_) => Ok(()),
             }
+        }
+        Shape::Sprite { .. } => {
+            super::sprite::draw(t, shape);
+            Ok(())
         }
         _ => list_shape(shape).map_or(Ok(()), |s| s.draw(t).map_err(drop)),
     };

@@ -488,6 +488,55 @@ pub enum Shape {
         #[serde(default, deserialize_with = "clip")]
         clip: Option<[i32; 4]>,
     },
+    /// An image turned, scaled and sheared about its centre, which lands on `at`
+    /// (`raster::sprite::draw_sprite`).
+    Sprite {
+        /// The image: a PNG (converted as `host-tools sprite` does, alpha kept exactly) or a
+        /// sprite file (`.bin`), relative to the scene file.
+        image: String,
+        /// Where the image's centre lands, in pixels.
+        at: [f64; 2],
+        /// Clockwise turn in degrees (default 0).
+        #[serde(default)]
+        angle: f64,
+        /// Scale, uniform or `[x, y]` along the image's own axes (default 1).
+        #[serde(default)]
+        scale: SpriteScaleDef,
+        /// Horizontal shear of the image before it turns: x += shear * y (default 0).
+        #[serde(default)]
+        shear: f64,
+        /// `nearest` (default) or `bilinear`.
+        #[serde(default)]
+        filter: TextureFilterDef,
+        /// Opacity 0 ..= 255 (default opaque), times the image's own alpha.
+        #[serde(default, deserialize_with = "opacity")]
+        opacity: Option<u8>,
+        /// Optional clip rectangle.
+        #[serde(default, deserialize_with = "clip")]
+        clip: Option<[i32; 4]>,
+        /// The image file read (set by the loader).
+        #[serde(skip)]
+        file: std::path::PathBuf,
+        /// The sprite bytes (set by the loader).
+        #[serde(skip)]
+        data: Vec<u8>,
+    },
+}
+
+/// A sprite's uniform or per-axis scale.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum SpriteScaleDef {
+    /// The same along both axes.
+    Uniform(f64),
+    /// Along the image's x and y.
+    Axes([f64; 2]),
+}
+
+impl Default for SpriteScaleDef {
+    fn default() -> Self {
+        Self::Uniform(1.0)
+    }
 }
 
 /// A polygon fill rule.

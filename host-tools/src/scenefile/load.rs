@@ -64,6 +64,10 @@ impl Scene {
                     .iter()
                     .filter_map(|m| m.matcap.as_ref()?.file.as_deref()),
             )
+            .chain(self.shapes.iter().filter_map(|s| match s {
+                Shape::Sprite { file, .. } => Some(file.as_path()),
+                _ => None,
+            }))
             .collect()
     }
 }
@@ -326,8 +330,10 @@ pub fn load_with_warnings(path: &Path, warnings: &mut Vec<String>) -> Result<Sce
     let mut shapes = Vec::new();
     for s in file.shapes {
         let span = s.span();
-        let shape = s.into_inner();
-        check_shape(&shape).map_err(|e| format!("{}: [[shapes]] {e}", at(span)))?;
+        let mut shape = s.into_inner();
+        super::sprite::load(dir, &mut shape)
+            .and_then(|()| check_shape(&shape))
+            .map_err(|e| format!("{}: [[shapes]] {e}", at(span)))?;
         shapes.push(shape);
     }
 
@@ -428,6 +434,10 @@ fn check_shape(shape: &Shape) -> Result<(), String> {
             (vertices.to_vec(), clip)
         }
         Shape::Outline { vertices, clip, .. } => (vertices.to_vec(), clip),
+        Shape::Sprite { at, clip, .. } => {
+            super::sprite::transform(shape).map_err(|e| format!("sprite: {e}"))?;
+            (vec![*at], clip)
+        }
         Shape::Polygon { vertices, clip, .. } => {
             if vertices.len() < 3 || vertices.len() > MAX_POLYGON {
                 return Err(format!(
@@ -444,6 +454,7 @@ fn check_shape(shape: &Shape) -> Result<(), String> {
         Shape::Triangle { .. } => "triangle",
         Shape::Outline { .. } => "outline",
         Shape::Polygon { .. } => "polygon",
+        Shape::Sprite { .. } => "sprite",
     };
     let filled = matches!(shape, Shape::Triangle { .. } | Shape::Polygon { .. });
     limits::check_pixels(&pts, filled).map_err(|e| format!("{kind}: {e}"))?;

@@ -9,6 +9,7 @@ mod format;
 pub mod limits;
 mod load;
 mod reference;
+mod sprite;
 
 pub use counting::Counting;
 pub use draw::{render_3d, render_frame, render_image, render_posed, FrameStats, Pose};

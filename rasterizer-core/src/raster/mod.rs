@@ -1,4 +1,5 @@
-//! The 2D rasterizers: points, lines, triangles and polygons, drawn into any [`crate::surface::Surface`].
+//! The 2D rasterizers: points, lines, triangles, polygons and sprites, drawn into any
+//! [`crate::surface::Surface`].
 //!
 //! Every rasterizer clips to the surface's clip area before it writes, so out-of-bounds pixels never
 //! reach the target, and hands the target whole spans where the primitive has them.
@@ -9,4 +10,5 @@ pub mod interp;
 pub mod line;
 pub mod point;
 pub mod polygon;
+pub mod sprite;
 pub mod triangle;

@@ -126,6 +126,26 @@ pub trait Storage: Channels {
             Self::set(row, i, blend(color, dst, alpha));
         }
     }
+    /// Draws pixels `x .. x + len` of a row with the colours and opacities `shade` yields, left
+    /// to right: 255 stores, 0 skips, others blend ([`crate::color::blend`]).
+    #[inline(always)]
+    fn blend_shade<F: FnMut() -> (Self, u8)>(
+        row: &mut [Self::Word],
+        x: usize,
+        len: usize,
+        mut shade: F,
+    ) {
+        for i in x..x + len {
+            match shade() {
+                (c, 255) => Self::set(row, i, c),
+                (_, 0) => {}
+                (c, a) => {
+                    let dst = Self::get(row, i);
+                    Self::set(row, i, blend(c, dst, a));
+                }
+            }
+        }
+    }
     /// Walks a line through the whole buffer (`stride` words per row); every point is in bounds.
     fn walk(buf: &mut [Self::Word], stride: usize, points: LinePoints, color: Self) {
         for p in points {
@@ -305,6 +325,24 @@ impl Storage for Rgb565 {
             let dg = blend_channel(g, ((d >> 5) & 0x3F) as u8, alpha);
             let db = blend_channel(b, (d & 0x1F) as u8, alpha);
             *w = (u16::from(dr) << 11) | (u16::from(dg) << 5) | u16::from(db);
+        }
+    }
+    #[inline(always)]
+    fn blend_shade<F: FnMut() -> (Self, u8)>(row: &mut [u16], x: usize, len: usize, mut shade: F) {
+        for w in &mut row[x..x + len] {
+            let (c, a) = shade();
+            match a {
+                255 => *w = RawU16::from(c).into_inner(),
+                0 => {}
+                _ => {
+                    // As `blend` above, on the packed word.
+                    let d = *w;
+                    let dr = blend_channel(c.r(), (d >> 11) as u8, a);
+                    let dg = blend_channel(c.g(), ((d >> 5) & 0x3F) as u8, a);
+                    let db = blend_channel(c.b(), (d & 0x1F) as u8, a);
+                    *w = (u16::from(dr) << 11) | (u16::from(dg) << 5) | u16::from(db);
+                }
+            }
         }
     }
 }
@@ -712,6 +750,18 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         );
         Ok(())
     }
+
+    #[inline(always)]
+    fn blend_shade_span_in_clip<F: FnMut() -> (C, u8)>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        shade: F,
+    ) -> Result<(), BlendError<Self::Error>> {
+        C::blend_shade(self.row_mut(y as usize), x as usize, len as usize, shade);
+        Ok(())
+    }
 }
 
 /// One horizontal strip of a screen rendered into a small buffer: a [`Framebuffer`] of `rows`
@@ -859,5 +909,16 @@ impl<C: Storage> Surface for Band<'_, C> {
     ) -> Result<(), BlendError<Self::Error>> {
         self.fb
             .blend_span_in_clip(x, y - self.y0, len, color, alpha)
+    }
+
+    #[inline(always)]
+    fn blend_shade_span_in_clip<F: FnMut() -> (C, u8)>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        shade: F,
+    ) -> Result<(), BlendError<Self::Error>> {
+        self.fb.blend_shade_span_in_clip(x, y - self.y0, len, shade)
     }
 }

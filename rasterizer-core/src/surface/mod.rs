@@ -194,6 +194,38 @@ pub trait Surface: DrawTarget {
         let _ = (x, y, len, color, alpha);
         Err(BlendError::CannotReadBack)
     }
+
+    /// Draws `len` pixels of row `y` from column `x` on, left to right, each with the colour and
+    /// opacity `shade` returns for it (one call per pixel): opacity 255 stores the colour, 0
+    /// leaves the pixel, anything between blends it as [`Surface::blend_span_in_clip`] does.
+    /// Sprites with alpha draw through it. The span lies inside [`Surface::clip_area`].
+    ///
+    /// # Errors
+    /// The default writes pixel by pixel through [`Surface::fill_span_in_clip`] and
+    /// [`Surface::blend_span_in_clip`], so only a pixel that needs a blend can meet
+    /// [`BlendError::CannotReadBack`]; callers with such pixels check [`Surface::READ_BACK`] first.
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn blend_shade_span_in_clip<F: FnMut() -> (Self::Color, u8)>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        mut shade: F,
+    ) -> Result<(), BlendError<Self::Error>> {
+        for i in 0..len {
+            let (color, alpha) = shade();
+            let px = x.wrapping_add(i as i32);
+            match alpha {
+                255 => self.fill_span_in_clip(px, y, 1, color)?,
+                0 => {}
+                _ => self.blend_span_in_clip(px, y, 1, color, alpha)?,
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The per-pixel work of a span with a depth test ([`Surface::shade_span_depth_in_clip`]): a
@@ -394,5 +426,16 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
         alpha: u8,
     ) -> Result<(), BlendError<Self::Error>> {
         self.inner.blend_span_in_clip(x, y, len, color, alpha)
+    }
+
+    #[inline(always)]
+    fn blend_shade_span_in_clip<F: FnMut() -> (Self::Color, u8)>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        shade: F,
+    ) -> Result<(), BlendError<Self::Error>> {
+        self.inner.blend_shade_span_in_clip(x, y, len, shade)
     }
 }
