@@ -17,9 +17,9 @@
 use embedded_graphics::image::{Image, ImageRaw};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use embedded_graphics::primitives::Rectangle;
 use fixtures::scenes::{HEIGHT, PIXELS, WIDTH};
 use fixtures::sprite::{i1, Placement, I1_IMAGE, I1_SIDE};
+use host_tools::scenefile::Counting;
 use rasterizer_core::prelude::*;
 use rasterizer_core::raster::sprite::{draw_sprite, Affine, Sprite};
 use rasterizer_core::texture::Filter;
@@ -55,74 +55,6 @@ fn frame_i1id_eg(fb: &mut Framebuffer<Rgb565>, raw: &ImageRaw<'_, Rgb565>, at: &
     black_box("frame_i1id_eg");
     for &p in at {
         let Ok(()) = Image::new(raw, p).draw(fb);
-    }
-}
-
-/// Counts the pixels written through it, blended ones included, into a framebuffer.
-struct Counting<'a, 'b> {
-    fb: &'a mut Framebuffer<'b, Rgb565>,
-    pixels: u64,
-}
-
-impl OriginDimensions for Counting<'_, '_> {
-    fn size(&self) -> Size {
-        self.fb.size()
-    }
-}
-
-impl DrawTarget for Counting<'_, '_> {
-    type Color = Rgb565;
-    type Error = core::convert::Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
-        &mut self,
-        it: I,
-    ) -> Result<(), Self::Error> {
-        let n = &mut self.pixels;
-        self.fb.draw_iter(it.into_iter().inspect(|_| *n += 1))
-    }
-    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
-        &mut self,
-        area: &Rectangle,
-        colors: I,
-    ) -> Result<(), Self::Error> {
-        let inside = area.intersection(&self.fb.bounding_box()).size;
-        self.pixels += u64::from(inside.width * inside.height);
-        self.fb.fill_contiguous(area, colors)
-    }
-}
-
-impl Surface for Counting<'_, '_> {
-    fn fill_span_in_clip(
-        &mut self,
-        x: i32,
-        y: i32,
-        len: u32,
-        c: Rgb565,
-    ) -> Result<(), Self::Error> {
-        self.pixels += u64::from(len);
-        self.fb.fill_span_in_clip(x, y, len, c)
-    }
-    fn shade_span_in_clip<F: FnMut() -> Rgb565>(
-        &mut self,
-        x: i32,
-        y: i32,
-        len: u32,
-        shade: F,
-    ) -> Result<(), Self::Error> {
-        self.pixels += u64::from(len);
-        self.fb.shade_span_in_clip(x, y, len, shade)
-    }
-    const READ_BACK: bool = true;
-    fn blend_span_in_clip(
-        &mut self,
-        x: i32,
-        y: i32,
-        len: u32,
-        c: Rgb565,
-        alpha: u8,
-    ) -> Result<(), BlendError<Self::Error>> {
-        self.pixels += u64::from(len);
-        self.fb.blend_span_in_clip(x, y, len, c, alpha)
     }
 }
 
@@ -168,10 +100,7 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     }
     if stats {
-        let mut counting = Counting {
-            fb: &mut fb,
-            pixels: 0,
-        };
+        let mut counting = Counting::new(fb);
         let ok = match renderer {
             "ours" => turned
                 .iter()

@@ -110,6 +110,22 @@ impl<T: Surface> Surface for Counting<T> {
         self.inner.shade_span_in_clip(x, y, len, shade)
     }
 
+    fn blend_shade_span_in_clip<F: FnMut() -> (Self::Color, u8)>(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        mut shade: F,
+    ) -> Result<(), BlendError<Self::Error>> {
+        // A pixel of opacity 0 is left as it is: not written, so not counted.
+        let pixels = &mut self.pixels;
+        self.inner.blend_shade_span_in_clip(x, y, len, || {
+            let (color, alpha) = shade();
+            *pixels += u64::from(alpha != 0);
+            (color, alpha)
+        })
+    }
+
     fn shade_span_depth_in_clip<F: DepthSpan<Self::Color>>(
         &mut self,
         x: i32,
@@ -177,5 +193,20 @@ mod tests {
         ])
         .unwrap();
         assert_eq!(c.pixels, 16 + drawn + 1);
+    }
+
+    #[test]
+    fn counts_the_pixels_a_sprite_writes() {
+        use rasterizer_core::raster::sprite::{draw_sprite, Affine, AlphaBits, Sprite};
+        use rasterizer_core::texture::Filter;
+        // A 2 x 2 image, opacities 255, 0, 128 and 0: two pixels are written, two left alone.
+        let texels = [0xFFu8; 8];
+        let sprite =
+            Sprite::from_parts(2, 2, AlphaBits::Eight, &texels, &[255, 0, 128, 0]).unwrap();
+        let mut words = [0u16; 8 * 4];
+        let mut c = Counting::new(Framebuffer::<Rgb565>::new(&mut words, 8, 4).unwrap());
+        draw_sprite(&mut c, &sprite, &Affine::translation(3, 1), Filter::Nearest).unwrap();
+        let written = c.inner.as_slice().iter().filter(|&&w| w != 0).count() as u64;
+        assert_eq!((c.pixels, written), (2, 2));
     }
 }
