@@ -697,12 +697,11 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         depth: &mut [u16],
         shade: F,
     ) -> Result<(), Self::Error> {
-        C::shade_depth(
-            &mut self.buf[y as usize * self.stride..],
-            x as usize,
-            depth,
-            shade,
-        );
+        // The span's own words, cut with one range check.
+        let start = y as usize * self.stride + x as usize;
+        if let Some(row) = self.buf.get_mut(start..start + depth.len()) {
+            C::shade_depth(row, 0, depth, shade);
+        }
         Ok(())
     }
 
