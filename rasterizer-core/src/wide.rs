@@ -73,41 +73,43 @@ pub(crate) fn divrem_narrow(n: u64, d: core::num::NonZeroU64) -> (u64, u64) {
     }
 }
 
-/// Exact quotients by one divisor for the price of one 64-bit division: `m = floor((2^63 - 1) /
-/// d)` once, then each `floor(n / d)` is the high half of a signed 64 x 64-bit product and one
+/// Exact quotients by one divisor for the price of one 64-bit division: `m = floor((2^64 - 1) /
+/// d)` once, then each `floor(n / d)` is the high half of an unsigned 64 x 64-bit product and one
 /// correction step.
 ///
-/// Why one step suffices, for `|n| < 2^62`: `m = 2^63 / d - e` with `0 < e <= 1`, so `n m / 2^63`
-/// lies within `|n| / 2^63 < 1/2` of `n / d` (below it for `n >= 0`, above it for `n < 0`): its
-/// floor is the quotient or one off, and the remainder `n - q d` (in `-d .. 2 d`) tells which.
+/// A negative `n` is folded onto `u = !n = -n - 1 >= 0`, whose quotient gives the floor back as
+/// `!floor(u / d)`. Why one step suffices: `u < 2^63` and `m > 2^64 / d - 1`, so `u m / 2^64`
+/// lies below `u / d` by less than `u / 2^64 + u / (d 2^64) < 1`: its floor is the quotient or
+/// one less, and the remainder `u - q d` (in `0 .. 2 d`) tells which.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Reciprocal {
-    d: i64,
-    m: i64,
+    d: u64,
+    m: u64,
 }
 
 impl Reciprocal {
     /// The reciprocal of 1, which costs no division.
-    pub(crate) const ONE: Self = Self { d: 1, m: i64::MAX };
+    pub(crate) const ONE: Self = Self { d: 1, m: u64::MAX };
 
-    /// The reciprocal of `d` (at most `i64::MAX`; a larger one is taken as `i64::MAX`).
+    /// The reciprocal of `d`.
     #[inline(always)]
     pub(crate) fn new(d: core::num::NonZeroU64) -> Self {
-        let d = core::num::NonZeroU64::new(d.get().min(i64::MAX as u64)).unwrap_or(d);
         Self {
-            d: d.get() as i64,
-            m: div_u64(i64::MAX as u64, d) as i64,
+            d: d.get(),
+            m: div_u64(u64::MAX, d),
         }
     }
 
-    /// `floor(n / d)`, exactly (as `n.div_euclid(d)`), for `|n| < 2^62`. Outside that range
-    /// the result may be one off, but nothing overflows.
+    /// `floor(n / d)`, exactly (as `n.div_euclid(d)`), for every `n`.
     #[inline(always)]
     pub(crate) fn floor(&self, n: i64) -> i64 {
-        let q = ((i128::from(n) * i128::from(self.m)) >> 63) as i64;
-        let r = n.wrapping_sub(q.wrapping_mul(self.d));
-        q.wrapping_add(i64::from(r >= self.d))
-            .wrapping_sub(i64::from(r < 0))
+        // All ones for a negative n: u = !n then, n itself otherwise.
+        let sign = n >> 63;
+        let u = (n ^ sign) as u64;
+        let q = ((u128::from(u) * u128::from(self.m)) >> 64) as u64;
+        // q <= u / d, so neither the product nor the remainder wraps.
+        let q = q + u64::from(u - q * self.d >= self.d);
+        q as i64 ^ sign
     }
 }
 
@@ -143,36 +145,54 @@ mod tests {
             x ^= x << 17;
             x
         };
-        let edge = [1, 2, 3, 7, (1 << 32) - 1, 1 << 32, 1 << 61, (1 << 63) - 1];
-        let limit = (1i64 << 62) - 1;
-        let numerators = [0, 1, -1, limit, -limit, limit - 5, 1 - limit];
+        let edge = [
+            1,
+            2,
+            3,
+            7,
+            (1 << 32) - 1,
+            1 << 32,
+            1 << 61,
+            (1 << 63) - 1,
+            1 << 63,
+            u64::MAX,
+        ];
+        let numerators = [0, 1, -1, i64::MAX, i64::MIN, i64::MAX - 5, i64::MIN + 5];
         for _ in 0..20_000 {
             // Divisors and numerators of every size, as the planes of tiny and huge triangles.
-            let d = (next() >> (1 + next() % 63)).max(1);
-            let n = (next() as i64) >> (2 + next() % 62);
+            let d = (next() >> (next() % 64)).max(1);
+            let n = (next() as i64) >> (next() % 64);
             let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
             for n in numerators.iter().copied().chain([n]) {
-                let expected = n.div_euclid(d as i64);
+                let expected = i128::from(n).div_euclid(i128::from(d)) as i64;
                 assert_eq!(r.floor(n), expected, "{n} / {d}");
             }
         }
         for d in edge {
             let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
             for n in numerators {
-                let expected = n.div_euclid(d as i64);
+                let expected = i128::from(n).div_euclid(i128::from(d)) as i64;
                 assert_eq!(r.floor(n), expected, "{n} / {d}");
             }
         }
     }
 
     #[test]
-    fn reciprocal_never_overflows_outside_its_range() {
-        for d in [1u64, 3, 1 << 40, u64::MAX] {
+    fn reciprocal_is_exact_at_the_extremes() {
+        for d in [1u64, 2, 3, 1 << 40, (1 << 63) - 1, 1 << 63, u64::MAX] {
             let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
-            for n in [i64::MIN, i64::MAX, i64::MIN + 1, 1 << 62, -(1 << 62)] {
-                // Within one of the quotient (of the divisor clamped to i64::MAX).
-                let d = d.min(i64::MAX as u64) as i64;
-                assert!((r.floor(n) - n.div_euclid(d)).abs() <= 1, "{n} / {d}");
+            for n in [
+                i64::MIN,
+                i64::MAX,
+                i64::MIN + 1,
+                i64::MAX - 1,
+                1 << 62,
+                -(1 << 62),
+                0,
+                -1,
+            ] {
+                let expected = i128::from(n).div_euclid(i128::from(d)) as i64;
+                assert_eq!(r.floor(n), expected, "{n} / {d}");
             }
         }
     }
