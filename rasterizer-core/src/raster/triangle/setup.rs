@@ -24,7 +24,10 @@ impl Sorted {
         if !v.iter().all(|p| p.in_guard_band()) {
             return None;
         }
-        let key = |i: usize| (v[i].y, v[i].x);
+        // (y, x) in one integer: y above, x moved up by 2^31 below (in 0 .. 2^32), so that
+        // integer order is the pair's order and each comparison is one.
+        let keys = [0, 1, 2].map(|i| (i64::from(v[i].y) << 32) + i64::from(v[i].x) + (1 << 31));
+        let key = |i: usize| keys[i];
         let mut order = [0usize, 1, 2];
         if key(order[1]) < key(order[0]) {
             order.swap(0, 1);
