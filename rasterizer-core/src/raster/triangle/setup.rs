@@ -317,9 +317,13 @@ mod tests {
         };
         let s = 1i64 << 4;
         for _ in 0..200_000 {
-            // Vertices within a few pixels of each other, some on pixel centres and rows.
+            // Vertices within a few pixels of each other; now and then on a grid of half
+            // pixels, so that they fall on pixel centres, share rows (flat tops and bottoms)
+            // and put centres exactly on edges.
             let (cx, cy) = (next(48 * 16) - 64, next(40 * 16) - 64);
-            let v = [0, 1, 2].map(|_| SubPoint::new(cx + next(80) - 40, cy + next(80) - 40));
+            let grid = [1, 1, 8, 16][next(4) as usize];
+            let mut near = |c: i32| (c + next(80) - 40) / grid * grid;
+            let v = [0, 1, 2].map(|_| SubPoint::new(near(cx), near(cy)));
             let Some(t) = Sorted::new(&v) else { continue };
             let [v0, v1, v2] = t.v;
             let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
