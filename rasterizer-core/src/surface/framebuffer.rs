@@ -105,6 +105,17 @@ pub trait Storage: Channels {
             }
         }
     }
+    /// [`Storage::shade_depth`] on the row that starts at word `row` of the whole buffer.
+    #[inline(always)]
+    fn shade_depth_at<F: DepthSpan<Self>>(
+        buf: &mut [Self::Word],
+        row: usize,
+        x: usize,
+        depth: &mut [u16],
+        shade: F,
+    ) {
+        Self::shade_depth(&mut buf[row..], x, depth, shade);
+    }
     /// Fills pixels `x .. x + len` of row `y` of the whole buffer (`stride` words per row).
     #[inline]
     fn fill_span(
@@ -298,6 +309,20 @@ impl Storage for Rgb565 {
     fn shade<F: FnMut() -> Self>(row: &mut [u16], x: usize, len: usize, mut shade: F) {
         for w in &mut row[x..x + len] {
             *w = RawU16::from(shade()).into_inner();
+        }
+    }
+    #[inline(always)]
+    fn shade_depth_at<F: DepthSpan<Self>>(
+        buf: &mut [u16],
+        row: usize,
+        x: usize,
+        depth: &mut [u16],
+        shade: F,
+    ) {
+        // The span's own words (one a pixel), cut with one range check.
+        let start = row + x;
+        if let Some(span) = buf.get_mut(start..start + depth.len()) {
+            Self::shade_depth(span, 0, depth, shade);
         }
     }
     #[inline(always)]
@@ -697,11 +722,7 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         depth: &mut [u16],
         shade: F,
     ) -> Result<(), Self::Error> {
-        // The span's own words, cut with one range check.
-        let start = y as usize * self.stride + x as usize;
-        if let Some(row) = self.buf.get_mut(start..start + depth.len()) {
-            C::shade_depth(row, 0, depth, shade);
-        }
+        C::shade_depth_at(self.buf, y as usize * self.stride, x as usize, depth, shade);
         Ok(())
     }
 
