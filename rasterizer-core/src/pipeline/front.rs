@@ -12,7 +12,7 @@ use crate::geom::{SubPoint, MAX_VARYINGS};
 use crate::math::{Scalar, Vec4};
 use crate::mesh::MeshSource;
 use crate::numerics::{Dither, Numerics, SpanStart};
-use crate::raster::fused::{fill_fused, FusedColor, FusedVertex, Precision};
+use crate::raster::fused::{fill_fused, misses_every_pixel, FusedColor, FusedVertex, Precision};
 use crate::raster::interp::{fill_triangle_interp_with, ScreenVertex};
 use crate::shade::Shading;
 use crate::surface::Surface;
@@ -295,6 +295,22 @@ where
         stats.drawn += 1;
         let p = v.map(|(x, y, _)| SubPoint::raw(x, y));
         if Self::FUSED {
+            // A triangle whose bounds hold four pixel centres at most and that covers none of
+            // them (most of a dense mesh's far triangles) stops here, before its vertices are
+            // shaded. The fill repeats the test for those that pass.
+            let extent = |c: [i32; 3]| {
+                let (lo, hi) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
+                i64::from(hi) - i64::from(lo) + (1 << BITS)
+            };
+            let (w, h) = (
+                extent([v[0].0, v[1].0, v[2].0]),
+                extent([v[0].1, v[1].1, v[2].1]),
+            );
+            // Each at most four pixels first, so that the product cannot overflow.
+            let few = w <= 4 << BITS && h <= 4 << BITS && w * h <= 4 << (2 * BITS);
+            if few && misses_every_pixel(target, &p) {
+                return Ok(());
+            }
             let fv = if Sh::NEEDS_WORLD && !mesh.has_normals() {
                 let var = self.face_normal_values(mesh, idx);
                 [0, 1, 2].map(|k| (p[k], v[k].2, var[k]))

@@ -346,6 +346,23 @@ const Z_FRAC: u32 = 16;
 /// values.
 pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
 
+/// Whether the screen triangle `p` surely covers no pixel centre of `surface`'s clip area (a
+/// flat triangle, a corner outside the guard band, or no centre in its reach): what
+/// [`fill_fused`] tests first, for a caller that can then skip the values of the triangle's
+/// vertices too. Out of line, for callers that test only some triangles (small ones), so that
+/// their own loops compile as without it.
+#[inline(never)]
+pub(crate) fn misses_every_pixel<S: Surface, const BITS: u32>(
+    surface: &S,
+    p: &[SubPoint<BITS>; 3],
+) -> bool {
+    let Some(t) = Sorted::new(p) else {
+        return true;
+    };
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    misses_every_centre(&t, 1i64 << BITS, &clip)
+}
+
 /// Fills a triangle with a depth test and interpolated values through the fused span loop.
 ///
 /// The shader's values get `P::PRECISION.frac` fractional bits and `P::PRECISION.offset` added
