@@ -21,7 +21,9 @@
 use crate::depth::{Compare, DepthTest};
 use crate::geom::{PixelRect, SubPoint};
 use crate::geom::{Varyings, MAX_VARYINGS};
-use crate::raster::triangle::setup::{misses_every_centre, walk_spans_once, Sorted, SpanSink};
+use crate::raster::triangle::setup::{
+    may_cover_a_centre, misses_every_centre, walk_spans_once, Sorted, SpanSink,
+};
 use crate::surface::{DepthSpan, Surface};
 use crate::wide::Reciprocal;
 use core::num::NonZeroU64;
@@ -346,21 +348,17 @@ const Z_FRAC: u32 = 16;
 /// values.
 pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
 
-/// Whether the screen triangle `p` surely covers no pixel centre of `surface`'s clip area (a
-/// flat triangle, a corner outside the guard band, or no centre in its reach): what
-/// [`fill_fused`] tests first, for a caller that can then skip the values of the triangle's
-/// vertices too. Out of line, for callers that test only some triangles (small ones), so that
-/// their own loops compile as without it.
+/// Whether the screen triangle `p` (inside the guard band, its bounds holding at most four pixel
+/// centres) surely covers no pixel centre of `surface`'s clip area: for a caller that can then
+/// skip the values of the triangle's vertices as well as the fill ([`may_cover_a_centre`],
+/// conservative: the fill decides the rest exactly). Out of line, so that the loops of its
+/// callers compile as without it.
 #[inline(never)]
 pub(crate) fn misses_every_pixel<S: Surface, const BITS: u32>(
     surface: &S,
     p: &[SubPoint<BITS>; 3],
 ) -> bool {
-    let Some(t) = Sorted::new(p) else {
-        return true;
-    };
-    let clip = PixelRect::from_rectangle(&surface.clip_area());
-    misses_every_centre(&t, 1i64 << BITS, &clip)
+    !may_cover_a_centre(p, &PixelRect::from_rectangle(&surface.clip_area()))
 }
 
 /// Fills a triangle with a depth test and interpolated values through the fused span loop.
