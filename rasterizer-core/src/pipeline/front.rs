@@ -187,6 +187,9 @@ where
             stats.culled += 1;
             return false;
         }
+        if self.in_viewport {
+            return true;
+        }
         // Off the viewport on one side (the screen planes are stricter than the guard band).
         let [l, top, r, bottom] = self.edges;
         let (x_lo, x_hi) = (xs[0].min(xs[1]).min(xs[2]), xs[0].max(xs[1]).max(xs[2]));

@@ -170,6 +170,9 @@ pub struct Pipeline<S, C, D, Sh, const BITS: u32 = DEFAULT_BITS, N = Standard> {
     /// This frame, the shader lights in world space under a mirroring model matrix: face
     /// normals from world-space edges must be turned round.
     flip_faces: bool,
+    /// This frame, every vertex lies inside the viewport (all have slots, none outside the
+    /// guard band): no triangle can miss it, so the front end does not test it.
+    in_viewport: bool,
     /// The culling stage.
     pub cull: C,
     /// The depth stage.
@@ -221,6 +224,7 @@ where
             facing: -i64::from(mirrored && !C::WINDOW_SPACE),
             model_mirrors,
             flip_faces: false,
+            in_viewport: false,
             viewport,
             area: PixelRect::from_rectangle(&viewport.rectangle()),
             edges: viewport_edges::<DEFAULT_BITS>(&viewport),
@@ -266,6 +270,7 @@ where
             facing: self.facing,
             model_mirrors: self.model_mirrors,
             flip_faces: false,
+            in_viewport: false,
             viewport: self.viewport,
             area: self.area,
             edges: viewport_edges::<B>(&self.viewport),

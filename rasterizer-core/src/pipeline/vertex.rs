@@ -250,10 +250,21 @@ where
         // read their slots.
         let n = scratch.len().min(mesh.vertex_count());
         let scratch = &mut scratch[..n];
+        // The vertices' bounds on screen (a vertex outside the guard band has x = OUTSIDE, far
+        // left of any viewport).
+        let (mut x0, mut y0, mut x1, mut y1) = (i32::MAX, i32::MAX, i32::MIN, i32::MIN);
         for (i, s) in scratch.iter_mut().enumerate() {
             (s.x, s.y, s.z) = self.geometry(mesh.position(i));
             s.st = <Sh::Stored as Packed>::EMPTY;
+            (x0, x1) = (x0.min(s.x), x1.max(s.x));
+            (y0, y1) = (y0.min(s.y), y1.max(s.y));
         }
+        let [l, top, r, bottom] = self.edges;
+        self.in_viewport = n == mesh.vertex_count()
+            && i64::from(x0) >= l
+            && i64::from(x1) <= r
+            && i64::from(y0) >= top
+            && i64::from(y1) <= bottom;
         scratch
     }
 
