@@ -331,7 +331,7 @@ where
             p: p[k],
             z: v[k].2,
             var: var[k],
-            q: Self::q(&self.mvp.transform_point(mesh.position(idx[k]))),
+            q: self.q_of(mesh.position(idx[k])),
         });
         self.raster(src, target, &sv)
     }

@@ -79,6 +79,18 @@ where
         }
     }
 
+    /// [`Pipeline::q`] of a mesh position: only the `w` row of [`Mat4::transform_point`] (the
+    /// same sum, rounded the same way), a quarter of the transform.
+    #[inline(always)]
+    pub(super) fn q_of(&self, p: Vec3<S>) -> i64 {
+        if N::PERSPECTIVE {
+            let w = S::dot4(self.mvp.m[3], p.to_point4().to_array());
+            S::scaled_ratio(S::ONE, w, 1 << 20, 1)
+        } else {
+            0
+        }
+    }
+
     /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`. One copy,
     /// called from the loop of [`Pipeline::begin`] and for vertices beyond the scratch (inlining
     /// it into the loop saves a call per vertex but costs a second copy in flash).
