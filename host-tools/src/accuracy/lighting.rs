@@ -211,8 +211,11 @@ pub fn phong(count: usize, size: f64) -> (Errors, Errors, f64) {
                 ((s + (1 << 15)) >> 16) as i32
             })
         };
-        let fast_v = [0, 1, 2].map(|i| fast.vertex(&input(corners[i].0, corners[i].2)));
-        let slow_v = [0, 1, 2].map(|i| slow.vertex(&input(corners[i].0, corners[i].2)));
+        let mut fast_v = [0, 1, 2].map(|i| fast.vertex(&input(corners[i].0, corners[i].2)));
+        let mut slow_v = [0, 1, 2].map(|i| slow.vertex(&input(corners[i].0, corners[i].2)));
+        // As the pipeline does once per triangle, before its pixels.
+        fast.triangle(&mut fast_v);
+        slow.triangle(&mut slow_v);
         let bf = w.map(|x| x as f64 / 65536.0);
         let mixf = |f: &dyn Fn(usize) -> V3| {
             [0, 1, 2].map(|k| (0..3).map(|i| bf[i] * f(i)[k]).sum::<f64>())
