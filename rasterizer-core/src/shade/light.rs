@@ -907,11 +907,19 @@ fn inv_len(x: u64) -> i64 {
         let t = (((y * y) >> 30) * (x >> 30)) >> 30;
         ((y * ((3 << 30) - t)) >> 31) as i64
     } else {
-        // 2^30 / sqrt(x / 2^60) = r 2^(60 - k) (k is below 60 only for vectors shorter than
-        // 1/2, whose inverse lengths stay below 2^61 in 2.30 down to 2^-30 long).
-        let (r, k) = rsqrt_fast(x);
-        shr(r as i64, k as i32 - 60)
+        inv_len_far(x)
     }
+}
+
+/// [`inv_len`] away from unit length: kept out of line, so that the per-pixel code does not
+/// prepare its normalising shift on the way to the table.
+#[cold]
+#[inline(never)]
+fn inv_len_far(x: u64) -> i64 {
+    // 2^30 / sqrt(x / 2^60) = r 2^(60 - k) (k is below 60 only for vectors shorter than 1/2,
+    // whose inverse lengths stay below 2^61 in 2.30 down to 2^-30 long).
+    let (r, k) = rsqrt_fast(x);
+    shr(r as i64, k as i32 - 60)
 }
 
 /// `2^30 / sqrt(h)` for `h` in 2.30 (`0 < h <= 4`, the squared length of `L + V`): [`inv_len`]
