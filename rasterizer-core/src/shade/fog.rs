@@ -329,11 +329,17 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Foggable<S> for PhongLit<S, C, N>
         let share = (share << (PHONG_SHARE_BITS - 15)) as i32;
         [v[0], v[1], v[2], v[3], v[4], v[5], share]
     }
-    // PhongLit neither projects nor rescales its values.
+    // PhongLit does not project its values; it rescales their view vectors per triangle.
     #[inline(always)]
     fn fog_project(&self, _: &mut [i32; 7], _: S) {}
     #[inline(always)]
-    fn fog_triangle(&mut self, _: &mut [[i32; 7]; 3]) {}
+    fn fog_triangle(&mut self, v: &mut [[i32; 7]; 3]) {
+        let mut lit = v.map(|x| [x[0], x[1], x[2], x[3], x[4], x[5]]);
+        <Self as Shading<S>>::triangle(self, &mut lit);
+        for (x, lit) in v.iter_mut().zip(lit) {
+            x[..6].copy_from_slice(&lit);
+        }
+    }
     #[inline(always)]
     fn fog_pixel(&self, v: &[i32; 7], fog: &FogColor) -> C {
         let [a, b, c, d, e, f, share] = *v;

@@ -77,8 +77,9 @@
 //! once, so a channel is a multiply-add and a shift. Measured per vertex against an f64
 //! reference, it stays within 0.03 of an 8-bit step (this module's path: 0.017); see
 //! `tests/tests/lighting_plan.rs` and `docs/ACCURACY.md`, also for Phong's pixels, which take
-//! the power from a table made per draw (`PowerTable`) and renormalise their nearly unit
-//! normal from a small table and one Newton step.
+//! the power from a table made per draw (`PowerTable`), renormalise their nearly unit normal
+//! and view vector (scaled to unit length per triangle) from a small table and one Newton
+//! step, and take `N·H` from the cosines.
 
 use crate::math::fx::{isqrt_u64, rsqrt_fast, rsqrt_u64};
 use crate::math::{Mat4, Scalar, Vec3};
@@ -599,6 +600,8 @@ pub(crate) struct DirectionalPlan<const N: usize> {
 #[derive(Debug, Clone, Copy)]
 struct PlanLight {
     l: [i64; 3],
+    /// `|L|²` in 2.30 (one within the rounding of the stored direction).
+    ll: i64,
     /// `Md Lc` and `Ms Lc` per channel in units of `2^(16 - out_bits)` of the caller's scale
     /// over `255²`: times a 0.16 factor, in the units of the plan's sums.
     kd: [u64; 3],
@@ -646,8 +649,10 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
                 return None;
             };
             let k = |t: [u32; 3]| [0, 1, 2].map(|c| per(t[c], c));
+            let l = terms.direction;
             let _ = lights.push(PlanLight {
-                l: terms.direction,
+                l,
+                ll: (l[0] * l[0] + l[1] * l[1] + l[2] * l[2] + (1 << 29)) >> 30,
                 kd: k(terms.diffuse),
                 ks: k(terms.specular),
             });
@@ -764,10 +769,11 @@ impl<const N: usize> DirectionalPlan<N> {
 impl<const N: usize> DirectionalPlan<N> {
     /// What a Phong pixel interpolates under the plan: the unit normal in signed 2.30 (zero
     /// for a zero normal), then the view vector `eye - position` unnormalised, in the format's
-    /// raw integers (interpolating it is interpolating the position). The view vector, not the
-    /// vertices' half vectors: those would be cheaper per pixel, but their interpolation is off
-    /// by the square of the angle a triangle spans from the eye (up to 20 steps in a large
-    /// face's highlight, measured).
+    /// raw integers (interpolating it is interpolating the position), until
+    /// [`phong_triangle`] scales it for a triangle. The view vector, not the vertices' half
+    /// vectors: those would be cheaper per pixel, but their interpolation is off by the square
+    /// of the angle a triangle spans from the eye (up to 20 steps in a large face's highlight,
+    /// measured).
     pub(crate) fn phong_vertex<S: Scalar>(&self, position: Vec3<S>, normal: Vec3<S>) -> [i32; 6] {
         let n = raw3(normal).and_then(unit30).unwrap_or_default();
         let p = raw3(position).unwrap_or_default();
@@ -782,65 +788,64 @@ impl<const N: usize> DirectionalPlan<N> {
     }
 
     /// The lit sums of a Phong pixel from its interpolated [`DirectionalPlan::phong_vertex`]
-    /// values, the power from `power` (made for the plan's shininess): the normal's length from
-    /// [`inv_len`], the view vector normalised ([`rsqrt_fast`]) and `N·H = N·h / |h|` for each
-    /// light with `h = L + V`.
+    /// values (the view vector scaled by [`phong_triangle`]), the power from `power` (made for
+    /// the plan's shininess): the normal's and the view vector's lengths from [`inv_len`], and
+    /// `N·H = (N·L + N·V) / |L + V|` from the cosines, with `|L + V|² = |L|² + 1 + 2 L·V`, so
+    /// that no vector is normalised component by component. A highlight below the table's
+    /// start is known to be zero before its root is taken.
     #[inline(always)]
     pub(crate) fn phong_pixel(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
         let mut sum = self.ambient;
         let n = [v[0], v[1], v[2]].map(i64::from);
-        // Values interpolated from `phong_vertex`'s (normal components within 2^30, any i32
-        // view vector) keep every product and sum below in range, as the comments say; the
-        // wrapping operations only keep values from elsewhere from panicking (they give a
-        // wrong colour instead).
+        let w = [v[3], v[4], v[5]].map(i64::from);
+        // Values interpolated from `phong_triangle`'s (components within 2^30) keep every
+        // product and sum below in range, as the comments say; the wrapping operations only
+        // keep values from elsewhere from panicking (they give a wrong colour instead).
         let sq = |c: i64| c.wrapping_mul(c) as u64;
         let nn = sq(n[0]).wrapping_add(sq(n[1])).wrapping_add(sq(n[2]));
         if nn == 0 {
             return sum;
         }
         let rn = inv_len(nn);
-        // N·x in 2.30 for x in 2.30 (|x| <= 2): n·x / 2^30 is below 2^31, times rn below 2^62
-        // for any normal longer than 1/2.
-        let cos = |x: [i64; 3]| {
-            let d = (n[0].wrapping_mul(x[0]))
-                .wrapping_add(n[1].wrapping_mul(x[1]))
-                .wrapping_add(n[2].wrapping_mul(x[2]));
-            (d >> 30).wrapping_mul(rn) >> 30
+        // a·b / 2^30 for 2.30 vectors, below 2^33 in magnitude for components within 2^31.
+        let dot = |a: [i64; 3], b: [i64; 3]| {
+            (a[0].wrapping_mul(b[0]))
+                .wrapping_add(a[1].wrapping_mul(b[1]))
+                .wrapping_add(a[2].wrapping_mul(b[2]))
+                >> 30
         };
-        // V in 2.30, made when a light first reaches the pixel (None: the eye at the point).
-        let mut view: Option<Option<[i64; 3]>> = None;
-        for light in &self.lights {
+        // 1 / |w| in 2.30 and N·V, made when a light first reaches the pixel (`rv` stays 0
+        // without a highlight, and with the eye at the point).
+        let (mut rv, mut nv, mut view_made) = (0i64, 0i64, false);
+        // At most N lights: a bound the loop can be unrolled by.
+        for light in self.lights.iter().take(N) {
             let l = light.l;
-            let nl = cos(l);
+            // N·L = (n·l) / |n|: below 2^33 times rn (below 2^31 for normals longer than 1/2).
+            let nl = dot(n, l).wrapping_mul(rn) >> 30;
             if nl <= 0 {
                 continue;
             }
             let diffuse = (nl.wrapping_add(1 << 13) >> 14).min(i64::from(ONE16)) as u64;
-            let view = *view.get_or_insert_with(|| {
-                if !self.specular {
-                    return None;
+            if self.specular && !view_made {
+                view_made = true;
+                let ww = sq(w[0]).wrapping_add(sq(w[1])).wrapping_add(sq(w[2]));
+                if ww != 0 {
+                    rv = inv_len(ww);
+                    // (n·w / |n|) / |w|, each step below 2^62.
+                    nv = (dot(n, w).wrapping_mul(rn) >> 30).wrapping_mul(rv) >> 30;
                 }
-                let w = [v[3], v[4], v[5]].map(i64::from);
-                // i32 components: each square below 2^62, the sum below 2^64.
-                let ww = sq(w[0]) + sq(w[1]) + sq(w[2]);
-                if ww == 0 {
-                    return None;
-                }
-                // c / |w| = c r / 2^k in 2.30: |c| r <= 2^k <= 2^62.
-                let (r, k) = rsqrt_fast(ww);
-                let (r, s) = (r as i64, k - 30);
-                Some(w.map(|c| (c * r) >> s))
-            });
-            let specular = if let Some(view) = view {
-                let h = [l[0] + view[0], l[1] + view[1], l[2] + view[2]];
-                let a = cos(h);
-                let hh = sq(h[0]).wrapping_add(sq(h[1])).wrapping_add(sq(h[2]));
-                if a <= 0 || hh == 0 {
+            }
+            let specular = if rv != 0 {
+                let a = nl.wrapping_add(nv);
+                // L·V = (l·w) / |w|; |L + V|² in 2.30, V unit within 2^-17.
+                let lv = dot(l, w).wrapping_mul(rv) >> 30;
+                let hh = light.ll.wrapping_add(1 << 30).wrapping_add(2 * lv);
+                // N·H below the table's start (a² < start² |h|², a start rounded down) has a
+                // power of zero: no root to take. a and hh below 2^32 here.
+                if a <= 0 || hh <= 0 || sq(a) < power.start2.wrapping_mul(hh as u64) {
                     0
                 } else {
-                    // 1 / |h| = 2^30 / sqrt(hh) = r 2^(30 - k); a r below 2^62.
-                    let (r, k) = rsqrt_fast(hh);
-                    let nh = ((a as u64).wrapping_mul(r) >> (k - 30)).min(u64::from(ONE30)) as u32;
+                    let nh = (a.wrapping_mul(inv_len4(hh)) >> 30).min(i64::from(ONE30)) as u32;
                     u64::from(power.power(nh))
                 }
             } else if self.spec_one {
@@ -848,8 +853,15 @@ impl<const N: usize> DirectionalPlan<N> {
             } else {
                 0
             };
-            for (c, sum) in sum.iter_mut().enumerate() {
-                *sum += light.kd[c] * diffuse + light.ks[c] * specular;
+            // Most pixels lie outside the highlight.
+            if specular == 0 {
+                for (c, sum) in sum.iter_mut().enumerate() {
+                    *sum += light.kd[c] * diffuse;
+                }
+            } else {
+                for (c, sum) in sum.iter_mut().enumerate() {
+                    *sum += light.kd[c] * diffuse + light.ks[c] * specular;
+                }
             }
         }
         [
@@ -895,10 +907,52 @@ fn inv_len(x: u64) -> i64 {
         let t = (((y * y) >> 30) * (x >> 30)) >> 30;
         ((y * ((3 << 30) - t)) >> 31) as i64
     } else {
-        // 2^30 / sqrt(x / 2^60) = r 2^(60 - k) (k is below 60 only for vectors shorter than
-        // 1/2, whose inverse lengths stay below 2^61 in 2.30 down to 2^-30 long).
-        let (r, k) = rsqrt_fast(x);
-        shr(r as i64, k as i32 - 60)
+        inv_len_far(x)
+    }
+}
+
+/// [`inv_len`] away from unit length: kept out of line, so that the per-pixel code does not
+/// prepare its normalising shift on the way to the table.
+#[cold]
+#[inline(never)]
+fn inv_len_far(x: u64) -> i64 {
+    // 2^30 / sqrt(x / 2^60) = r 2^(60 - k) (k is below 60 only for vectors shorter than 1/2,
+    // whose inverse lengths stay below 2^61 in 2.30 down to 2^-30 long).
+    let (r, k) = rsqrt_fast(x);
+    shr(r as i64, k as i32 - 60)
+}
+
+/// `2^30 / sqrt(h)` for `h` in 2.30 (`0 < h <= 4`, the squared length of `L + V`): [`inv_len`]
+/// of `h / 4`, halved, above 2, so that the table serves lengths from 1/2 to 2.
+#[inline(always)]
+fn inv_len4(h: i64) -> i64 {
+    let x = (h as u64) << 30;
+    if x >= 1 << 61 {
+        inv_len(x >> 2) >> 1
+    } else {
+        inv_len(x)
+    }
+}
+
+/// Scales a triangle's three view vectors (the last three of [`DirectionalPlan::phong_vertex`]'s
+/// values) by one factor, so that the longest is of unit length in 2.30. A common factor keeps
+/// the direction of every interpolated vector, which is all a pixel uses, and leaves the
+/// pixels' vectors near unit length (shorter by at most the ratio of the triangle's distances
+/// from the eye), where [`inv_len`] takes its table.
+pub(crate) fn phong_triangle(v: &mut [[i32; 6]; 3]) {
+    // i32 components: each square at most 2^62, the sum below 2^64.
+    let sq = |c: i32| i64::from(c).unsigned_abs().pow(2);
+    let len = v.map(|x| sq(x[3]) + sq(x[4]) + sq(x[5]));
+    let big = len[0].max(len[1]).max(len[2]);
+    if big == 0 {
+        return;
+    }
+    // c 2^30 / sqrt(big) = c r 2^(30 - k) (k >= 31): |c| r is at most 2^k (1 + 2^-29).
+    let (r, k) = rsqrt_fast(big);
+    for x in v.iter_mut() {
+        for c in &mut x[3..] {
+            *c = ((i64::from(*c) * r as i64) >> (k - 30)) as i32;
+        }
     }
 }
 
@@ -941,6 +995,8 @@ pub(crate) struct PowerTable {
     shininess: u16,
     /// The first argument, in 0.30.
     start: u32,
+    /// `(start / 2^15)²` rounded down: the start squared in 0.30, at most its square.
+    start2: u64,
     /// `(x - start) scale >> 32` is `x`'s position in units of `2^-POWER_FRAC` entries.
     scale: u64,
     /// `x^s` in 0.16 at each of the points (1 saturated to `u16::MAX`).
@@ -953,6 +1009,7 @@ impl PowerTable {
         Self {
             shininess: 0,
             start: ONE30,
+            start2: 1 << 30,
             scale: 0,
             entries: [0; POWER_STEPS + 1],
         }
@@ -992,6 +1049,7 @@ impl PowerTable {
         *self = Self {
             shininess,
             start,
+            start2: u64::from(start >> 15).pow(2),
             scale,
             entries,
         };

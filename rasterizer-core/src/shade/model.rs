@@ -5,7 +5,7 @@
 //! triangle; [`GouraudLit`] once per vertex and interpolates the colour; [`PhongLit`] interpolates the
 //! normal and the position and lights every pixel.
 
-use super::light::{DirectionalPlan, PowerTable};
+use super::light::{phong_triangle, DirectionalPlan, PowerTable};
 use super::Lighting;
 use crate::color::ShadeColor;
 use crate::geom::{Varyings, MAX_VARYINGS};
@@ -491,10 +491,12 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
 /// pixel (Phong shading).
 ///
 /// For a fixed-point format whose lights are all directional (Blinn-Phong or no highlight), a
-/// draw interpolates the unit normal in 2.30 instead, and lights each pixel with the normal's
-/// length from a small table and one Newton step, two reciprocal square roots (view vector,
-/// `L + V`) and the specular power from a table made per draw, with no division (its error
-/// against `f64` is in `docs/ACCURACY.md` and `tests/tests/lighting_plan.rs`).
+/// draw interpolates the unit normal in 2.30 instead, and the view vector `eye - position`
+/// scaled per triangle so that it is about unit length. Each pixel takes both lengths from a
+/// small table and one Newton step, `N·H = (N·L + N·V) / |L + V|` from the cosines with one
+/// reciprocal square root (none where the highlight is known to be zero) and the specular
+/// power from a table made per draw, with no division (its error against `f64` is in
+/// `docs/ACCURACY.md` and `tests/tests/lighting_plan.rs`).
 #[derive(Debug, Clone)]
 pub struct PhongLit<S, C, const N: usize> {
     /// The lights, material and eye.
@@ -537,6 +539,14 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
     const NEEDS_WORLD: bool = true;
     // 16.16 normals and positions use all 32 bits: no room for more fractional bits.
     const FUSED_FRAC: u32 = 0;
+    // Under a plan, each triangle's view vectors are scaled to unit length.
+    const NEEDS_TRIANGLE: bool = true;
+    #[inline(always)]
+    fn triangle(&mut self, v: &mut [[i32; 6]; 3]) {
+        if self.target.is_some() {
+            phong_triangle(v);
+        }
+    }
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
