@@ -128,6 +128,18 @@ pub trait Storage: Channels {
     ) {
         Self::fill(&mut buf[y * stride..(y + 1) * stride], x, len, color);
     }
+    /// [`Storage::fill_span`] for a span that is most likely a few pixels long.
+    #[inline(always)]
+    fn fill_short_span(
+        buf: &mut [Self::Word],
+        stride: usize,
+        x: usize,
+        y: usize,
+        len: usize,
+        color: Self,
+    ) {
+        Self::fill_span(buf, stride, x, y, len, color);
+    }
     /// Blends `color` with opacity `alpha` over pixels `x .. x + len` of a row
     /// ([`crate::color::blend`]).
     #[inline]
@@ -280,6 +292,21 @@ fn fill_words<W: Copy>(s: &mut [W], v: W) {
     }
 }
 
+/// [`fill_words`] with spans of one to three words tested first: cheaper for a small triangle's
+/// spans, dearer by two tests for long ones.
+#[inline(always)]
+fn fill_short_words<W: Copy>(s: &mut [W], v: W) {
+    // One test for 1 ..= 3 (an empty span wraps round to a large value).
+    if s.len().wrapping_sub(1) < 3 {
+        let (last, mid) = (s.len() - 1, s.len() / 2);
+        s[0] = v;
+        s[last] = v;
+        s[mid] = v;
+    } else {
+        fill_words(s, v);
+    }
+}
+
 impl Storage for Rgb565 {
     type Word = u16;
     fn row_words(width: usize) -> usize {
@@ -301,6 +328,21 @@ impl Storage for Rgb565 {
     fn fill_span(buf: &mut [u16], stride: usize, x: usize, y: usize, len: usize, color: Self) {
         let start = y * stride + x;
         fill_words(
+            &mut buf[start..start + len],
+            RawU16::from(color).into_inner(),
+        );
+    }
+    #[inline(always)]
+    fn fill_short_span(
+        buf: &mut [u16],
+        stride: usize,
+        x: usize,
+        y: usize,
+        len: usize,
+        color: Self,
+    ) {
+        let start = y * stride + x;
+        fill_short_words(
             &mut buf[start..start + len],
             RawU16::from(color).into_inner(),
         );
@@ -692,6 +734,25 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     #[inline(always)]
     fn fill_span_in_clip(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
         C::fill_span(
+            self.buf,
+            self.stride,
+            x as usize,
+            y as usize,
+            len as usize,
+            color,
+        );
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn fill_short_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: C,
+    ) -> Result<(), Self::Error> {
+        C::fill_short_span(
             self.buf,
             self.stride,
             x as usize,

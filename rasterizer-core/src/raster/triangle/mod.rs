@@ -11,6 +11,7 @@
 //! outside the guard band ([`crate::geom::GUARD_BAND_PIXELS`]).
 
 pub(crate) mod setup;
+mod small;
 
 use crate::color::Channels;
 use crate::geom::{PixelRect, SubPoint};
@@ -20,6 +21,7 @@ use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
 use setup::{walk_spans, Sorted, SpanSink};
+use small::Small;
 
 /// Fills a triangle in one colour.
 ///
@@ -39,11 +41,29 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
     vertices: [SubPoint<BITS>; 3],
     color: S::Color,
 ) -> Result<(), S::Error> {
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    if let Some(small) = Small::new(&vertices, &clip) {
+        return small.walk::<_, BITS>(&mut FlatShort { surface, color });
+    }
     let Some(t) = Sorted::new(&vertices) else {
         return Ok(());
     };
-    let clip = PixelRect::from_rectangle(&surface.clip_area());
     walk_spans(&t, 1 << BITS, &clip, &mut Flat { surface, color })
+}
+
+/// A small triangle's spans in one colour: mostly a few pixels long.
+struct FlatShort<'a, S: Surface> {
+    surface: &'a mut S,
+    color: S::Color,
+}
+
+impl<S: Surface> SpanSink for FlatShort<'_, S> {
+    type Error = S::Error;
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
+        self.surface
+            .fill_short_span_in_clip(x0, row, (x1 - x0) as u32, self.color)
+    }
 }
 
 /// Spans in one colour.
