@@ -284,12 +284,17 @@ fn fill_words<W: Copy>(s: &mut [W], v: W) {
             *last = [v; 4];
         }
     } else if !s.is_empty() {
-        // One to three words: first, last and middle cover them all with no loop.
-        let (last, mid) = (s.len() - 1, s.len() / 2);
-        s[0] = v;
-        s[last] = v;
-        s[mid] = v;
+        fill_one_to_three(s, v);
     }
+}
+
+/// Fills one to three words: first, last and middle cover them all with no loop.
+#[inline(always)]
+fn fill_one_to_three<W: Copy>(s: &mut [W], v: W) {
+    let (last, mid) = (s.len() - 1, s.len() / 2);
+    s[0] = v;
+    s[last] = v;
+    s[mid] = v;
 }
 
 /// [`fill_words`] with spans of one to three words tested first: cheaper for a small triangle's
@@ -298,10 +303,7 @@ fn fill_words<W: Copy>(s: &mut [W], v: W) {
 fn fill_short_words<W: Copy>(s: &mut [W], v: W) {
     // One test for 1 ..= 3 (an empty span wraps round to a large value).
     if s.len().wrapping_sub(1) < 3 {
-        let (last, mid) = (s.len() - 1, s.len() / 2);
-        s[0] = v;
-        s[last] = v;
-        s[mid] = v;
+        fill_one_to_three(s, v);
     } else {
         fill_words(s, v);
     }

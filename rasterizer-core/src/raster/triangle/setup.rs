@@ -24,25 +24,39 @@ impl Sorted {
         if !v.iter().all(|p| p.in_guard_band()) {
             return None;
         }
-        // (y, x) in one integer: y above, x moved up by 2^31 below (in 0 .. 2^32), so that
-        // integer order is the pair's order and each comparison is one.
-        let keys = [0, 1, 2].map(|i| (i64::from(v[i].y) << 32) + i64::from(v[i].x) + (1 << 31));
-        let key = |i: usize| keys[i];
-        let mut order = [0usize, 1, 2];
-        if key(order[1]) < key(order[0]) {
-            order.swap(0, 1);
-        }
-        if key(order[2]) < key(order[1]) {
-            order.swap(1, 2);
-            if key(order[1]) < key(order[0]) {
-                order.swap(0, 1);
-            }
-        }
+        let order = row_order(v);
         let p = order.map(|i| (i64::from(v[i].x), i64::from(v[i].y)));
         // Bound: |each product| <= (2M)^2 = 2^60 inside the guard band.
         let cross = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1);
         (cross != 0).then_some(Self { v: p, order, cross })
     }
+}
+
+/// The order of a triangle's vertices top to bottom, left to right in a row: `(y, x)` in one
+/// integer each (y above, x moved up by 2^31 below, in `0 .. 2^32`), so that integer order is the
+/// pair's order and each comparison is one. Every set-up sorts this way, so that all see the
+/// same edges. Any `i32` coordinates: x is moved up before it is added, so no sum leaves `i64`.
+#[inline(always)]
+pub(crate) fn row_order<const BITS: u32>(v: &[SubPoint<BITS>; 3]) -> [usize; 3] {
+    let keys = [0, 1, 2].map(|i| (i64::from(v[i].y) << 32) + (i64::from(v[i].x) + (1 << 31)));
+    let mut order = [0usize, 1, 2];
+    if keys[order[1]] < keys[order[0]] {
+        order.swap(0, 1);
+    }
+    if keys[order[2]] < keys[order[1]] {
+        order.swap(1, 2);
+        if keys[order[1]] < keys[order[0]] {
+            order.swap(0, 1);
+        }
+    }
+    order
+}
+
+/// The pixels whose centres `c s + s / 2` lie within `lo ..= hi` (sub-pixel units), inside
+/// `clip_lo .. clip_hi`: the columns (or rows) of centres a triangle's bounds reach.
+#[inline(always)]
+fn centres(lo: i64, hi: i64, s: i64, clip_lo: i64, clip_hi: i64) -> core::ops::Range<i64> {
+    row_at_or_below(lo, s).max(clip_lo)..(row_at_or_below(hi, s) + 1).min(clip_hi)
 }
 
 /// Receives the spans of a triangle.
@@ -194,7 +208,7 @@ pub(crate) fn misses_every_centre(t: &Sorted, s: i64, clip: &PixelRect) -> bool 
     let [v0, v1, v2] = t.v;
     let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
     let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
-    let cols = row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
+    let cols = centres(xmin, xmax, s, clip.x0, clip.x1);
     if rows.is_empty() || cols.is_empty() {
         return true;
     }
@@ -256,9 +270,8 @@ pub(crate) fn may_cover_a_centre<const BITS: u32>(
     let [a, b, c] = p.map(|q| (i64::from(q.x), i64::from(q.y)));
     let (xmin, xmax) = (a.0.min(b.0).min(c.0), a.0.max(b.0).max(c.0));
     let (ymin, ymax) = (a.1.min(b.1).min(c.1), a.1.max(b.1).max(c.1));
-    // The centres `col s + s / 2` within the bounds, inside the clip area.
-    let cols = row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
-    let rows = row_at_or_below(ymin, s).max(clip.y0)..(row_at_or_below(ymax, s) + 1).min(clip.y1);
+    let cols = centres(xmin, xmax, s, clip.x0, clip.x1);
+    let rows = centres(ymin, ymax, s, clip.y0, clip.y1);
     if cols.is_empty() || rows.is_empty() {
         return false;
     }
@@ -334,15 +347,27 @@ mod tests {
         }
     }
 
-    #[test]
-    fn one_loop_walk_gives_the_same_spans() {
-        let mut x = 0x1357_9bdfu32;
-        let mut next = |m: u32| {
+    /// Xorshift numbers in `0 .. m`, from `seed`.
+    fn numbers(mut x: u32) -> impl FnMut(u32) -> i32 {
+        move |m| {
             x ^= x << 13;
             x ^= x >> 17;
             x ^= x << 5;
             (x % m) as i32
-        };
+        }
+    }
+
+    /// The clip area of the few-centres tests: its edges cross the triangles' region.
+    const CLIP: PixelRect = PixelRect {
+        x0: -3,
+        y0: -2,
+        x1: 40,
+        y1: 30,
+    };
+
+    #[test]
+    fn one_loop_walk_gives_the_same_spans() {
+        let mut next = numbers(0x1357_9bdf);
         for _ in 0..50_000 {
             let clip = PixelRect {
                 x0: i64::from(next(20)) - 5,
@@ -364,19 +389,8 @@ mod tests {
 
     #[test]
     fn unsorted_centre_test_never_misses_a_span() {
-        let mut x = 0x7f4a_7c15u32;
-        let mut next = |m: u32| {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x % m) as i32
-        };
-        let clip = PixelRect {
-            x0: -3,
-            y0: -2,
-            x1: 40,
-            y1: 30,
-        };
+        let mut next = numbers(0x7f4a_7c15);
+        let clip = CLIP;
         let s = 1i64 << 4;
         let (mut missed, mut tested) = (0, 0);
         for _ in 0..200_000 {
@@ -402,19 +416,8 @@ mod tests {
 
     #[test]
     fn centre_test_matches_the_walk_on_small_triangles() {
-        let mut x = 0x2545_f491u32;
-        let mut next = |m: u32| {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x % m) as i32
-        };
-        let clip = PixelRect {
-            x0: -3,
-            y0: -2,
-            x1: 40,
-            y1: 30,
-        };
+        let mut next = numbers(0x2545_f491);
+        let clip = CLIP;
         let s = 1i64 << 4;
         for _ in 0..200_000 {
             // Vertices within a few pixels of each other; now and then on a grid of half
@@ -428,8 +431,7 @@ mod tests {
             let [v0, v1, v2] = t.v;
             let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
             let rows = row_at_or_below(v0.1, s).max(clip.y0)..row_at_or_below(v2.1, s).min(clip.y1);
-            let cols =
-                row_at_or_below(xmin, s).max(clip.x0)..(row_at_or_below(xmax, s) + 1).min(clip.x1);
+            let cols = centres(xmin, xmax, s, clip.x0, clip.x1);
             let expected = walk_covers(&t, s, &clip);
             assert_eq!(covers_a_centre(&t, s, rows, cols), expected, "{v:?}");
         }

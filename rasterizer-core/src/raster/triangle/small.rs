@@ -4,7 +4,7 @@
 //! Cortex-M has an instruction for), and its rows and columns need no clamping to the clip area.
 //! It gives exactly the spans of [`super::setup::walk_spans`].
 
-use super::setup::SpanSink;
+use super::setup::{row_order, SpanSink};
 use crate::geom::{PixelRect, SubPoint, GUARD_BAND_PIXELS};
 
 /// The largest width and height, in pixels, of a triangle set up in `i32`.
@@ -50,20 +50,8 @@ impl Small {
     pub fn new<const BITS: u32>(v: &[SubPoint<BITS>; 3], clip: &PixelRect) -> Option<Self> {
         #[allow(clippy::let_unit_value)]
         let () = SubPoint::<BITS>::VALID;
-        // The same (y, x) order as `Sorted::new`, so both see the same edges; x moved into
-        // 0 .. 2^32 first, so that any i32 input stays inside i64.
-        let keys = [0, 1, 2].map(|i| (i64::from(v[i].y) << 32) + (i64::from(v[i].x) + (1 << 31)));
-        let mut order = [0usize, 1, 2];
-        if keys[order[1]] < keys[order[0]] {
-            order.swap(0, 1);
-        }
-        if keys[order[2]] < keys[order[1]] {
-            order.swap(1, 2);
-            if keys[order[1]] < keys[order[0]] {
-                order.swap(0, 1);
-            }
-        }
-        let p = order.map(|i| (v[i].x, v[i].y));
+        // The same order as `Sorted::new`, so both see the same edges.
+        let p = row_order(v).map(|i| (v[i].x, v[i].y));
         let (xmin, xmax) = (
             i64::from(p[0].0.min(p[1].0).min(p[2].0)),
             i64::from(p[0].0.max(p[1].0).max(p[2].0)),
