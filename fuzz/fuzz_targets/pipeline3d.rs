@@ -61,6 +61,7 @@ fuzz_target!(|data: &[u8]| {
         colors: Some(&colors),
         uvs: None,
         triangles: &tris,
+        adjacency: None,
     };
     let xf = Transforms {
         model: Mat4::identity(),

@@ -365,6 +365,7 @@ impl ColoredMesh {
             colors: Some(&self.colors),
             uvs: None,
             triangles: &self.triangles,
+            adjacency: None,
         }
     }
 }

@@ -711,6 +711,7 @@ fn bins_span_gaps_beyond_255_triangles() {
             colors: Some(&colors),
             uvs: None,
             triangles: &tris,
+            adjacency: None,
         };
         let make = || {
             Pipeline::new(
@@ -846,7 +847,7 @@ proptest! {
     #[test]
     fn random_soups_match_in_any_band_height(seed in any::<u64>(), n in 1usize..60, rows in 1u32..50, depth in any::<bool>()) {
         let (pos, col, tris) = soup(seed, n);
-        let mesh = Mesh { positions: &pos, normals: None, colors: Some(&col), uvs: None, triangles: &tris };
+        let mesh = Mesh { positions: &pos, normals: None, colors: Some(&col), uvs: None, triangles: &tris, adjacency: None };
         let (w, h) = (80u32, 60u32);
         // Without a depth test overlapping triangles show the last one drawn, so this also checks
         // that bands keep the mesh order.

@@ -439,6 +439,7 @@ fn measure_textured() -> (ColorErrors, f64) {
         colors: None,
         uvs: Some(uvs),
         triangles: &m.triangles,
+        adjacency: None,
     };
     let shading = TexturedLit::<Fx16, Rgb888, 1>::new(Scene::M4.lighting(), image.texture());
     let ours = draw_into::<_, Standard>(shading, &mesh, Rgb888::BLACK);

@@ -37,6 +37,7 @@ where
         colors: Some(&colors),
         uvs: None,
         triangles: &triangles,
+        adjacency: None,
     };
     let t = Transforms {
         model: Mat4::identity(),

@@ -61,6 +61,7 @@ where
         colors: Some(&colors),
         uvs: None,
         triangles: &triangles,
+        adjacency: None,
     };
     let (w, h) = (4 * depths.len() as u32, 4);
     let t = flat_transforms(Mat4::identity());
@@ -173,6 +174,7 @@ fn depth_follows_the_view_matrix() {
         colors: Some(&colors),
         uvs: None,
         triangles: &triangles,
+        adjacency: None,
     };
     let t = flat_transforms(view);
     let sh = Fog::new(
@@ -320,6 +322,7 @@ fn fog_is_dithered() {
         colors: Some(&colors),
         uvs: None,
         triangles: &triangles,
+        adjacency: None,
     };
     let t = flat_transforms(Mat4::identity());
     let sh = Fog::new(
@@ -507,6 +510,7 @@ where
         colors: None,
         uvs: None,
         triangles: &[[0u16, 1, 2]],
+        adjacency: None,
     };
     let t = flat_transforms(Mat4::identity());
     let mut p = Pipeline::new(&t, Viewport::new(16, 16), NoCull, NoDepth, shading);

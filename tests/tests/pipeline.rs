@@ -899,6 +899,7 @@ fn zero_length_normals() {
         colors: None,
         uvs: None,
         triangles: &ico.triangles,
+        adjacency: None,
     };
     let scene = Scene::camera([0.5, 1.0, 3.0], [0.0; 3], 60, 0.1, 100.0);
     let t = scene.transforms();
@@ -1089,6 +1090,7 @@ fn invalid_indices_are_skipped_and_counted() {
             colors: Some(&colors),
             uvs: None,
             triangles: tris,
+            adjacency: None,
         };
         let mut scratch = [VertexSlot::EMPTY; 4];
         let stats = p
@@ -1185,6 +1187,7 @@ fn draw_extreme<C: Cull + Copy, D: DepthTest>(
         colors: None,
         uvs: None,
         triangles: tris,
+        adjacency: None,
     };
     let mut p1: Pipeline<Fx16, C, D, _> =
         Pipeline::new(t, size, cull, d1, VertexColors::<Rgb888>::new());

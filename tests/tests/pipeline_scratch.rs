@@ -173,6 +173,7 @@ fn render<Sh: Shading<Fx16, Color = Rgb565>, N: Numerics>(
         colors: Some(&colors),
         uvs: None,
         triangles: &tris,
+        adjacency: None,
     };
     let mut z = vec![u16::MAX; (w * h) as usize];
     let depth = DepthBuffer::new(&mut z, w, h, Compare::Less).unwrap();
@@ -261,6 +262,7 @@ fn scratch_left_from_another_frame_does_not_matter() {
             colors: None,
             uvs: None,
             triangles: &tris,
+            adjacency: None,
         };
         let mut z = vec![u16::MAX; (w * h) as usize];
         let depth = DepthBuffer::new(&mut z, w, h, Compare::Less).unwrap();
@@ -471,6 +473,7 @@ impl RandomScene {
             colors: Some(&self.colors),
             uvs: None,
             triangles: &self.triangles,
+            adjacency: None,
         }
     }
 }

@@ -251,6 +251,7 @@ fn clipped_polygon_near_i32_limits_has_an_exact_area() {
         colors: Some(&colors),
         uvs: None,
         triangles: &tris,
+        adjacency: None,
     };
     let xf = Transforms {
         model: Mat4::identity(),

@@ -228,6 +228,7 @@ fn draw_cube<T: Surface<Color = Rgb565>>(
         colors: Some(&c.colors),
         uvs: None,
         triangles: &c.triangles,
+        adjacency: None,
     };
     let model = Mat4::rotation_y(Angle::from_degrees(yaw))
         .then(&Mat4::rotation_x(Angle::from_degrees(pitch)));

@@ -335,6 +335,7 @@ fn measure<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(scene: &Pre
             colors: Some(&face_col),
             uvs: None,
             triangles: &face_tri,
+            adjacency: None,
         };
         let mut scratch = vec![VertexSlot::EMPTY; face_pos.len()];
         p.draw(&mut fb, &mesh, &mut scratch)
@@ -426,6 +427,7 @@ fn count<S: Format, const BITS: u32, const N: usize, Nu: Numerics>(
         colors: None,
         uvs: None,
         triangles: &def.tris,
+        adjacency: None,
     };
     let pixels = w as usize * h as usize;
     let mut buf = vec![0u16; pixels];

@@ -387,6 +387,7 @@ impl<S: Real> Converted<S> {
             colors: self.colors.as_deref(),
             uvs: self.uvs.as_deref(),
             triangles: &self.triangles,
+            adjacency: None,
         }
     }
 }

@@ -51,6 +51,9 @@ pub struct Mesh<'a, S, I = u16> {
     /// Triangles as three vertex indices. A triangle with an index out of range is skipped and
     /// counted in [`crate::pipeline::RenderStats::invalid`].
     pub triangles: &'a [[I; 3]],
+    /// Edge adjacency, one entry per triangle ([`MeshSource::neighbours`]): what anti-aliased
+    /// silhouettes need ([`crate::pipeline::Pipeline::draw_antialiased`]).
+    pub adjacency: Option<&'a [[u32; 3]]>,
 }
 
 impl<'a, S, I> Mesh<'a, S, I> {
@@ -62,6 +65,15 @@ impl<'a, S, I> Mesh<'a, S, I> {
             colors: None,
             uvs: None,
             triangles,
+            adjacency: None,
+        }
+    }
+
+    /// The mesh with edge adjacency, one entry per triangle ([`MeshSource::neighbours`]).
+    pub const fn with_adjacency(self, adjacency: &'a [[u32; 3]]) -> Self {
+        Self {
+            adjacency: Some(adjacency),
+            ..self
         }
     }
 
@@ -90,6 +102,10 @@ impl<'a, S, I> Mesh<'a, S, I> {
     }
 }
 
+/// The neighbour entry of an edge no other triangle shares (a boundary edge, or one shared by more
+/// than two triangles): [`MeshSource::neighbours`].
+pub const NO_NEIGHBOUR: u32 = u32::MAX;
+
 /// Where a pipeline reads a mesh from: plain slices ([`Mesh`]) or the packed format read straight
 /// from flash ([`PackedMesh`]).
 pub trait MeshSource<S> {
@@ -113,6 +129,19 @@ pub trait MeshSource<S> {
     fn uv(&self, i: usize) -> Option<[i32; 2]> {
         let _ = i;
         None
+    }
+    /// True when the mesh has edge adjacency ([`MeshSource::neighbours`]).
+    #[inline(always)]
+    fn has_adjacency(&self) -> bool {
+        false
+    }
+    /// Triangle `t`'s neighbours (`t < triangle_count()`), when the mesh has adjacency: entry `e`
+    /// is the triangle across the edge from corner `e` to corner `(e + 1) % 3`, or
+    /// [`NO_NEIGHBOUR`]. A neighbour out of range is treated as none.
+    #[inline(always)]
+    fn neighbours(&self, t: usize) -> [u32; 3] {
+        let _ = t;
+        [NO_NEIGHBOUR; 3]
     }
 }
 
@@ -150,5 +179,15 @@ impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
     #[inline(always)]
     fn uv(&self, i: usize) -> Option<[i32; 2]> {
         self.uvs.and_then(|c| c.get(i).copied())
+    }
+    #[inline(always)]
+    fn has_adjacency(&self) -> bool {
+        self.adjacency.is_some()
+    }
+    #[inline(always)]
+    fn neighbours(&self, t: usize) -> [u32; 3] {
+        self.adjacency
+            .and_then(|a| a.get(t).copied())
+            .unwrap_or([NO_NEIGHBOUR; 3])
     }
 }
