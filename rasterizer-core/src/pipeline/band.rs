@@ -1,6 +1,7 @@
 //! Band rendering: a frame drawn one horizontal strip at a time, for firmware without room for a
 //! whole frame.
 
+use super::silhouette::AntialiasError;
 use super::{DepthFrom, Front, MeshSource, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::clip_triangle;
 use crate::clip::polygon::ClipVertex;
@@ -101,6 +102,9 @@ pub enum BandError {
         /// The pixels of the first band the draw needs depths for.
         needed: Rectangle,
     },
+    /// The mesh cannot be drawn with anti-aliased silhouettes
+    /// ([`Pipeline::draw_banded_antialiased`]).
+    Antialias(AntialiasError),
 }
 
 impl core::fmt::Display for BandError {
@@ -122,11 +126,40 @@ impl core::fmt::Display for BandError {
                 "the depth buffer does not cover the {}x{} pixels at ({}, {}) a band needs",
                 needed.size.width, needed.size.height, needed.top_left.x, needed.top_left.y
             ),
+            Self::Antialias(e) => write!(f, "cannot anti-alias: {e}"),
         }
     }
 }
 
 impl core::error::Error for BandError {}
+
+/// The binned triangles (`bins`, in mesh order) that touch bin unit `unit` (band `b` is in unit
+/// `b / ceil(bands / 16)`). `cursor` (entry, triangle) skips the leading entries that ended
+/// above the unit: start it at `(0, 0)` and pass it again for later bands, in order.
+#[inline(always)]
+pub(super) fn unit_triangles<'b>(
+    bins: &'b [BinEntry],
+    unit: u8,
+    cursor: &mut (usize, usize),
+) -> impl Iterator<Item = usize> + 'b {
+    let (mut lo, mut lo_t) = *cursor;
+    while let Some(e) = bins
+        .get(lo)
+        .filter(|e| e.last() < unit || e.first() > e.last())
+    {
+        lo_t += usize::from(e.step);
+        lo += 1;
+    }
+    *cursor = (lo, lo_t);
+    let mut t = lo_t;
+    bins.get(lo..)
+        .unwrap_or_default()
+        .iter()
+        .filter_map(move |e| {
+            t += usize::from(e.step);
+            (e.first() <= unit && unit <= e.last()).then_some(t)
+        })
+}
 
 impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
 where
@@ -187,7 +220,7 @@ where
     ///
     /// # Errors
     /// [`BandError::TooFewBins`] when `bins` cannot hold them all.
-    pub(crate) fn bin<M: MeshSource<S>>(
+    pub(crate) fn bin<M: MeshSource<S>, const MARGIN: bool>(
         &self,
         mesh: &M,
         scratch: &mut [VertexSlot<Sh::Stored>],
@@ -220,15 +253,19 @@ where
                 continue;
             };
             // The rows whose sample lines the triangle can cross; columns to the whole pixel.
-            let top = row_at_or_below(i64::from(top), s).max(0);
-            let bottom = row_at_or_below(i64::from(bottom), s).min(i64::from(height));
+            // With `MARGIN` (anti-aliased silhouettes) a pixel more each way, which a pixel the
+            // triangle only partly covers can be.
+            let m = if MARGIN { s } else { 0 };
+            let (left, right) = (i64::from(left) - m, i64::from(right) + m);
+            let top = row_at_or_below(i64::from(top) - m, s).max(0);
+            let bottom = row_at_or_below(i64::from(bottom) + m, s).min(i64::from(height));
             if top >= bottom {
                 continue;
             }
             *pixels = pixels.union(&PixelRect {
-                x0: i64::from(left) >> BITS,
+                x0: left >> BITS,
                 y0: top,
-                x1: (i64::from(right) >> BITS) + 1,
+                x1: (right >> BITS) + 1,
                 y1: bottom,
             });
             while t - prev > usize::from(u8::MAX) {
@@ -273,22 +310,9 @@ where
         T: Surface<Color = Sh::Color>,
         M: MeshSource<S>,
     {
-        let (mut lo, mut lo_t) = *cursor;
-        while let Some(e) = bins
-            .get(lo)
-            .filter(|e| e.last() < unit || e.first() > e.last())
-        {
-            lo_t += usize::from(e.step);
-            lo += 1;
-        }
-        *cursor = (lo, lo_t);
-        let mut t = lo_t;
-        for e in bins.get(lo..).unwrap_or_default() {
-            t += usize::from(e.step);
-            if e.first() <= unit && unit <= e.last() {
-                let front = self.front_again(mesh, t, scratch);
-                self.draw_front(src, target, mesh, front, scratch, stats)?;
-            }
+        for t in unit_triangles(bins, unit, cursor) {
+            let front = self.front_again(mesh, t, scratch);
+            self.draw_front(src, target, mesh, front, scratch, stats)?;
         }
         Ok(())
     }
@@ -312,6 +336,55 @@ where
     /// [`BandError`] for a band buffer or depth stage too small for a band, zero rows, or too
     /// few bins (nothing is drawn then).
     pub fn draw_banded<Px, M, F>(
+        &mut self,
+        mesh: &M,
+        banding: &Banding<Px>,
+        band: &mut [Px::Word],
+        bins: &mut [BinEntry],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        on_band: F,
+    ) -> Result<RenderStats, BandError>
+    where
+        Px: Storage,
+        Sh: Shading<S, Color = Px>,
+        M: MeshSource<S>,
+        F: FnMut(&Band<'_, Px>),
+    {
+        self.banded::<Px, M, F, false>(mesh, banding, band, bins, scratch, on_band)
+    }
+
+    /// [`Pipeline::draw_banded`] with the silhouettes anti-aliased as
+    /// [`Pipeline::draw_antialiased`] draws them: each band draws its triangles' opaque pixels,
+    /// then blends their silhouette edges' pixels. The pixels are exactly those of a
+    /// whole-frame [`Pipeline::draw_antialiased`] of the same scene on the band's background,
+    /// for any band height. A triangle is binned to the bands a pixel beyond it reaches, so a
+    /// frame may need a few more bins than [`Pipeline::draw_banded`].
+    ///
+    /// # Errors
+    /// As [`Pipeline::draw_banded`], and [`BandError::Antialias`] when the mesh has no
+    /// adjacency or the numerics do not take the fused span loop (nothing is drawn).
+    pub fn draw_banded_antialiased<Px, M, F>(
+        &mut self,
+        mesh: &M,
+        banding: &Banding<Px>,
+        band: &mut [Px::Word],
+        bins: &mut [BinEntry],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        on_band: F,
+    ) -> Result<RenderStats, BandError>
+    where
+        Px: Storage,
+        Sh: Shading<S, Color = Px>,
+        M: MeshSource<S>,
+        F: FnMut(&Band<'_, Px>),
+    {
+        Self::antialias_check::<Framebuffer<'_, Px>, M>(mesh).map_err(BandError::Antialias)?;
+        self.banded::<Px, M, F, true>(mesh, banding, band, bins, scratch, on_band)
+    }
+
+    /// [`Pipeline::draw_banded`], with anti-aliased silhouettes when `AA`.
+    #[inline(always)]
+    fn banded<Px, M, F, const AA: bool>(
         &mut self,
         mesh: &M,
         banding: &Banding<Px>,
@@ -351,7 +424,8 @@ where
             ..RenderStats::default()
         };
         let mut pixels = PixelRect::EMPTY;
-        let count = self.bin(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
+        let count =
+            self.bin::<M, AA>(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
         let bins = &bins[..count];
         let bands = height.div_ceil(rows);
         let group = bands.div_ceil(16);
@@ -369,16 +443,33 @@ where
             let mut strip = Band::new(fb, y0 as i32);
             {
                 let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
-                let Ok(()) = self.draw_unit(
-                    &mut super::Own,
-                    &mut target,
-                    mesh,
-                    scratch,
-                    bins,
-                    (b / group) as u8,
-                    &mut cursor,
-                    &mut scratch_stats,
-                );
+                let unit = (b / group) as u8;
+                if AA {
+                    let start = cursor;
+                    for fringe in [false, true] {
+                        cursor = start;
+                        let Ok(()) = self.draw_unit_silhouette(
+                            &mut super::Own,
+                            &mut target,
+                            mesh,
+                            scratch,
+                            unit_triangles(bins, unit, &mut cursor),
+                            &mut scratch_stats,
+                            fringe,
+                        );
+                    }
+                } else {
+                    let Ok(()) = self.draw_unit(
+                        &mut super::Own,
+                        &mut target,
+                        mesh,
+                        scratch,
+                        bins,
+                        unit,
+                        &mut cursor,
+                        &mut scratch_stats,
+                    );
+                }
             }
             on_band(&strip);
         }

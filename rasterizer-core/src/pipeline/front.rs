@@ -41,7 +41,10 @@ pub(super) fn outside(v: &[Projected; 3]) -> bool {
 }
 
 /// A shader as the fused span loop's colour source, dithered as `N` says.
-struct ShaderColor<'a, S, Sh, N>(&'a Sh, core::marker::PhantomData<(S, N)>);
+pub(super) struct ShaderColor<'a, S, Sh, N>(
+    pub(super) &'a Sh,
+    pub(super) core::marker::PhantomData<(S, N)>,
+);
 
 impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for ShaderColor<'_, S, Sh, N> {
     const PRECISION: Precision = Precision {
@@ -514,10 +517,11 @@ where
     }
 
     /// Whether visible triangles take the fused span loop ([`SpanStart::Wrapping`], affine).
-    const FUSED: bool = matches!(N::SPANS, SpanStart::Wrapping) && !N::PERSPECTIVE;
+    pub(super) const FUSED: bool = matches!(N::SPANS, SpanStart::Wrapping) && !N::PERSPECTIVE;
     /// Whether they take it perspective-correctly ([`SpanStart::Wrapping`] with
     /// [`Numerics::PERSPECTIVE`]): see [`super::perspective`].
-    const FUSED_PERSPECTIVE: bool = matches!(N::SPANS, SpanStart::Wrapping) && N::PERSPECTIVE;
+    pub(super) const FUSED_PERSPECTIVE: bool =
+        matches!(N::SPANS, SpanStart::Wrapping) && N::PERSPECTIVE;
 
     /// Rasterizes one screen triangle through the fused span loop with perspective-correct
     /// values.

@@ -13,14 +13,16 @@
 //! interpolation and colour in one loop per span.
 //!
 //! Files: `front.rs` is the front end, `vertex.rs` the per-vertex work (transform, projection,
-//! shading into the scratch), `band.rs` band rendering.
+//! shading into the scratch), `band.rs` band rendering, `silhouette.rs` anti-aliased silhouettes.
 
 mod band;
 mod front;
 mod perspective;
+mod silhouette;
 mod vertex;
 
 pub use band::{BandError, Banding, BinEntry};
+pub use silhouette::AntialiasError;
 pub use vertex::VertexSlot;
 
 use crate::clip::polygon::{clip_segment, clip_triangle, ClipVertex};
@@ -78,6 +80,9 @@ pub enum DrawError<E> {
         /// The pixels the draw needs depths for.
         needed: Rectangle,
     },
+    /// The mesh cannot be drawn with anti-aliased silhouettes ([`Pipeline::draw_antialiased`]):
+    /// nothing is drawn.
+    Antialias(AntialiasError),
 }
 
 impl<E> From<E> for DrawError<E> {
@@ -95,6 +100,7 @@ impl<E: core::fmt::Debug> core::fmt::Display for DrawError<E> {
                 "the depth buffer does not cover the {}x{} pixels at ({}, {}) the draw needs",
                 needed.size.width, needed.size.height, needed.top_left.x, needed.top_left.y
             ),
+            Self::Antialias(e) => write!(f, "cannot anti-alias: {e}"),
         }
     }
 }

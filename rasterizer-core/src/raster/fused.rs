@@ -21,10 +21,11 @@
 use crate::depth::{Compare, DepthTest};
 use crate::geom::{PixelRect, SubPoint};
 use crate::geom::{Varyings, MAX_VARYINGS};
+use crate::raster::silhouette::{in_aa_range, walk_silhouette, FringeSink};
 use crate::raster::triangle::setup::{
     may_cover_a_centre, misses_every_centre, walk_spans_once, Sorted, SpanSink,
 };
-use crate::surface::{DepthSpan, Surface};
+use crate::surface::{BlendError, DepthSpan, Surface};
 use crate::wide::Reciprocal;
 use core::num::NonZeroU64;
 
@@ -384,19 +385,46 @@ where
     V: Varyings,
     P: FusedColor<S::Color>,
 {
+    let Some((t, clip, mut sink)) =
+        set_up::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel, true)
+    else {
+        return Ok(());
+    };
+    walk_spans_once(&t, 1 << BITS, &clip, &mut sink)
+}
+
+/// What [`set_up`] gives: the sorted triangle, the clip area and the span sink.
+type SetUp<'a, S, D, V, P> = (Sorted, PixelRect, Fused<'a, S, D, V, P>);
+
+/// The set-up of [`fill_fused`]: the sorted triangle, the clip area and the span sink with its
+/// planes; `None` when nothing is drawn (with `skip_empty`, also for a triangle that surely
+/// covers no pixel centre).
+#[inline(always)]
+fn set_up<'a, S, D, V, P, const BITS: u32>(
+    surface: &'a mut S,
+    depth: &'a mut D,
+    vertices: &[FusedVertex<V, BITS>; 3],
+    area: &PixelRect,
+    pixel: P,
+    skip_empty: bool,
+) -> Option<SetUp<'a, S, D, V, P>>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<S::Color>,
+{
     let Precision {
         frac: vfrac,
         offset: voffset,
     } = P::PRECISION;
-    let Some(t) = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0]) else {
-        return Ok(());
-    };
+    let t = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0])?;
     let [v0, v1, v2] = t.v;
     let s = 1i64 << BITS;
     let clip = PixelRect::from_rectangle(&surface.clip_area());
     // A triangle that surely covers no pixel skips the set-up of its planes.
-    if misses_every_centre(&t, s, &clip) {
-        return Ok(());
+    if skip_empty && misses_every_centre(&t, s, &clip) {
+        return None;
     }
     let sign = t.cross.signum();
     let e1 = (sign * (v1.0 - v0.0), sign * (v1.1 - v0.1));
@@ -442,22 +470,20 @@ where
     // pipeline refuses to draw with a depth buffer that does not cover the viewport, so a
     // triangle is never dropped here in practice.
     let (zbuf, zwidth, zorigin) = if D::ENABLED {
-        let Some(rows) = depth.depth_rows() else {
-            return Ok(());
-        };
+        let rows = depth.depth_rows()?;
         let y0 = i64::from(rows.origin_y);
         let covered = clip.x0 >= 0
             && clip.x1 <= i64::from(rows.width)
             && clip.y0 >= y0
             && clip.y1 <= y0 + i64::from(rows.height);
         if !covered {
-            return Ok(());
+            return None;
         }
         (rows.depths, rows.width as usize, rows.origin_y)
     } else {
         (&mut [][..], 0, 0)
     };
-    let mut sink = Fused::<S, D, V, P> {
+    let sink = Fused::<S, D, V, P> {
         surface,
         zbuf,
         zwidth,
@@ -469,7 +495,153 @@ where
         compare,
         _v: core::marker::PhantomData,
     };
-    walk_spans_once(&t, s, &clip, &mut sink)
+    Some((t, clip, sink))
+}
+
+/// Fills a triangle with anti-aliased silhouette edges (bit `k` of `mask`, not zero, for the
+/// edge from vertex `k` to vertex `k + 1`): with `fringe` false the pixels wholly inside them,
+/// with `fringe` true those they cross, blended by their coverage ([`walk_silhouette`]). The
+/// triangle is as in [`fill_fused`], its vertices within [`in_aa_range`]; the surface reads
+/// back ([`Surface::READ_BACK`]).
+#[inline(never)]
+pub(crate) fn fill_fused_silhouette<S, D, V, P, const BITS: u32>(
+    surface: &mut S,
+    depth: &mut D,
+    vertices: &[FusedVertex<V, BITS>; 3],
+    area: &PixelRect,
+    pixel: P,
+    mask: u8,
+    fringe: bool,
+) -> Result<(), S::Error>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<S::Color>,
+{
+    let p = vertices.map(|v| (i64::from(v.0.x), i64::from(v.0.y)));
+    if !in_aa_range::<BITS>(&p) {
+        // Drawn as without anti-aliasing, in the first pass only.
+        return if fringe {
+            Ok(())
+        } else {
+            fill_fused::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel)
+        };
+    }
+    let Some((_, clip, sink)) =
+        set_up::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel, !fringe)
+    else {
+        return Ok(());
+    };
+    // Each value's range over the triangle: a crossed pixel's centre may lie outside it, where
+    // the planes extrapolate (and may wrap); its values are clamped back into the range.
+    let frac = P::PRECISION.frac;
+    let n = V::LEN.min(MAX_VARYINGS);
+    let mut lo = [0u32; MAX_VARYINGS];
+    let mut hi = [0u32; MAX_VARYINGS];
+    for k in 0..n {
+        let f = |o: usize| vertices[o].2.as_slice()[k];
+        let (a, b) = (f(0).min(f(1)).min(f(2)), f(0).max(f(1)).max(f(2)));
+        lo[k] = (a as u32) << frac;
+        hi[k] = ((b as u32) << frac) | ((1u32 << frac) - 1);
+    }
+    let zs = vertices.map(|v| u32::from(v.1));
+    let mut sink = Silhouette {
+        fused: sink,
+        lo,
+        hi,
+        zlo: zs[0].min(zs[1]).min(zs[2]) << Z_FRAC,
+        zhi: (zs[0].max(zs[1]).max(zs[2]) << Z_FRAC) | ((1 << Z_FRAC) - 1),
+    };
+    walk_silhouette::<_, BITS>(&p, mask, fringe, &clip, &mut sink)
+}
+
+/// `v` (a plane's wrapping value) as the nearest value of `lo ..= hi`: unwrapped around the
+/// range's middle first, so that a value a little outside the range is not taken for one far
+/// on its other side.
+#[inline(always)]
+fn clamp_wrapped(v: u32, lo: u32, hi: u32) -> u32 {
+    if lo > hi {
+        // Values beyond the documented range: nothing to clamp to.
+        return v;
+    }
+    let mid = lo + (hi - lo) / 2;
+    let exact = i64::from(mid) + i64::from(v.wrapping_sub(mid) as i32);
+    exact.clamp(i64::from(lo), i64::from(hi)) as u32
+}
+
+/// The span sink of a triangle with anti-aliased silhouettes: [`Fused`] for the inner spans,
+/// and the blend of each crossed pixel.
+struct Silhouette<'a, S: Surface, D, V, P> {
+    fused: Fused<'a, S, D, V, P>,
+    /// Each value's range over the triangle, and depth's, scaled as the planes.
+    lo: [u32; MAX_VARYINGS],
+    hi: [u32; MAX_VARYINGS],
+    zlo: u32,
+    zhi: u32,
+}
+
+impl<S, D, V, P> SpanSink for Silhouette<'_, S, D, V, P>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<S::Color>,
+{
+    type Error = S::Error;
+
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
+        self.fused.span(row, x0, x1)
+    }
+}
+
+impl<S, D, V, P> FringeSink for Silhouette<'_, S, D, V, P>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<S::Color>,
+{
+    fn fringe(&mut self, row: i32, x: i32, coverage: u32) -> Result<(), S::Error> {
+        let f = &mut self.fused;
+        if D::ENABLED {
+            let z = clamp_wrapped(f.z.at(x, row), self.zlo, self.zhi);
+            let nz = (z >> Z_FRAC) as u16;
+            let i = row.wrapping_sub(f.zorigin) as u32 as usize * f.zwidth + x as usize;
+            let Some(stored) = f.zbuf.get_mut(i) else {
+                return Ok(());
+            };
+            if !f.compare.pass(nz, *stored) {
+                return Ok(());
+            }
+            // A pixel at least half covered stands in the depth buffer for the surface, as its
+            // centre would without anti-aliasing; a less covered one lets what is drawn later
+            // behind it replace it.
+            if D::WRITE && coverage >= 1 << 15 {
+                *stored = nz;
+            }
+        }
+        let mut acc = [0u32; MAX_VARYINGS];
+        for (k, a) in acc.iter_mut().enumerate().take(V::LEN.min(MAX_VARYINGS)) {
+            *a = clamp_wrapped(f.values[k].at(x, row), self.lo[k], self.hi[k]);
+        }
+        let color = if P::AT {
+            f.pixel.color_at(&acc, x, row)
+        } else {
+            f.pixel.color(&acc)
+        };
+        let alpha = ((coverage * 255 + (1 << 15)) >> 16) as u8;
+        match alpha {
+            0 => Ok(()),
+            255 => f.surface.fill_span_in_clip(x, row, 1, color),
+            _ => match f.surface.blend_span_in_clip(x, row, 1, color, alpha) {
+                Ok(()) => Ok(()),
+                Err(BlendError::Target(e)) => Err(e),
+                // The pipeline refuses a surface that cannot read back before it draws.
+                Err(BlendError::CannotReadBack) => Ok(()),
+            },
+        }
+    }
 }
 
 #[cfg(test)]

@@ -10,5 +10,6 @@ pub mod interp;
 pub mod line;
 pub mod point;
 pub mod polygon;
+pub(crate) mod silhouette;
 pub mod sprite;
 pub mod triangle;

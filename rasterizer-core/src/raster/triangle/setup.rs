@@ -317,7 +317,7 @@ pub(crate) fn may_cover_a_centre<const BITS: u32>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     extern crate std;
     use super::*;
     use crate::geom::SubPoint;
@@ -338,7 +338,7 @@ mod tests {
     }
 
     /// Every span of a walk.
-    struct Spans(std::vec::Vec<(i32, i32, i32)>);
+    pub(crate) struct Spans(pub(crate) std::vec::Vec<(i32, i32, i32)>);
     impl SpanSink for Spans {
         type Error = ();
         fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), ()> {
@@ -348,7 +348,7 @@ mod tests {
     }
 
     /// Xorshift numbers in `0 .. m`, from `seed`.
-    fn numbers(mut x: u32) -> impl FnMut(u32) -> i32 {
+    pub(crate) fn numbers(mut x: u32) -> impl FnMut(u32) -> i32 {
         move |m| {
             x ^= x << 13;
             x ^= x >> 17;

@@ -1,0 +1,282 @@
+//! Anti-aliased silhouettes ([`Pipeline::draw_antialiased`]): the draws that find a mesh's
+//! silhouette edges through its adjacency and hand their triangles to the raster stage's
+//! two-pass silhouette fill ([`crate::raster::silhouette`]).
+
+use super::front::{outside, ShaderColor};
+use super::perspective::PerspectiveColor;
+use super::vertex::Projected;
+use super::{DepthFrom, DrawError, Front, MeshSource, Own, Pipeline, RenderStats, VertexSlot};
+use crate::cull::Cull;
+use crate::depth::DepthTest;
+use crate::geom::SubPoint;
+use crate::math::Scalar;
+use crate::mesh::NO_NEIGHBOUR;
+use crate::numerics::Numerics;
+use crate::raster::fused::fill_fused_silhouette;
+use crate::raster::interp::ScreenVertex;
+use crate::shade::Shading;
+use crate::surface::{ClipTo, Surface};
+
+/// Why a mesh cannot be drawn with anti-aliased silhouettes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AntialiasError {
+    /// The target cannot read back its pixels ([`Surface::READ_BACK`]), which blending needs.
+    CannotReadBack,
+    /// The mesh has no edge adjacency ([`MeshSource::has_adjacency`]): convert it with
+    /// `--adjacency`, or give a [`crate::mesh::Mesh`] one with
+    /// [`crate::mesh::Mesh::with_adjacency`].
+    NoAdjacency,
+    /// The pipeline's numerics do not take the fused span loop ([`crate::numerics::SpanStart`]
+    /// other than `Wrapping`), which the silhouette fill is built on.
+    Numerics,
+}
+
+impl core::fmt::Display for AntialiasError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::CannotReadBack => write!(f, "the target cannot read back pixels to blend into"),
+            Self::NoAdjacency => write!(f, "the mesh has no edge adjacency"),
+            Self::Numerics => write!(f, "anti-aliasing needs the fused span loop's numerics"),
+        }
+    }
+}
+
+impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
+where
+    S: Scalar,
+    C: Cull,
+    D: DepthTest,
+    Sh: Shading<S>,
+    N: Numerics,
+{
+    /// Whether this pipeline's numerics can draw silhouettes anti-aliased.
+    pub(super) const ANTIALIASES: bool = Self::FUSED || Self::FUSED_PERSPECTIVE;
+
+    /// Why `mesh` cannot be drawn anti-aliased into a `T`, if it cannot.
+    pub(super) fn antialias_check<T: Surface, M: MeshSource<S>>(
+        mesh: &M,
+    ) -> Result<(), AntialiasError> {
+        if !T::READ_BACK {
+            return Err(AntialiasError::CannotReadBack);
+        }
+        if !mesh.has_adjacency() {
+            return Err(AntialiasError::NoAdjacency);
+        }
+        if !Self::ANTIALIASES {
+            return Err(AntialiasError::Numerics);
+        }
+        Ok(())
+    }
+
+    /// The silhouette edges of visible triangle `t` (corners `v`, all inside the guard band):
+    /// bit `k` for the edge from corner `k` to corner `k + 1` when no triangle lies across it, or
+    /// the one that does faces the other way on screen (or is flat there). A neighbour with a
+    /// corner outside the guard band counts as facing the same way.
+    #[inline(always)]
+    pub(super) fn silhouette_mask<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        t: usize,
+        v: &[Projected; 3],
+        scratch: &[VertexSlot<Sh::Stored>],
+    ) -> u8 {
+        let area = |v: &[Projected; 3]| {
+            let xs = [v[0].0, v[1].0, v[2].0].map(i64::from);
+            let ys = [v[0].1, v[1].1, v[2].1].map(i64::from);
+            ((xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0])).signum()
+        };
+        let own = area(v);
+        let count = mesh.triangle_count();
+        let mut mask = 0;
+        for (k, &n) in mesh.neighbours(t).iter().enumerate() {
+            let silhouette = if n == NO_NEIGHBOUR || n as usize >= count {
+                true
+            } else {
+                match self.fetch(mesh, mesh.triangle(n as usize), scratch) {
+                    None => true,
+                    Some(w) if outside(&w) => false,
+                    Some(w) => area(&w) != own,
+                }
+            };
+            mask |= u8::from(silhouette) << k;
+        }
+        mask
+    }
+
+    /// Draws a visible triangle (as [`Pipeline::draw_visible`]) in one pass of an anti-aliased
+    /// draw: the first (`fringe` false) draws what is opaque, counting the triangle as drawn;
+    /// the second blends its silhouette edges' pixels.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn draw_visible_silhouette<T, M, P: DepthFrom<D>>(
+        &mut self,
+        src: &mut P,
+        target: &mut T,
+        mesh: &M,
+        t: usize,
+        v: [Projected; 3],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        stats: &mut RenderStats,
+        fringe: bool,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        let idx = mesh.triangle(t);
+        let mask = self.silhouette_mask(mesh, t, &v, scratch);
+        if mask == 0 {
+            return if fringe {
+                Ok(())
+            } else {
+                self.draw_visible(src, target, mesh, idx, v, scratch, stats)
+            };
+        }
+        if !fringe {
+            stats.drawn += 1;
+        }
+        if self.area.is_empty() {
+            return Ok(());
+        }
+        if Sh::NEEDS_FACE {
+            self.face(mesh, idx);
+        }
+        let p = v.map(|(x, y, _)| SubPoint::<BITS>::raw(x, y));
+        let mut var = if Sh::NEEDS_WORLD && !mesh.has_normals() {
+            self.face_normal_values(mesh, idx)
+        } else {
+            [
+                self.slot_values(mesh, idx[0], scratch),
+                self.slot_values(mesh, idx[1], scratch),
+                self.slot_values(mesh, idx[2], scratch),
+            ]
+        };
+        if Sh::NEEDS_TRIANGLE {
+            self.shading.triangle(&mut var);
+        }
+        let area = self.area;
+        if Self::FUSED_PERSPECTIVE {
+            let sv = [0, 1, 2].map(|k| ScreenVertex {
+                p: p[k],
+                z: v[k].2,
+                var: var[k],
+                q: self.q_of(mesh.position(idx[k])),
+            });
+            let (fv, color) = PerspectiveColor::<S, Sh, N>::new(&self.shading, &sv);
+            let depth = src.pick(&mut self.depth);
+            return fill_fused_silhouette::<_, _, _, _, BITS>(
+                target, depth, &fv, &area, color, mask, fringe,
+            );
+        }
+        let fv = [0, 1, 2].map(|k| (p[k], v[k].2, var[k]));
+        let color = ShaderColor::<S, Sh, N>(&self.shading, core::marker::PhantomData);
+        fill_fused_silhouette::<_, _, _, _, BITS>(
+            target,
+            src.pick(&mut self.depth),
+            &fv,
+            &area,
+            color,
+            mask,
+            fringe,
+        )
+    }
+
+    /// Draws a mesh as [`Pipeline::draw`] does, with its silhouette edges anti-aliased: each
+    /// pixel a silhouette edge crosses is blended with what lies beneath by the fraction of it
+    /// the mesh covers (within 1/16 of the exact area; `docs/ACCURACY.md`), after the rest of
+    /// the mesh is drawn. A silhouette edge is one whose neighbouring triangle (from the mesh's
+    /// adjacency) faces the other way on screen, or that has none. Edges between triangles that
+    /// both face the viewer are drawn as by [`Pipeline::draw`], so no seam appears.
+    ///
+    /// A pixel at least half covered stores its depth; a less covered one does not, so what is
+    /// drawn behind it later replaces it: draw the far objects of a scene first. Triangles
+    /// that need clipping in homogeneous space, or that reach more than
+    /// [`crate::raster::silhouette::AA_RANGE_PIXELS`] pixels from the screen's origin, are
+    /// drawn without anti-aliasing.
+    ///
+    /// # Errors
+    /// [`DrawError::Antialias`] when the target cannot read back, the mesh has no adjacency, or
+    /// the numerics do not take the fused span loop (nothing is drawn); otherwise as
+    /// [`Pipeline::draw`].
+    pub fn draw_antialiased<T, M>(
+        &mut self,
+        target: &mut T,
+        mesh: &M,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> Result<RenderStats, DrawError<T::Error>>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        Self::antialias_check::<T, M>(mesh).map_err(DrawError::Antialias)?;
+        let target = &mut ClipTo::new(target, self.viewport.rectangle());
+        let needed = target.clip_area();
+        if needed.size.width > 0 && needed.size.height > 0 && !self.depth.covers(&needed) {
+            return Err(DrawError::DepthTooSmall { needed });
+        }
+        let scratch = self.begin(mesh, scratch);
+        let mut stats = RenderStats {
+            triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
+            ..RenderStats::default()
+        };
+        for t in 0..mesh.triangle_count() {
+            let idx = mesh.triangle(t);
+            let Some(v) = self.fetch(mesh, idx, scratch) else {
+                stats.invalid += 1;
+                continue;
+            };
+            if outside(&v) {
+                self.draw_outside(&mut Own, target, mesh, idx, scratch, &mut stats)?;
+            } else if self.visible(&v, &mut stats, false) {
+                self.draw_visible_silhouette(
+                    &mut Own, target, mesh, t, v, scratch, &mut stats, false,
+                )?;
+            }
+        }
+        let mut again = RenderStats::default();
+        for t in 0..mesh.triangle_count() {
+            let Some(v) = self.fetch(mesh, mesh.triangle(t), scratch) else {
+                continue;
+            };
+            if !outside(&v) && self.visible(&v, &mut again, false) {
+                self.draw_visible_silhouette(
+                    &mut Own, target, mesh, t, v, scratch, &mut again, true,
+                )?;
+            }
+        }
+        Ok(stats)
+    }
+
+    /// One pass of an anti-aliased band ([`Pipeline::draw_banded_antialiased`]): the binned
+    /// triangles of bin unit `unit`, as [`Pipeline::draw_unit`] draws them.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn draw_unit_silhouette<T, M, P: DepthFrom<D>>(
+        &mut self,
+        src: &mut P,
+        target: &mut T,
+        mesh: &M,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        entries: impl Iterator<Item = usize>,
+        stats: &mut RenderStats,
+        fringe: bool,
+    ) -> Result<(), T::Error>
+    where
+        T: Surface<Color = Sh::Color>,
+        M: MeshSource<S>,
+    {
+        for t in entries {
+            match self.front_again(mesh, t, scratch) {
+                Front::Skip => {}
+                Front::Inside { v, .. } => {
+                    let v = v.map(|(p, z)| (p.x, p.y, z));
+                    self.draw_visible_silhouette(src, target, mesh, t, v, scratch, stats, fringe)?;
+                }
+                front @ Front::Clip { .. } => {
+                    if !fringe {
+                        self.draw_front(src, target, mesh, front, scratch, stats)?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
