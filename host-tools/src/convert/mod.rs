@@ -568,6 +568,7 @@ fn convert_inner(
         uvs: file_uvs.is_some().then_some(out_uv),
         triangles: out_tris,
         texture: None,
+        adjacency: None,
     };
     let blob = encode(&mesh);
     let packed = PackedMesh::parse(&blob).map_err(|e| {
