@@ -31,10 +31,11 @@
 //!
 //! Version 2 adds texture coordinates and a texture; a blob with neither is written as version 1,
 //! which this reader still reads (with bits 3 and 4 unknown flags there). The texture comes last,
-//! after the triangles (and adjacency), since its length depends on its own sides; it needs texture coordinates
-//! (flag 4 without flag 3 is [`MeshError::TextureWithoutUvs`]), while texture coordinates alone are
-//! allowed (for a texture that firmware keeps elsewhere). Texture coordinates take any `i32`: values
-//! outside `0 ..= 1` repeat or clamp as the shader's [`crate::texture::Wrap`] says.
+//! after the triangles (and adjacency), since its length depends on its own sides; it needs
+//! texture coordinates (flag 4 without flag 3 is [`MeshError::TextureWithoutUvs`]), while texture
+//! coordinates alone are allowed (for a texture that firmware keeps elsewhere). Texture
+//! coordinates take any `i32`: values outside `0 ..= 1` repeat or clamp as the shader's
+//! [`crate::texture::Wrap`] says.
 //!
 //! Version 3 adds edge adjacency ([`MeshSource::neighbours`]: entry `e` of a triangle is the
 //! triangle across its edge from corner `e` to corner `(e + 1) % 3`), which anti-aliased
@@ -45,9 +46,9 @@
 //!
 //! [`PackedMesh::parse`] checks everything once (magic, version, flags, counts, that the length is
 //! exactly what the counts need, zero padding, scales, quanta, every index and every neighbour
-//! entry), so any byte string
-//! gives a mesh or a [`MeshError`], and the accessors afterwards need no checks that can fail. The
-//! reader decodes with `from_le_bytes`, so the blob itself needs no alignment.
+//! entry), so any byte string gives a mesh or a [`MeshError`], and the accessors afterwards need
+//! no checks that can fail. The reader decodes with `from_le_bytes`, so the blob itself needs no
+//! alignment.
 
 use super::{MeshSource, NO_NEIGHBOUR};
 use crate::math::{Scalar, Vec3};
