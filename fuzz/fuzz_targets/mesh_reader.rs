@@ -3,7 +3,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use rasterizer_core::math::{Fx16, Vec3};
-use rasterizer_core::mesh::MeshSource;
+use rasterizer_core::mesh::{MeshSource, NO_NEIGHBOUR};
 use rasterizer_core::mesh::PackedMesh;
 
 fuzz_target!(|data: &[u8]| {
@@ -23,6 +23,8 @@ fuzz_target!(|data: &[u8]| {
             if let Some(idx) = m.triangle_indices(t) {
                 assert!(idx.iter().all(|&i| (i as usize) < m.vertices()));
             }
+            let n = MeshSource::<Fx16>::neighbours(&m, t);
+            assert!(n.iter().all(|&u| u == NO_NEIGHBOUR || (u as usize) < m.triangles()));
         }
     }
 });

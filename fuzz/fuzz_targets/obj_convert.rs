@@ -23,6 +23,7 @@ fuzz_target!(|data: &[u8]| {
         normals,
         weld: choice & 16 != 0,
         no_uvs: choice & 32 != 0,
+        adjacency: choice & 64 != 0,
         progress: false,
     };
     let mut warnings = Vec::new();

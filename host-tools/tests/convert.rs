@@ -431,6 +431,52 @@ fn rust_output_holds_the_same_bytes() {
 }
 
 #[test]
+fn adjacency_flag_writes_version_3_in_both_outputs() {
+    let dir = scratch("adjacency");
+    // Per-face texture coordinates and normals: every corner a vertex of its own, and still a
+    // closed surface.
+    let input = models().join("cube_textured.obj");
+    let plain = dir.join("plain.rmsh");
+    let bin = dir.join("cube.rmsh");
+    let rs = dir.join("cube.rs");
+    assert_eq!(convert(&input, &plain, &[]).status.code(), Some(0));
+    let run = convert(&input, &bin, &["--adjacency"]);
+    assert_eq!(run.status.code(), Some(0), "{}", text(&run.stderr));
+    assert!(
+        text(&run.stdout).contains("adjacency (0 edges without a neighbour)"),
+        "{}",
+        text(&run.stdout)
+    );
+    let blob = std::fs::read(&bin).unwrap();
+    let without = std::fs::read(&plain).unwrap();
+    assert_eq!((without[4], blob[4]), (2, 3), "versions");
+    let mesh = PackedMesh::parse(&blob).unwrap();
+    assert!(mesh.has_adjacency() && !PackedMesh::parse(&without).unwrap().has_adjacency());
+    for t in 0..mesh.triangles() {
+        let n = mesh.neighbour_indices(t).unwrap();
+        assert!(
+            n.iter().all(|&u| (u as usize) < mesh.triangles()),
+            "{t}: {n:?}"
+        );
+    }
+    assert_eq!(
+        convert(&input, &rs, &["--rust", "--adjacency"])
+            .status
+            .code(),
+        Some(0)
+    );
+    let src = std::fs::read_to_string(&rs).unwrap();
+    assert!(
+        src.contains("(format v3)") && src.contains("adjacency, "),
+        "{src}"
+    );
+    assert_eq!(
+        host_tools::convert::bytes_from_rust_source(&src).unwrap(),
+        blob
+    );
+}
+
+#[test]
 fn many_vertices_use_32_bit_indices() {
     // A 265 x 265 grid: 70,225 vertices.
     let n = 265;

@@ -53,9 +53,32 @@ pub fn encode_v2(
     uvs: Option<&[[i32; 2]]>,
     texture: Option<Tex<'_>>,
 ) -> Vec<u8> {
+    encode_v3(
+        verts, tris, offset, scale, normals, colors, wide, uvs, texture, None,
+    )
+}
+
+/// [`encode_v2`] with optional adjacency (written as given, so a test can give a wrong length or
+/// entry): version 3 when it is given. Entries are `u16` up to 65,535 triangles (`u32::MAX`
+/// written as `0xFFFF`, others cut to 16 bits), else `u32`.
+#[allow(clippy::too_many_arguments)]
+pub fn encode_v3(
+    verts: &[Vert],
+    tris: &[[u32; 3]],
+    offset: [i32; 3],
+    scale: [u32; 3],
+    normals: bool,
+    colors: bool,
+    wide: bool,
+    uvs: Option<&[[i32; 2]]>,
+    texture: Option<Tex<'_>>,
+    adjacency: Option<&[[u32; 3]]>,
+) -> Vec<u8> {
     let mut b = Vec::new();
     b.extend_from_slice(b"RMSH");
-    let version: u16 = if uvs.is_some() || texture.is_some() {
+    let version: u16 = if adjacency.is_some() {
+        3
+    } else if uvs.is_some() || texture.is_some() {
         2
     } else {
         1
@@ -65,7 +88,8 @@ pub fn encode_v2(
         | u16::from(colors) << 1
         | u16::from(wide) << 2
         | u16::from(uvs.is_some()) << 3
-        | u16::from(texture.is_some()) << 4;
+        | u16::from(texture.is_some()) << 4
+        | u16::from(adjacency.is_some()) << 5;
     b.extend_from_slice(&flags.to_le_bytes());
     b.extend_from_slice(&(verts.len() as u32).to_le_bytes());
     b.extend_from_slice(&(tris.len() as u32).to_le_bytes());
@@ -118,6 +142,17 @@ pub fn encode_v2(
         }
     }
     pad(&mut b);
+    if let Some(adjacency) = adjacency {
+        for e in adjacency.iter().flatten() {
+            if tris.len() <= 0xFFFF {
+                let e = if *e == u32::MAX { 0xFFFF } else { *e as u16 };
+                b.extend_from_slice(&e.to_le_bytes());
+            } else {
+                b.extend_from_slice(&e.to_le_bytes());
+            }
+        }
+        pad(&mut b);
+    }
     if let Some(t) = texture {
         b.extend_from_slice(&[t.width_log2, t.height_log2, 0, 0]);
         b.extend_from_slice(t.texels);

@@ -7,10 +7,10 @@
 
 use proptest::prelude::*;
 use rasterizer_core::mesh::MeshError;
-use rasterizer_core::mesh::MeshSource;
+use rasterizer_core::mesh::{MeshSource, NO_NEIGHBOUR};
 use rasterizer_core::prelude::*;
 use rasterizer_core::texture::TextureError;
-use tests::packed::{encode, encode_v2, Tex, Vert};
+use tests::packed::{encode, encode_v2, encode_v3, Tex, Vert};
 
 fn cases(default: u32) -> u32 {
     std::env::var("MESH_FUZZ_CASES")
@@ -63,6 +63,14 @@ fn touch_everything(m: &PackedMesh<'_>) {
             assert!(idx.iter().all(|&i| (i as usize) < m.vertices()));
         }
         let _ = MeshSource::<Fx16>::triangle(m, t);
+        let n = MeshSource::<Fx16>::neighbours(m, t);
+        assert!(n
+            .iter()
+            .all(|&u| u == NO_NEIGHBOUR || (u as usize) < m.triangles()));
+        assert_eq!(
+            m.neighbour_indices(t).is_some(),
+            m.has_adjacency() && t < m.triangles()
+        );
     }
 }
 
@@ -118,10 +126,10 @@ fn typed_errors() {
     b[0] = b'X';
     assert_eq!(PackedMesh::parse(&b).unwrap_err(), MeshError::BadMagic);
     let mut b = good.clone();
-    b[4] = 3;
+    b[4] = 4;
     assert_eq!(
         PackedMesh::parse(&b).unwrap_err(),
-        MeshError::UnsupportedVersion(3)
+        MeshError::UnsupportedVersion(4)
     );
     let mut b = good.clone();
     b[6] |= 8;
@@ -541,6 +549,237 @@ proptest! {
         let w = 1u32 << sides.0;
         for i in 0..n as u32 {
             prop_assert_eq!(tex.texel(i % w, i / w), (i as u16) ^ texel_seed);
+        }
+    }
+}
+
+const N: u32 = NO_NEIGHBOUR;
+
+/// The tetrahedron's neighbours: closed, so every entry is set.
+const TETRA_ADJACENCY: [[u32; 3]; 4] = [[1, 3, 2], [2, 3, 0], [0, 3, 1], [1, 2, 0]];
+
+fn with_adjacency(v: &[Vert], t: &[[u32; 3]], adjacency: &[[u32; 3]]) -> Vec<u8> {
+    encode_v3(
+        v,
+        t,
+        [0; 3],
+        [131076; 3],
+        true,
+        false,
+        false,
+        None,
+        None,
+        Some(adjacency),
+    )
+}
+
+#[test]
+fn version_3_reads_adjacency() {
+    let (v, t) = tetra();
+    assert_eq!(fixtures::adjacency::adjacency(&t), TETRA_ADJACENCY);
+    let blob = with_adjacency(&v, &t, &TETRA_ADJACENCY);
+    assert_eq!(blob[4], 3, "version 3");
+    let m = PackedMesh::parse(&blob).unwrap();
+    touch_everything(&m);
+    assert!(m.has_adjacency());
+    assert!(MeshSource::<Fx16>::has_adjacency(&m));
+    for (k, n) in TETRA_ADJACENCY.iter().enumerate() {
+        assert_eq!(m.neighbour_indices(k), Some(*n));
+        assert_eq!(MeshSource::<Fx16>::neighbours(&m, k), *n);
+    }
+    assert_eq!(m.neighbour_indices(4), None);
+    assert_eq!(MeshSource::<Fx16>::neighbours(&m, 4), [N; 3]);
+    // Everything else reads as before.
+    assert_eq!(m.triangle_indices(3), Some([1, 2, 3]));
+    assert!(m.normal_bits(0).is_some());
+
+    // Boundary edges: the u16 none reads as NO_NEIGHBOUR.
+    let open = [[N, N, 1], [0, N, N]];
+    let blob = with_adjacency(&v, &t[..2], &open);
+    let m = PackedMesh::parse(&blob).unwrap();
+    assert_eq!(m.neighbour_indices(0), Some([N, N, 1]));
+    assert_eq!(m.neighbour_indices(1), Some([0, N, N]));
+
+    // With texture coordinates and a texture: the adjacency sits before the texture.
+    let texels = texels_4x2();
+    let tex = Tex {
+        width_log2: 2,
+        height_log2: 1,
+        texels: &texels,
+    };
+    let blob = encode_v3(
+        &v,
+        &t,
+        [0; 3],
+        [131076; 3],
+        false,
+        true,
+        false,
+        Some(&UVS),
+        Some(tex),
+        Some(&TETRA_ADJACENCY),
+    );
+    let m = PackedMesh::parse(&blob).unwrap();
+    touch_everything(&m);
+    assert_eq!(m.neighbour_indices(2), Some(TETRA_ADJACENCY[2]));
+    assert_eq!(m.texture().unwrap().texel(3, 1), 0xab13);
+    assert_eq!(m.uv_bits(3), Some(UVS[3]));
+
+    // A version 3 blob without the flag is valid and has no adjacency; older blobs neither.
+    let mut b = encode(&v, &t, [0; 3], [131076; 3], true, false, false);
+    assert!(!PackedMesh::parse(&b).unwrap().has_adjacency());
+    b[4] = 3;
+    let m = PackedMesh::parse(&b).unwrap();
+    assert!(!m.has_adjacency());
+    assert_eq!(m.neighbour_indices(0), None);
+    assert_eq!(MeshSource::<Fx16>::neighbours(&m, 0), [N; 3]);
+}
+
+#[test]
+fn version_3_typed_errors() {
+    let (v, t) = tetra();
+    let good = with_adjacency(&v, &t, &TETRA_ADJACENCY);
+    assert!(PackedMesh::parse(&good).is_ok());
+
+    // An entry past the triangles, also one just below the u16 none.
+    for bad in [4, 5, 0xFFFE] {
+        let mut a = TETRA_ADJACENCY;
+        a[2][1] = bad;
+        assert_eq!(
+            PackedMesh::parse(&with_adjacency(&v, &t, &a)).unwrap_err(),
+            MeshError::NeighbourOutOfRange {
+                triangle: 2,
+                entry: bad
+            }
+        );
+    }
+    assert_eq!(
+        MeshError::NeighbourOutOfRange {
+            triangle: 2,
+            entry: 7
+        }
+        .to_string(),
+        "triangle 2 lists triangle 7 as a neighbour, which does not exist"
+    );
+
+    // The flag on versions 1 and 2: unknown there, as before.
+    for version in [1, 2] {
+        let mut b = good.clone();
+        b[4] = version;
+        assert_eq!(
+            PackedMesh::parse(&b).unwrap_err(),
+            MeshError::UnknownFlags(0b10_0001),
+            "version {version}"
+        );
+    }
+
+    // Wrong lengths: a missing entry, a missing section, a section too many.
+    let header_len = good.len() - 24;
+    assert_eq!(
+        PackedMesh::parse(&good[..good.len() - 4]).unwrap_err(),
+        MeshError::WrongLength {
+            expected: good.len(),
+            actual: good.len() - 4
+        }
+    );
+    // 18 bytes of entries and 2 of padding instead of 24.
+    assert_eq!(
+        PackedMesh::parse(&with_adjacency(&v, &t, &TETRA_ADJACENCY[..3])).unwrap_err(),
+        MeshError::WrongLength {
+            expected: good.len(),
+            actual: good.len() - 4
+        }
+    );
+    let mut b = good[..header_len].to_vec();
+    assert_eq!(
+        PackedMesh::parse(&b).unwrap_err(),
+        MeshError::WrongLength {
+            expected: good.len(),
+            actual: header_len
+        }
+    );
+    b[6] &= !32;
+    assert!(PackedMesh::parse(&b).is_ok(), "the same without the flag");
+    let mut long = good.clone();
+    long.extend_from_slice(&[0; 4]);
+    assert!(matches!(
+        PackedMesh::parse(&long).unwrap_err(),
+        MeshError::WrongLength { .. }
+    ));
+
+    // One triangle: 6 bytes of entries, then 2 of padding that must be zero.
+    let one = with_adjacency(&v[..3], &[[0, 1, 2]], &[[N; 3]]);
+    assert!(PackedMesh::parse(&one).is_ok());
+    let mut b = one.clone();
+    let last = b.len() - 1;
+    b[last] = 1;
+    assert_eq!(
+        PackedMesh::parse(&b).unwrap_err(),
+        MeshError::BadPadding { offset: last }
+    );
+}
+
+#[test]
+fn neighbour_entries_are_u32_above_65535_triangles() {
+    let (v, _) = tetra();
+    let t = vec![[0u32, 1, 2]; 65_536];
+    let mut a = vec![[N; 3]; t.len()];
+    // 0xFFFF is a triangle here, not none, and 65,535 is the last one.
+    a[0] = [0xFFFF, N, 1];
+    a[0xFFFF] = [0, 0xFFFE, N];
+    let blob = with_adjacency(&v, &t, &a);
+    let m = PackedMesh::parse(&blob).unwrap();
+    assert_eq!(m.neighbour_indices(0), Some([0xFFFF, N, 1]));
+    assert_eq!(m.neighbour_indices(0xFFFF), Some([0, 0xFFFE, N]));
+    assert_eq!(m.neighbour_indices(1), Some([N; 3]));
+    // One triangle fewer: u16 entries, half the section, and 0xFFFF is none again.
+    let narrow = with_adjacency(&v, &t[1..], &a[1..]);
+    assert_eq!(blob.len() - narrow.len(), 6 + 6 * 65_536 + 2);
+    let m = PackedMesh::parse(&narrow).unwrap();
+    assert_eq!(m.neighbour_indices(0xFFFE), Some([0, 0xFFFE, N]));
+    // (The blob is too large to print, so errors are compared with `.err()`.)
+    a[7][2] = 65_536;
+    assert_eq!(
+        PackedMesh::parse(&with_adjacency(&v, &t, &a)).err(),
+        Some(MeshError::NeighbourOutOfRange {
+            triangle: 7,
+            entry: 65_536
+        })
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases(4000)))]
+
+    #[test]
+    fn mutated_adjacency_blobs_never_panic(
+        flips in proptest::collection::vec((any::<usize>(), any::<u8>()), 1..8),
+        cut in any::<usize>(), version in 1u8..5,
+    ) {
+        let (v, t) = tetra();
+        let mut blob = with_adjacency(&v, &t, &TETRA_ADJACENCY);
+        blob[4] = version;
+        for (at, byte) in flips {
+            let i = at % blob.len();
+            blob[i] = byte;
+        }
+        let keep = if cut % 3 == 0 { cut % (blob.len() + 1) } else { blob.len() };
+        if let Ok(m) = PackedMesh::parse(&blob[..keep]) {
+            touch_everything(&m);
+        }
+    }
+
+    #[test]
+    fn random_adjacency_round_trips(
+        tri_seed in proptest::collection::vec(any::<[u8; 3]>(), 0..60),
+    ) {
+        let v: Vec<Vert> = (0..6).map(|i| Vert { q: [i; 3], ..Vert::default() }).collect();
+        let t: Vec<[u32; 3]> = tri_seed.iter().map(|s| s.map(|i| u32::from(i % 6))).collect();
+        let a = fixtures::adjacency::adjacency(&t);
+        let blob = with_adjacency(&v, &t, &a);
+        let m = PackedMesh::parse(&blob).unwrap();
+        for (k, n) in a.iter().enumerate() {
+            prop_assert_eq!(m.neighbour_indices(k), Some(*n));
         }
     }
 }

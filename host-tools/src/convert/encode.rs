@@ -1,14 +1,16 @@
-//! Writing the packed mesh format (specified in `rasterizer_core::mesh`): version 1 for a mesh
-//! with neither texture coordinates nor a texture (so such blobs stay byte for byte what they
-//! were), version 2 otherwise; and the per-axis quantisation it uses.
+//! Writing the packed mesh format (specified in `rasterizer_core::mesh`): the lowest version that
+//! holds the mesh, so older firmware reads every blob it can (version 1 with neither texture
+//! coordinates nor a texture nor adjacency, byte for byte what it always was; version 2 with
+//! either of the first two; version 3 with adjacency); and the per-axis quantisation it uses.
 //!
 //! The writer mirrors the reader: the same section order, 4-byte alignment and zero padding, and
 //! the same decode arithmetic (`offset + (q * scale + 2^15) >> 16`), so the converter can measure
 //! the error of the positions firmware will really see.
 
 use rasterizer_core::mesh::{
-    FLAG_COLORS, FLAG_NORMALS, FLAG_TEXTURE, FLAG_U32_INDICES, FLAG_UVS, HEADER_LEN, MAGIC,
-    QUANTUM_MAX, VERSION, VERSION_1,
+    FLAG_ADJACENCY, FLAG_COLORS, FLAG_NORMALS, FLAG_TEXTURE, FLAG_U32_INDICES, FLAG_UVS,
+    HEADER_LEN, MAGIC, MAX_NARROW_NEIGHBOURS, NO_NEIGHBOUR, NO_NEIGHBOUR_U16, QUANTUM_MAX, VERSION,
+    VERSION_1, VERSION_2,
 };
 
 /// A mesh in the packed format's terms, ready for [`encode`].
@@ -34,6 +36,9 @@ pub struct MeshData {
     pub triangles: Vec<[u32; 3]>,
     /// A texture (needs texture coordinates).
     pub texture: Option<TextureData>,
+    /// Edge adjacency, one entry per triangle (`fixtures::adjacency`): each entry a triangle
+    /// number below the triangle count or `NO_NEIGHBOUR`.
+    pub adjacency: Option<Vec<[u32; 3]>>,
 }
 
 /// A texture in the packed format's terms: power-of-two sides and little-endian Rgb565 texels,
@@ -72,13 +77,19 @@ impl MeshData {
         if self.texture.is_some() {
             f |= FLAG_TEXTURE;
         }
+        if self.adjacency.is_some() {
+            f |= FLAG_ADJACENCY;
+        }
         f
     }
 
-    /// The format version the blob gets: 2 with texture coordinates or a texture, else 1.
+    /// The format version the blob gets: 3 with adjacency, else 2 with texture coordinates or a
+    /// texture, else 1.
     pub fn version(&self) -> u16 {
-        if self.uvs.is_some() || self.texture.is_some() {
+        if self.adjacency.is_some() {
             VERSION
+        } else if self.uvs.is_some() || self.texture.is_some() {
+            VERSION_2
         } else {
             VERSION_1
         }
@@ -149,6 +160,23 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
         }
     }
     pad(&mut out);
+    if let Some(adjacency) = &mesh.adjacency {
+        let narrow = t <= MAX_NARROW_NEIGHBOURS;
+        for entry in adjacency.iter().flatten() {
+            if narrow {
+                // Below 65,535 when not none: there are at most 65,535 triangles.
+                let e = if *entry == NO_NEIGHBOUR {
+                    NO_NEIGHBOUR_U16
+                } else {
+                    *entry as u16
+                };
+                out.extend_from_slice(&e.to_le_bytes());
+            } else {
+                out.extend_from_slice(&entry.to_le_bytes());
+            }
+        }
+        pad(&mut out);
+    }
     if let Some(t) = &mesh.texture {
         out.extend_from_slice(&[t.width_log2, t.height_log2, 0, 0]);
         out.extend_from_slice(&t.texels);
@@ -283,6 +311,7 @@ mod tests {
                 .map(|i| [i as u32, i as u32 + 1, i as u32 + 2])
                 .collect(),
             texture: None,
+            adjacency: None,
         }
     }
 
@@ -317,7 +346,7 @@ mod tests {
         assert_eq!(u16::from_le_bytes([v1[4], v1[5]]), VERSION_1);
         m.uvs = Some((0..5).map(|i| [i * 65536, -i]).collect());
         let with_uvs = encode(&m);
-        assert_eq!(u16::from_le_bytes([with_uvs[4], with_uvs[5]]), VERSION);
+        assert_eq!(u16::from_le_bytes([with_uvs[4], with_uvs[5]]), VERSION_2);
         // The uvs go between the colours and the triangles: everything before is unchanged.
         let before_uvs = v1.len() - 3 * 6;
         assert_eq!(with_uvs[8..before_uvs], v1[8..before_uvs]);
@@ -352,6 +381,82 @@ mod tests {
             p.triangle_indices(m.triangles.len() - 1),
             Some([65_535, 0, 1])
         );
+    }
+
+    #[test]
+    fn adjacency_is_version_3_and_reads_back() {
+        use rasterizer_core::math::Fx16;
+        use rasterizer_core::mesh::MeshSource;
+        let mut m = sample(7, true, false);
+        let plain = encode(&m);
+        // Triangles of the strip share their middle edges: i with i + 1.
+        let n = m.triangles.len() as u32;
+        m.adjacency = Some(
+            (0..n)
+                .map(|i| {
+                    [
+                        NO_NEIGHBOUR,
+                        i.checked_sub(1).unwrap_or(NO_NEIGHBOUR),
+                        i + 1,
+                    ]
+                })
+                .map(|mut e| {
+                    if e[2] == n {
+                        e[2] = NO_NEIGHBOUR;
+                    }
+                    e
+                })
+                .collect(),
+        );
+        let blob = encode(&m);
+        assert_eq!(u16::from_le_bytes([blob[4], blob[5]]), VERSION);
+        assert_eq!(blob[6] & FLAG_ADJACENCY as u8, FLAG_ADJACENCY as u8);
+        // 5 triangles: 30 bytes of u16 entries and 2 of padding, after the triangles.
+        assert_eq!(blob.len(), plain.len() + 32);
+        assert_eq!(blob[8..plain.len()], plain[8..]);
+        let p = PackedMesh::parse(&blob).unwrap();
+        assert!(p.has_adjacency());
+        for (t, e) in m.adjacency.as_ref().unwrap().iter().enumerate() {
+            assert_eq!(p.neighbour_indices(t), Some(*e));
+            assert_eq!(MeshSource::<Fx16>::neighbours(&p, t), *e);
+        }
+        // With texture coordinates and a texture the adjacency comes before the texture.
+        m.uvs = Some(vec![[0, 0]; 7]);
+        m.texture = Some(TextureData {
+            width_log2: 0,
+            height_log2: 0,
+            texels: vec![0x34, 0x12],
+        });
+        let p_blob = encode(&m);
+        let p = PackedMesh::parse(&p_blob).unwrap();
+        assert_eq!(p.neighbour_indices(2), Some([NO_NEIGHBOUR, 1, 3]));
+        assert_eq!(p.texture().unwrap().texel(0, 0), 0x1234);
+        m.adjacency = None;
+        assert_eq!(encode(&m)[4], VERSION_2 as u8, "no adjacency: version 2");
+    }
+
+    #[test]
+    fn neighbour_entries_widen_above_65535_triangles() {
+        // 65,535 triangles on 3 vertices take u16 entries; one more takes u32.
+        for (t, width) in [(65_535usize, 2), (65_536, 4)] {
+            let mut m = sample(3, false, false);
+            m.triangles = vec![[0, 1, 2]; t];
+            let last = t as u32 - 1;
+            let mut adjacency = vec![[NO_NEIGHBOUR; 3]; t];
+            adjacency[0] = [last, NO_NEIGHBOUR, 1];
+            adjacency[t - 1] = [0, last, NO_NEIGHBOUR];
+            m.adjacency = Some(adjacency);
+            let blob = encode(&m);
+            let without = encode(&MeshData {
+                adjacency: None,
+                ..m.clone()
+            });
+            assert_eq!(blob.len() - without.len(), (3 * width * t + 3) & !3, "{t}");
+            let p = PackedMesh::parse(&blob).unwrap();
+            assert_eq!(p.neighbour_indices(0), Some([last, NO_NEIGHBOUR, 1]));
+            assert_eq!(p.neighbour_indices(t - 1), Some([0, last, NO_NEIGHBOUR]));
+            assert_eq!(p.neighbour_indices(t), None);
+        }
     }
 
     #[test]

@@ -209,6 +209,12 @@ impl<S> MeshSource<S> for DynMesh<'_, S> {
     fn uv(&self, i: usize) -> Option<[i32; 2]> {
         self.0.uv(i)
     }
+    fn has_adjacency(&self) -> bool {
+        self.0.has_adjacency()
+    }
+    fn neighbours(&self, t: usize) -> [u32; 3] {
+        self.0.neighbours(t)
+    }
 }
 
 /// The target every pipeline of [`Whole`] draws into.
@@ -364,6 +370,7 @@ struct Converted<S> {
     colors: Option<Vec<Rgb888>>,
     uvs: Option<Vec<[i32; 2]>>,
     triangles: Vec<[u32; 3]>,
+    adjacency: Option<Vec<[u32; 3]>>,
 }
 
 impl<S: Real> Converted<S> {
@@ -377,6 +384,7 @@ impl<S: Real> Converted<S> {
             colors: m.colors.clone(),
             uvs: m.uvs.clone(),
             triangles: m.triangles.clone(),
+            adjacency: m.adjacency.clone(),
         }
     }
 
@@ -387,7 +395,7 @@ impl<S: Real> Converted<S> {
             colors: self.colors.as_deref(),
             uvs: self.uvs.as_deref(),
             triangles: &self.triangles,
-            adjacency: None,
+            adjacency: self.adjacency.as_deref(),
         }
     }
 }
@@ -416,6 +424,12 @@ impl<S: Real> MeshSource<S> for Converted<S> {
     }
     fn uv(&self, i: usize) -> Option<[i32; 2]> {
         self.mesh().uv(i)
+    }
+    fn has_adjacency(&self) -> bool {
+        self.mesh().has_adjacency()
+    }
+    fn neighbours(&self, t: usize) -> [u32; 3] {
+        self.mesh().neighbours(t)
     }
 }
 
@@ -1243,6 +1257,44 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rasterizer_core::mesh::NO_NEIGHBOUR;
+
+    /// Both mesh sources of a scene, and the one type behind which they are drawn, answer with
+    /// the adjacency their mesh carries.
+    #[test]
+    fn mesh_sources_expose_adjacency() {
+        const N: u32 = NO_NEIGHBOUR;
+        let quad = OwnedMesh {
+            positions: vec![[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            ..OwnedMesh::default()
+        };
+        let plain = Converted::<Fx16>::new(&quad);
+        assert!(!plain.has_adjacency() && !DynMesh(&plain).has_adjacency());
+        assert_eq!(DynMesh(&plain).neighbours(0), [N; 3]);
+        let quad = quad.with_adjacency();
+        let c = Converted::<Fx16>::new(&quad);
+        for m in [&c as &dyn MeshSource<Fx16>, &DynMesh(&c)] {
+            assert!(m.has_adjacency());
+            assert_eq!(m.neighbours(0), [N, N, 1]);
+            assert_eq!(m.neighbours(1), [0, N, N]);
+            assert_eq!(m.neighbours(2), [N; 3], "past the end");
+        }
+        let opts = crate::convert::Options {
+            adjacency: true,
+            ..Default::default()
+        };
+        let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+        let conv =
+            crate::convert::convert_obj("q.obj", obj.as_bytes(), None, &opts, &mut Vec::new())
+                .unwrap();
+        let packed = PackedMesh::parse(&conv.blob).unwrap();
+        let dynamic = DynMesh::<Fx16>(&packed);
+        assert!(dynamic.has_adjacency());
+        let (a, b) = (dynamic.neighbours(0), dynamic.neighbours(1));
+        assert_eq!(a.iter().filter(|&&u| u == 1).count(), 1, "{a:?}");
+        assert_eq!(b.iter().filter(|&&u| u == 0).count(), 1, "{b:?}");
+    }
 
     /// [`InRgb888`] and the banded path's mesh layer rely on every output colour surviving the
     /// trip through `Rgb888`.

@@ -11,7 +11,7 @@ use super::{MAX_LIGHTS, MAX_POLYGON};
 use fixtures::obj::{LoadError, RawMesh};
 use fixtures::texture_file::{TextureFileError, TextureImage, MAX_SIDE};
 use fixtures::vec64::{cross, norm, sub as sub3};
-use rasterizer_core::mesh::MAGIC;
+use rasterizer_core::mesh::{MAGIC, NO_NEIGHBOUR};
 use rasterizer_core::prelude::*;
 use rasterizer_core::raster::line::MAX_LINE_WIDTH;
 use rasterizer_core::shade::{FogCurve, FOG_MAX_DENSITY};
@@ -190,6 +190,30 @@ pub enum MeshData {
     Owned(OwnedMesh),
 }
 
+impl MeshData {
+    /// True when the mesh carries edge adjacency (`MeshSource::neighbours`).
+    pub fn has_adjacency(&self) -> bool {
+        match self {
+            Self::Packed(bytes) => PackedMesh::parse(bytes).is_ok_and(|p| p.has_adjacency()),
+            Self::Owned(o) => o.adjacency.is_some(),
+        }
+    }
+
+    /// The same mesh with edge adjacency: a packed mesh that carries it stays packed (drawn in
+    /// place, its own table read from the blob); one without it is unpacked, since the table has
+    /// to live somewhere; an owned mesh gets [`OwnedMesh::with_adjacency`].
+    pub fn with_adjacency(self) -> Self {
+        match self {
+            Self::Packed(bytes) => match PackedMesh::parse(&bytes) {
+                Ok(p) if !p.has_adjacency() => Self::Owned(unpack(&p).with_adjacency()),
+                // Loading checked the blob, so an error here is not expected; keep it as it was.
+                _ => Self::Packed(bytes),
+            },
+            Self::Owned(o) => Self::Owned(o.with_adjacency()),
+        }
+    }
+}
+
 /// A mesh in host memory.
 #[derive(Debug, Clone, Default)]
 pub struct OwnedMesh {
@@ -203,6 +227,32 @@ pub struct OwnedMesh {
     pub uvs: Option<Vec<[i32; 2]>>,
     /// Triangles.
     pub triangles: Vec<[u32; 3]>,
+    /// Edge adjacency, one entry per triangle (`MeshSource::neighbours`), if any: a packed
+    /// mesh's own, or computed by [`OwnedMesh::with_adjacency`]. Whoever changes `triangles`
+    /// afterwards must drop or recompute it.
+    pub adjacency: Option<Vec<[u32; 3]>>,
+}
+
+impl OwnedMesh {
+    /// The mesh with edge adjacency: the one it carries, else computed by
+    /// `fixtures::adjacency::adjacency_by_position` over its positions rounded to 16.16 (what
+    /// the fixed-point renders draw), so that vertices split at a seam of texture coordinates or
+    /// normals still join their triangles, as they do for smooth normals.
+    pub fn with_adjacency(mut self) -> Self {
+        if self.adjacency.is_none() {
+            let keys: Vec<[i64; 3]> = self.positions.iter().map(position_key).collect();
+            self.adjacency = Some(fixtures::adjacency::adjacency_by_position(
+                &self.triangles,
+                &keys,
+            ));
+        }
+        self
+    }
+}
+
+/// A position rounded to 16.16 bits: vertices with equal keys are one point of the surface.
+fn position_key(p: &[f64; 3]) -> [i64; 3] {
+    p.map(|v| (v * 65536.0).round() as i64)
 }
 
 /// The 1-based line of a byte offset.
@@ -823,12 +873,19 @@ fn unpack(p: &PackedMesh<'_>) -> OwnedMesh {
     let triangles = (0..p.triangles())
         .filter_map(|t| p.triangle_indices(t))
         .collect();
+    // Kept as it is: editing the mesh (normals, colours, fitting) never changes its triangles.
+    let adjacency = p.has_adjacency().then(|| {
+        (0..p.triangles())
+            .map(|t| p.neighbour_indices(t).unwrap_or([NO_NEIGHBOUR; 3]))
+            .collect()
+    });
     OwnedMesh {
         positions,
         normals,
         colors,
         uvs,
         triangles,
+        adjacency,
     }
 }
 
@@ -842,6 +899,7 @@ fn from_raw(m: RawMesh) -> OwnedMesh {
         colors: None,
         uvs: m.uvs.map(|u| u.iter().map(|uv| uv.map(bits)).collect()),
         triangles: m.triangles,
+        adjacency: None,
     }
 }
 
@@ -927,7 +985,7 @@ fn fit_unit_sphere(m: &mut OwnedMesh) {
 /// Area-weighted vertex normals, vertices at the same position sharing one (so unwelded seams,
 /// as in the teapot, and texture seams, as in Spot, do not show).
 fn smooth_normals(m: &OwnedMesh) -> Vec<[f64; 3]> {
-    let key = |p: &[f64; 3]| p.map(|v| (v * 65536.0).round() as i64);
+    let key = position_key;
     let mut slot = HashMap::new();
     let ids: Vec<usize> = m
         .positions
@@ -965,4 +1023,119 @@ fn smooth_normals(m: &OwnedMesh) -> Vec<[f64; 3]> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::convert::{convert_obj, Options};
+
+    const N: u32 = NO_NEIGHBOUR;
+
+    /// A closed cube, one quad a face, outward winding.
+    const CUBE: &str = "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\n\
+                        v -1 1 1\nv 1 1 1\nf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\n\
+                        f 1 5 7 3\nf 2 4 8 6\n";
+
+    /// The cube packed by the converter, with adjacency or without.
+    fn packed_cube(adjacency: bool) -> Vec<u8> {
+        let opts = Options {
+            adjacency,
+            ..Options::default()
+        };
+        convert_obj("cube.obj", CUBE.as_bytes(), None, &opts, &mut Vec::new())
+            .unwrap()
+            .blob
+    }
+
+    fn assert_closed(a: &[[u32; 3]], triangles: usize) {
+        assert_eq!(a.len(), triangles);
+        for (t, row) in a.iter().enumerate() {
+            for &u in row {
+                assert!((u as usize) < triangles, "{t}: {row:?}");
+                assert!(a[u as usize].contains(&(t as u32)), "{t} <-> {u}");
+            }
+        }
+    }
+
+    #[test]
+    fn unpacking_keeps_a_packed_mesh_s_adjacency() {
+        let blob = packed_cube(true);
+        let p = PackedMesh::parse(&blob).unwrap();
+        let owned = unpack(&p);
+        let a = owned.adjacency.as_deref().unwrap();
+        for (t, row) in a.iter().enumerate() {
+            assert_eq!(p.neighbour_indices(t), Some(*row));
+        }
+        assert_closed(a, 12);
+        assert!(unpack(&PackedMesh::parse(&packed_cube(false)).unwrap())
+            .adjacency
+            .is_none());
+    }
+
+    #[test]
+    fn owned_meshes_compute_adjacency_across_seams() {
+        // A quad whose diagonal's vertices are split, as a texture seam splits them.
+        let quad = OwnedMesh {
+            positions: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+            ],
+            triangles: vec![[0, 1, 2], [4, 5, 3]],
+            ..OwnedMesh::default()
+        };
+        let m = quad.with_adjacency();
+        assert_eq!(m.adjacency, Some(vec![[N, N, 1], [0, N, N]]));
+        // A table it carries is kept.
+        let kept = OwnedMesh {
+            adjacency: Some(vec![[N; 3]; 2]),
+            ..m
+        }
+        .with_adjacency();
+        assert_eq!(kept.adjacency, Some(vec![[N; 3]; 2]));
+    }
+
+    #[test]
+    fn mesh_data_with_adjacency() {
+        let with = MeshData::Packed(packed_cube(true));
+        assert!(with.has_adjacency());
+        assert!(matches!(with.with_adjacency(), MeshData::Packed(_)));
+        let without = MeshData::Packed(packed_cube(false));
+        assert!(!without.has_adjacency());
+        let MeshData::Owned(o) = without.with_adjacency() else {
+            panic!("a packed mesh without adjacency is unpacked to get one");
+        };
+        assert_closed(o.adjacency.as_deref().unwrap(), 12);
+        let mut warnings = Vec::new();
+        let raw = RawMesh::from_bytes("cube.obj", CUBE.as_bytes(), None, &mut warnings).unwrap();
+        let obj = MeshData::Owned(from_raw(raw));
+        assert!(!obj.has_adjacency());
+        assert!(obj.with_adjacency().has_adjacency());
+    }
+
+    #[test]
+    fn scenes_keep_a_packed_mesh_s_adjacency_drawn_in_place_or_edited() {
+        let dir = std::env::temp_dir().join(format!("scene-adjacency-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("cube.rmsh"), packed_cube(true)).unwrap();
+        let scene = |normals: &str| {
+            format!(
+                "[output]\nwidth = 32\nheight = 32\n[camera]\neye = [0.0, 0.0, 5.0]\n\
+                 [[meshes]]\npath = \"cube.rmsh\"\nnormals = \"{normals}\"\n"
+            )
+        };
+        for (normals, packed) in [("auto", true), ("smooth", false)] {
+            let path = dir.join(format!("{normals}.toml"));
+            std::fs::write(&path, scene(normals)).unwrap();
+            let s = load(&path).unwrap();
+            let data = &s.meshes[0].data;
+            assert_eq!(matches!(data, MeshData::Packed(_)), packed, "{normals}");
+            assert!(data.has_adjacency(), "{normals}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

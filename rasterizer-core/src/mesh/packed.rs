@@ -7,8 +7,8 @@
 //! | offset | size | field |
 //! |---:|---:|---|
 //! | 0 | 4 | magic `RMSH` |
-//! | 4 | 2 | version, `1` or `2` |
-//! | 6 | 2 | flags: bit 0 normals, bit 1 colours, bit 2 32-bit indices (else 16-bit), bit 3 texture coordinates, bit 4 texture (bits 3 and 4 version 2 only); others 0 |
+//! | 4 | 2 | version, `1`, `2` or `3` |
+//! | 6 | 2 | flags: bit 0 normals, bit 1 colours, bit 2 32-bit indices (else 16-bit), bit 3 texture coordinates, bit 4 texture (bits 3 and 4 version 2 or 3), bit 5 adjacency (version 3 only); others 0 |
 //! | 8 | 4 | vertex count `n` (at most 2^24) |
 //! | 12 | 4 | triangle count `t` (at most 2^24) |
 //! | 16 | 12 | offset: the box centre, x y z, 16.16 fixed point (`i32`) |
@@ -18,6 +18,7 @@
 //! | | 3 n | colours (flag 1): r g b bytes per vertex |
 //! | | 8 n | texture coordinates (flag 3): `i32` u v per vertex, 16.16 ([`crate::texture`]) |
 //! | | 6 t or 12 t | triangles: three `u16` (or `u32`, flag 2) vertex indices each |
+//! | | 6 t or 12 t | adjacency (flag 5): three neighbour triangles each, `u16` (`0xFFFF` none) when `t` is at most 65,535, else `u32` (`0xFFFF_FFFF` none) |
 //! | | 1 | texture (flag 4): the width's power of two, at most [`MAX_SIDE_LOG2`] |
 //! | | 1 | the height's power of two, at most [`MAX_SIDE_LOG2`] |
 //! | | 2 | zero |
@@ -30,17 +31,26 @@
 //!
 //! Version 2 adds texture coordinates and a texture; a blob with neither is written as version 1,
 //! which this reader still reads (with bits 3 and 4 unknown flags there). The texture comes last,
-//! after the triangles, since its length depends on its own sides; it needs texture coordinates
-//! (flag 4 without flag 3 is [`MeshError::TextureWithoutUvs`]), while texture coordinates alone are
-//! allowed (for a texture that firmware keeps elsewhere). Texture coordinates take any `i32`: values
-//! outside `0 ..= 1` repeat or clamp as the shader's [`crate::texture::Wrap`] says.
+//! after the triangles (and adjacency), since its length depends on its own sides; it needs
+//! texture coordinates (flag 4 without flag 3 is [`MeshError::TextureWithoutUvs`]), while texture
+//! coordinates alone are allowed (for a texture that firmware keeps elsewhere). Texture
+//! coordinates take any `i32`: values outside `0 ..= 1` repeat or clamp as the shader's
+//! [`crate::texture::Wrap`] says.
+//!
+//! Version 3 adds edge adjacency ([`MeshSource::neighbours`]: entry `e` of a triangle is the
+//! triangle across its edge from corner `e` to corner `(e + 1) % 3`), which anti-aliased
+//! silhouettes read; a blob without it is written as version 1 or 2 as before, so firmware that
+//! predates it still reads every blob that does not need it. The entries are as narrow as the
+//! triangle count allows (6 bytes a triangle up to 65,535 triangles), and sit before the texture
+//! so that the texture stays last, where its self-described length belongs.
 //!
 //! [`PackedMesh::parse`] checks everything once (magic, version, flags, counts, that the length is
-//! exactly what the counts need, zero padding, scales, quanta and every index), so any byte string
-//! gives a mesh or a [`MeshError`], and the accessors afterwards need no checks that can fail. The
-//! reader decodes with `from_le_bytes`, so the blob itself needs no alignment.
+//! exactly what the counts need, zero padding, scales, quanta, every index and every neighbour
+//! entry), so any byte string gives a mesh or a [`MeshError`], and the accessors afterwards need
+//! no checks that can fail. The reader decodes with `from_le_bytes`, so the blob itself needs no
+//! alignment.
 
-use super::MeshSource;
+use super::{MeshSource, NO_NEIGHBOUR};
 use crate::math::{Scalar, Vec3};
 use crate::texture::{Texture, TextureError, MAX_SIDE_LOG2};
 use core::fmt;
@@ -48,10 +58,13 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// The magic number at the start of a blob.
 pub const MAGIC: [u8; 4] = *b"RMSH";
-/// The newest format version, the one this reader understands besides [`VERSION_1`].
-pub const VERSION: u16 = 2;
+/// The newest format version, the one this reader understands besides [`VERSION_1`] and
+/// [`VERSION_2`]: adds adjacency.
+pub const VERSION: u16 = 3;
 /// The first format version: no texture coordinates and no texture.
 pub const VERSION_1: u16 = 1;
+/// The second format version: texture coordinates and a texture, no adjacency.
+pub const VERSION_2: u16 = 2;
 /// Header size in bytes.
 pub const HEADER_LEN: usize = 40;
 /// Flag: the mesh has normals.
@@ -62,8 +75,14 @@ pub const FLAG_COLORS: u16 = 2;
 pub const FLAG_U32_INDICES: u16 = 4;
 /// Flag: the mesh has texture coordinates (version 2).
 pub const FLAG_UVS: u16 = 8;
-/// Flag: the blob ends with a texture (version 2; needs [`FLAG_UVS`]).
+/// Flag: the blob ends with a texture (version 2 or 3; needs [`FLAG_UVS`]).
 pub const FLAG_TEXTURE: u16 = 16;
+/// Flag: the mesh has edge adjacency, three neighbour entries per triangle (version 3).
+pub const FLAG_ADJACENCY: u16 = 32;
+/// The largest triangle count whose neighbour entries are `u16`; above it they are `u32`.
+pub const MAX_NARROW_NEIGHBOURS: usize = 0xFFFF;
+/// A `u16` neighbour entry meaning none (a `u32` entry uses [`NO_NEIGHBOUR`]).
+pub const NO_NEIGHBOUR_U16: u16 = 0xFFFF;
 /// Bytes before the texels in the texture section: the two sides' powers of two and two zeros.
 pub const TEXTURE_HEADER_LEN: usize = 4;
 /// The largest vertex or triangle count a blob may declare.
@@ -122,6 +141,13 @@ pub enum MeshError {
         /// The index it holds.
         index: u32,
     },
+    /// A neighbour entry names a triangle that does not exist (and is not the value for none).
+    NeighbourOutOfRange {
+        /// The triangle whose entry it is.
+        triangle: usize,
+        /// The entry it holds.
+        entry: u32,
+    },
 }
 
 impl fmt::Display for MeshError {
@@ -134,7 +160,7 @@ impl fmt::Display for MeshError {
             Self::BadMagic => write!(f, "not a packed mesh (magic is not RMSH)"),
             Self::UnsupportedVersion(v) => write!(
                 f,
-                "format version {v} is not supported (expected {VERSION_1} or {VERSION})"
+                "format version {v} is not supported (expected {VERSION_1} to {VERSION})"
             ),
             Self::UnknownFlags(x) => write!(f, "unknown flag bits {x:#06x}"),
             Self::TextureWithoutUvs => {
@@ -163,6 +189,13 @@ impl fmt::Display for MeshError {
                 write!(
                     f,
                     "triangle {triangle} refers to vertex {index}, which does not exist"
+                )
+            }
+            Self::NeighbourOutOfRange { triangle, entry } => {
+                write!(
+                    f,
+                    "triangle {triangle} lists triangle {entry} as a neighbour, which does not \
+                     exist"
                 )
             }
         }
@@ -195,6 +228,8 @@ pub struct PackedMesh<'a> {
     wide: bool,
     uvs: Option<&'a [u8]>,
     texture: Option<Texture<'a>>,
+    // Last for the same reason as the texture: only anti-aliased draws read it.
+    adjacency: Option<&'a [u8]>,
 }
 
 /// `n` rounded up to a multiple of 4.
@@ -202,8 +237,6 @@ const fn pad4(n: usize) -> usize {
     (n + 3) & !3
 }
 
-/// The section layout of a blob up to the triangles: `(start, len)` of positions, normals,
-/// colours, texture coordinates and indices, and the length so far (where a texture starts).
 /// The first non-zero byte between the header and the first section, or between sections
 /// (`(start, len)`, in order, within `bytes`). One loop, not one per section: a smaller parser.
 #[inline(never)]
@@ -218,7 +251,15 @@ fn nonzero_padding(bytes: &[u8], sections: &[(usize, usize)]) -> Option<usize> {
     None
 }
 
-fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 5], usize) {
+/// True when `t` triangles' neighbour entries are `u32` rather than `u16`.
+const fn wide_neighbours(t: usize) -> bool {
+    t > MAX_NARROW_NEIGHBOURS
+}
+
+/// The section layout of a blob up to the texture: `(start, len)` of positions, normals,
+/// colours, texture coordinates, indices and adjacency, and the length so far (where a texture
+/// starts).
+fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 6], usize) {
     let mut at = HEADER_LEN;
     let mut section = |len: usize| {
         let s = (at, len);
@@ -234,7 +275,12 @@ fn layout(n: usize, t: usize, flags: u16) -> ([(usize, usize); 5], usize) {
     } else {
         6 * t
     });
-    ([pos, nrm, col, uv, idx], at)
+    let adj = section(match (flags & FLAG_ADJACENCY != 0, wide_neighbours(t)) {
+        (false, _) => 0,
+        (true, false) => 6 * t,
+        (true, true) => 12 * t,
+    });
+    ([pos, nrm, col, uv, idx, adj], at)
 }
 
 #[inline(always)]
@@ -251,7 +297,7 @@ impl<'a> PackedMesh<'a> {
     /// Validates `bytes` and reads the mesh in place.
     ///
     /// # Errors
-    /// A [`MeshError`] for anything that is not a well-formed version-1 or version-2 mesh.
+    /// A [`MeshError`] for anything that is not a well-formed version-1, -2 or -3 mesh.
     pub fn parse(bytes: &'a [u8]) -> Result<Self, MeshError> {
         if bytes.len() < HEADER_LEN {
             return Err(MeshError::TooShort { len: bytes.len() });
@@ -262,7 +308,15 @@ impl<'a> PackedMesh<'a> {
         let version = u16_at(bytes, 4);
         let known = match version {
             VERSION_1 => FLAG_NORMALS | FLAG_COLORS | FLAG_U32_INDICES,
-            VERSION => FLAG_NORMALS | FLAG_COLORS | FLAG_U32_INDICES | FLAG_UVS | FLAG_TEXTURE,
+            VERSION_2 => FLAG_NORMALS | FLAG_COLORS | FLAG_U32_INDICES | FLAG_UVS | FLAG_TEXTURE,
+            VERSION => {
+                FLAG_NORMALS
+                    | FLAG_COLORS
+                    | FLAG_U32_INDICES
+                    | FLAG_UVS
+                    | FLAG_TEXTURE
+                    | FLAG_ADJACENCY
+            }
             _ => return Err(MeshError::UnsupportedVersion(version)),
         };
         let flags = u16_at(bytes, 6);
@@ -280,7 +334,7 @@ impl<'a> PackedMesh<'a> {
             });
         }
         let (n, t) = (nv as usize, nt as usize);
-        let ([pos, nrm, col, uv, idx], mut total) = layout(n, t, flags);
+        let ([pos, nrm, col, uv, idx, adj], mut total) = layout(n, t, flags);
         // The texture section: its header, then texels as many as its sides say.
         let (mut sides, mut tex, mut texture_sides) = ((total, 0), (total, 0), None);
         if flags & FLAG_TEXTURE != 0 {
@@ -309,7 +363,7 @@ impl<'a> PackedMesh<'a> {
             });
         }
         // Padding: every byte not inside the header or a section is zero.
-        let sections = [pos, nrm, col, uv, idx, sides, tex, (total, 0)];
+        let sections = [pos, nrm, col, uv, idx, adj, sides, tex, (total, 0)];
         if let Some(offset) = nonzero_padding(bytes, &sections) {
             return Err(MeshError::BadPadding { offset });
         }
@@ -341,6 +395,7 @@ impl<'a> PackedMesh<'a> {
             wide: flags & FLAG_U32_INDICES != 0,
             // Sides and length were checked above.
             texture: texture_sides.map(|(w, h)| Texture::checked(w, h, sec(tex))),
+            adjacency: (flags & FLAG_ADJACENCY != 0).then(|| sec(adj)),
         };
         for v in 0..n {
             let bad = |b: &[u8]| (0..3).any(|k| u16_at(b, 6 * v + 2 * k) == 0x8000);
@@ -357,9 +412,33 @@ impl<'a> PackedMesh<'a> {
                         index,
                     });
                 }
+                // `t` is at most 2^24, so the none value is never a triangle number.
+                if let Some(entry) = mesh.raw_neighbour(tri, k) {
+                    if entry != NO_NEIGHBOUR && entry as usize >= t {
+                        return Err(MeshError::NeighbourOutOfRange {
+                            triangle: tri,
+                            entry,
+                        });
+                    }
+                }
             }
         }
         Ok(mesh)
+    }
+
+    /// Entry `k` of triangle `tri`'s neighbours, the `u16` none widened to [`NO_NEIGHBOUR`];
+    /// `None` without adjacency.
+    #[inline(always)]
+    fn raw_neighbour(&self, tri: usize, k: usize) -> Option<u32> {
+        let b = self.adjacency?;
+        Some(if wide_neighbours(self.triangles) {
+            u32_at(b, 12 * tri + 4 * k)
+        } else {
+            match u16_at(b, 6 * tri + 2 * k) {
+                NO_NEIGHBOUR_U16 => NO_NEIGHBOUR,
+                e => u32::from(e),
+            }
+        })
     }
 
     #[inline(always)]
@@ -443,6 +522,24 @@ impl<'a> PackedMesh<'a> {
     pub fn triangle_indices(&self, t: usize) -> Option<[u32; 3]> {
         (t < self.triangles).then(|| [0, 1, 2].map(|k| self.raw_index(t, k)))
     }
+
+    /// True when the mesh has edge adjacency (version 3, [`FLAG_ADJACENCY`]).
+    #[inline]
+    pub fn has_adjacency(&self) -> bool {
+        self.adjacency.is_some()
+    }
+
+    /// Triangle `t`'s neighbours as [`MeshSource::neighbours`] gives them (each below
+    /// [`PackedMesh::triangles`] or [`NO_NEIGHBOUR`], checked at parse time), or `None` without
+    /// adjacency or past the end.
+    #[inline]
+    pub fn neighbour_indices(&self, t: usize) -> Option<[u32; 3]> {
+        if t >= self.triangles {
+            return None;
+        }
+        let [a, b, c] = [0, 1, 2].map(|k| self.raw_neighbour(t, k));
+        Some([a?, b?, c?])
+    }
 }
 
 impl<S: Scalar> MeshSource<S> for PackedMesh<'_> {
@@ -483,5 +580,13 @@ impl<S: Scalar> MeshSource<S> for PackedMesh<'_> {
     #[inline(always)]
     fn uv(&self, i: usize) -> Option<[i32; 2]> {
         self.uv_bits(i)
+    }
+    #[inline(always)]
+    fn has_adjacency(&self) -> bool {
+        self.adjacency.is_some()
+    }
+    #[inline(always)]
+    fn neighbours(&self, t: usize) -> [u32; 3] {
+        self.neighbour_indices(t).unwrap_or([NO_NEIGHBOUR; 3])
     }
 }
