@@ -415,6 +415,17 @@ if wanted M1; then
     if [ -n "$m1" ]; then
         emit_count M1 ours-matcap/ours ratio "$(div "$n" "$m1" 4)"
     fi
+    # M1 with anti-aliased silhouettes (Pipeline::draw_antialiased, adjacency by position),
+    # counted by a binary of its own (count3d_aa) so count3d stays as it was.
+    build_example count3d_aa
+    echo "counting M1 ours-aa..." >&2
+    n="$(callgrind_count "$OUT/3d-M1-aa" "*frame_m1_aa*" "$BIN")"
+    emit_count M1 ours-aa instructions "$n"
+    emit_count M1 ours-aa per_primitive "$(div "$n" "$(field "$OUT/3d-M1-aa.stdout" triangles)" 1)"
+    emit_count M1 ours-aa covered "$(field "$OUT/3d-M1-aa.stdout" covered)"
+    if [ -n "$m1" ]; then
+        emit_count M1 ours-aa/ours ratio "$(div "$n" "$m1" 4)"
+    fi
 fi
 
 # --- RAM and code size of M1 (stack test, nostd-check) ---

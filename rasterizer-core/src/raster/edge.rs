@@ -13,7 +13,7 @@ use core::num::NonZeroU64;
 /// `ceil(n / d)` for `d > 0`: unsigned, by a `NonZeroU64` (no zero or overflow checks, a
 /// measurable share of a small triangle's set-up), in 32 bits when the operands fit.
 #[inline(always)]
-fn ceil_div(n: i64, d: NonZeroU64) -> i64 {
+pub(crate) fn ceil_div(n: i64, d: NonZeroU64) -> i64 {
     let (q, r) = crate::wide::divrem_narrow(n.unsigned_abs(), d);
     if n >= 0 {
         (q + u64::from(r != 0)) as i64

@@ -21,6 +21,7 @@
 //! per edge.
 
 use crate::geom::PixelRect;
+use core::num::NonZeroU64;
 use crate::raster::triangle::setup::SpanSink;
 
 /// What the blending pass asks of a triangle's pixel sink besides spans.
@@ -43,10 +44,12 @@ pub(crate) fn in_aa_range<const BITS: u32>(p: &[(i64, i64); 3]) -> bool {
         .all(|&(x, y)| (-limit..=limit).contains(&x) && (-limit..=limit).contains(&y))
 }
 
-/// `ceil(n / d)` for `d > 0`.
+/// `ceil(n / d)` for `d > 0`, through the edge walks' division (32-bit when the operands fit,
+/// counted as a 64-bit one otherwise).
 #[inline(always)]
 fn ceil_div(n: i64, d: i64) -> i64 {
-    -((-n).div_euclid(d))
+    let d = NonZeroU64::new(d.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
+    crate::raster::edge::ceil_div(n, d)
 }
 
 /// One column bound stepped row by row: `ceil(n / d)` as `n` moves by `delta` a row, with no
