@@ -111,6 +111,8 @@ pub struct SceneMesh {
     pub opacity: u8,
     /// Fog, when the mesh or `[render]` asks for it.
     pub fog: Option<SceneFog>,
+    /// Anti-aliased silhouettes; the mesh then carries edge adjacency.
+    pub antialias: bool,
 }
 
 /// A mesh's texture, loaded and converted to Rgb565.
@@ -577,6 +579,13 @@ fn load_mesh(
         }
         MeshData::Owned(edit(from_raw(raw), &def))
     };
+    // The silhouettes are found through the adjacency: computed here, once, by position (so a
+    // seam of texture coordinates or normals is not taken for an edge of the surface).
+    let data = if def.antialias {
+        data.with_adjacency()
+    } else {
+        data
+    };
     let texture = load_texture(dir, &def, own_texture, &data)?;
     let shading = def.shading.unwrap_or(render.shading);
     if texture.is_some() && shading != ShadingModel::Gouraud {
@@ -634,6 +643,7 @@ fn load_mesh(
         matcap,
         opacity: def.opacity.unwrap_or(u8::MAX),
         fog,
+        antialias: def.antialias,
     })
 }
 
@@ -714,6 +724,17 @@ fn check_stages_apply(def: &MeshDef, render: &RenderOptions, textured: bool) -> 
     {
         return Err(format!(
             "mesh {name}: vertex_colors applies only to shading = \"vertex_colors\" (filled)"
+        ));
+    }
+    if wireframe && def.antialias {
+        return Err(format!(
+            "mesh {name}: antialias = true does not apply to a wireframe mesh{} (its edges are \
+             lines, not the silhouettes of filled triangles); remove it or draw the mesh filled",
+            if def.wireframe.is_some() {
+                ""
+            } else {
+                " (wireframe = true from [render])"
+            }
         ));
     }
     if wireframe && def.depth == Some(true) {
