@@ -1138,6 +1138,40 @@ mod tests {
         assert!(obj.with_adjacency().has_adjacency());
     }
 
+    /// `antialias = true` gives the mesh adjacency: computed for an OBJ and for a packed mesh
+    /// without its own (unpacked then), the packed table kept (drawn in place); without the key
+    /// an OBJ gets none.
+    #[test]
+    fn antialias_key_gives_the_mesh_adjacency() {
+        let dir = std::env::temp_dir().join(format!("scene-antialias-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("with.rmsh"), packed_cube(true)).unwrap();
+        std::fs::write(dir.join("without.rmsh"), packed_cube(false)).unwrap();
+        std::fs::write(dir.join("cube.obj"), CUBE).unwrap();
+        for (file, antialias, adjacency, packed) in [
+            ("with.rmsh", true, true, true),
+            ("without.rmsh", true, true, false),
+            ("cube.obj", true, true, false),
+            ("cube.obj", false, false, false),
+        ] {
+            let path = dir.join("scene.toml");
+            std::fs::write(
+                &path,
+                format!(
+                    "[output]\nwidth = 32\nheight = 32\n[camera]\neye = [0.0, 0.0, 5.0]\n\
+                     [[meshes]]\npath = \"{file}\"\nantialias = {antialias}\n"
+                ),
+            )
+            .unwrap();
+            let s = load(&path).unwrap();
+            let m = &s.meshes[0];
+            assert_eq!(m.antialias, antialias, "{file}");
+            assert_eq!(m.data.has_adjacency(), adjacency, "{file} {antialias}");
+            assert_eq!(matches!(m.data, MeshData::Packed(_)), packed, "{file}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     #[test]
     fn scenes_keep_a_packed_mesh_s_adjacency_drawn_in_place_or_edited() {
         let dir = std::env::temp_dir().join(format!("scene-adjacency-{}", std::process::id()));
