@@ -64,7 +64,7 @@ pub struct Scene3d {
 }
 
 /// Every 3D picture, in the order they are written.
-pub const SCENES: [Scene3d; 9] = [
+pub const SCENES: [Scene3d; 10] = [
     Scene3d {
         file: "suzanne_wireframe.png",
         draw: suzanne_wireframe,
@@ -88,6 +88,10 @@ pub const SCENES: [Scene3d; 9] = [
     Scene3d {
         file: "suzanne_dither.png",
         draw: suzanne_dither,
+    },
+    Scene3d {
+        file: "suzanne_aa.png",
+        draw: suzanne_aa,
     },
     Scene3d {
         file: "suzanne_fog.png",
@@ -257,6 +261,46 @@ fn suzanne_dither(models: &Models, display: &mut Display) -> SceneResult {
     let Ok(()) = display.draw_iter((0..HEIGHT as i32).map(|y| Pixel(Point::new(half, y), line)));
     let style = MonoTextStyle::new(&FONT_6X10, Rgb888::WHITE);
     for (x, label) in [(3, "rounded"), (half + 4, "Bayer 4x4 dither")] {
+        let text = Text::with_baseline(label, Point::new(x, 2), style, Baseline::Top);
+        let Ok(_) = text.draw(display);
+    }
+    Ok(())
+}
+
+/// Suzanne Gouraud-lit, split down the middle: on the left `Pipeline::draw` (a pixel is hers or
+/// not by its centre, so her outline steps), on the right `Pipeline::draw_antialiased` (each
+/// pixel her silhouette crosses blended with the background by the share she covers), with the
+/// adjacency found by position as the scene loader finds it.
+fn suzanne_aa(models: &Models, display: &mut Display) -> SceneResult {
+    let gouraud = || GouraudLit::<_, Rgb565, 2>::new(lighting::<2>());
+    suzanne_filled(models, display, gouraud())?;
+    let mut smooth = Display::new(Size::new(WIDTH, HEIGHT));
+    let Ok(()) = smooth.clear(BACKGROUND);
+    let suzanne = &models.suzanne;
+    let keys: Vec<[i32; 3]> = suzanne
+        .positions
+        .iter()
+        .map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+        .collect();
+    let adjacency = fixtures::adjacency::adjacency_by_position(&suzanne.triangles, &keys);
+    via_framebuffer(&mut smooth, |fb, depth| {
+        let viewport = Viewport::new(WIDTH, HEIGHT);
+        let mut p = Pipeline::new(&transforms(), viewport, CullClockwise, depth, gouraud());
+        let mesh = suzanne.mesh().with_adjacency(&adjacency);
+        let mut scratch = vec![VertexSlot::EMPTY; mesh.positions.len()];
+        let stats = p
+            .draw_antialiased(fb, &mesh, &mut scratch)
+            .map_err(|e| e.to_string())?;
+        check_drawn("anti-aliased suzanne", stats.drawn)
+    })?;
+    let half = WIDTH as i32 / 2;
+    let right =
+        (0..HEIGHT as i32).flat_map(|y| (half..WIDTH as i32).map(move |x| Point::new(x, y)));
+    let Ok(()) = display.draw_iter(right.map(|p| Pixel(p, smooth.get_pixel(p))));
+    let line = Rgb888::new(60, 64, 80);
+    let Ok(()) = display.draw_iter((0..HEIGHT as i32).map(|y| Pixel(Point::new(half, y), line)));
+    let style = MonoTextStyle::new(&FONT_6X10, Rgb888::WHITE);
+    for (x, label) in [(3, "draw"), (half + 4, "draw_antialiased")] {
         let text = Text::with_baseline(label, Point::new(x, 2), style, Baseline::Top);
         let Ok(_) = text.draw(display);
     }

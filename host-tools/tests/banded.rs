@@ -181,6 +181,48 @@ fn every_kind_of_mesh_in_every_format_is_the_same_in_bands() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// [`mesh_scene`] with every filled mesh anti-aliased (`antialias = true`): each band draws
+/// them through `Pipeline::draw_antialiased`, sharing the list's depth buffer, in every format.
+#[test]
+fn antialiased_meshes_in_every_format_are_the_same_in_bands() {
+    let dir = scratch_in("banded", "antialiased");
+    for format in ["rgb565", "rgb888", "gray8", "binary"] {
+        // Wireframes refuse the key: they keep their edges plain.
+        let scene = mesh_scene(format)
+            .split("[[meshes]]")
+            .map(|m| {
+                if m.contains("path") && !m.contains("wireframe") {
+                    format!("{m}antialias = true\n")
+                } else {
+                    m.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("[[meshes]]");
+        let path = dir.join(format!("antialiased_{format}.toml"));
+        std::fs::write(&path, &scene).unwrap();
+        let scene = load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let aa = scene.meshes.iter().filter(|m| m.antialias).count();
+        assert_eq!(aa, 7, "{format}");
+        assert_banded_same(
+            &scene,
+            &format!("anti-aliased meshes in {format}"),
+            Pose::default(),
+            &[1, 7],
+        );
+    }
+    // A textured mesh, turned so that its silhouette crosses bands.
+    let mut text = std::fs::read_to_string(assets().join("scenes/cube_textured.toml")).unwrap();
+    text = text.replace("../", &format!("{}/", assets().display()));
+    text.push_str("antialias = true\n");
+    let path = dir.join("cube_textured_aa.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(scene.meshes[0].antialias);
+    assert_banded_same(&scene, "anti-aliased textured cube", Pose::default(), &[7]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// The textured scenes in every format (they are Rgb565 files).
 #[test]
 fn textured_meshes_in_every_format_are_the_same_in_bands() {

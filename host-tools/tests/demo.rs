@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 /// The PNG files the demo promises (README.md links to them): the 2D ones, then the 3D ones.
-const FILES: [&str; 17] = [
+const FILES: [&str; 18] = [
     "lines_octants.png",
     "lines_gradient.png",
     "triangle_outlines.png",
@@ -20,6 +20,7 @@ const FILES: [&str; 17] = [
     "suzanne_phong.png",
     "suzanne_matcap.png",
     "suzanne_dither.png",
+    "suzanne_aa.png",
     "suzanne_fog.png",
     "cube_inside.png",
     "near_plane_crossing.png",

@@ -712,6 +712,107 @@ fn integer_keys_name_their_range() {
     expect_failure(&dir, "line_width", &shape("width = 0"), &["1 ..= 65535"]);
 }
 
+/// `antialias = true` on a mesh: every kind of filled mesh the scene format has (each shading
+/// model, dithered, perspective-correct, fogged, translucent, without depth, unculled, textured)
+/// is drawn with its silhouettes blended, so each picture differs from the same mesh without the
+/// key in a few of the mesh's pixels; wireframes refuse the key, naming where it came from.
+#[test]
+fn antialias_key_blends_silhouettes() {
+    let dir = scratch("antialias");
+    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models");
+    let suzanne = models.join("suzanne.obj");
+    let cube = models.join("cube_textured.obj");
+    let checker = models.join("../textures/checker.png");
+    const HEAD: &str = "[output]\nwidth = 64\nheight = 48\nbackground = [10, 20, 30]\n\n\
+                        [[lights]]\nkind = \"directional\"\ndirection = [1.0, 1.0, 1.0]\n\n";
+    let mesh = |path: &Path, extra: &str| format!("{HEAD}[[meshes]]\npath = {path:?}\n{extra}\n");
+    let textured = format!("texture = {checker:?}\nrotate = [30.0, 40.0, 0.0]");
+    let cases: &[(&str, &Path, &str)] = &[
+        ("gouraud", &suzanne, ""),
+        ("none", &suzanne, "shading = \"none\""),
+        (
+            "vertex_colors",
+            &suzanne,
+            "shading = \"vertex_colors\"\nvertex_colors = \"normal\"",
+        ),
+        ("flat", &suzanne, "shading = \"flat\""),
+        ("phong", &suzanne, "shading = \"phong\""),
+        ("matcap", &suzanne, "shading = \"matcap\""),
+        ("dither", &suzanne, "dither = \"bayer4\""),
+        ("perspective", &suzanne, "perspective_correct = true"),
+        (
+            "fog",
+            &suzanne,
+            "fog = { color = [10, 20, 30], start = 2.0, end = 5.0 }",
+        ),
+        ("translucent", &suzanne, "opacity = 128"),
+        ("no_depth", &suzanne, "depth = false"),
+        ("no_cull", &suzanne, "cull = \"none\""),
+        ("textured", &cube, &textured),
+    ];
+    for (name, path, extra) in cases {
+        let plain = render_scene(&dir, name, &mesh(path, extra));
+        let aa_name = format!("{name}_aa");
+        let aa = render_scene(
+            &dir,
+            &aa_name,
+            &mesh(path, &format!("{extra}\nantialias = true")),
+        );
+        assert_eq!(plain.len(), aa.len(), "{name}");
+        let changed: Vec<usize> = (0..plain.len() / 3)
+            .filter(|&i| plain[3 * i..3 * i + 3] != aa[3 * i..3 * i + 3])
+            .collect();
+        assert!(!changed.is_empty(), "{name}: antialias changed nothing");
+        // Only the pixels visible silhouette edges cross change: a few of the mesh's.
+        let drawn = (0..plain.len() / 3)
+            .filter(|&i| plain[3 * i..3 * i + 3] != [10, 20, 30])
+            .count();
+        // Without a depth write the blending pass also shows the silhouettes the mesh hides
+        // from itself (drawn after the whole mesh, nothing hides them): more pixels change.
+        let hides = !matches!(*name, "translucent" | "no_depth");
+        assert!(
+            changed.len() * 2 < drawn || !hides,
+            "{name}: {} of {drawn} pixels changed",
+            changed.len()
+        );
+    }
+    let wire = |render: &str, extra: &str| {
+        format!("{OUTPUT}{render}[[meshes]]\npath = {suzanne:?}\n{extra}\nantialias = true\n")
+    };
+    let failures: &[(&str, String, &[&str])] = &[
+        (
+            "antialias_wire",
+            wire("", "wireframe = true"),
+            &[
+                "mesh ",
+                "suzanne.obj",
+                "antialias = true does not apply to a wireframe",
+            ],
+        ),
+        (
+            "antialias_render_wire",
+            wire("[render]\nwireframe = true\n\n", ""),
+            &[
+                "antialias = true does not apply to a wireframe",
+                "from [render]",
+            ],
+        ),
+        (
+            "antialias_not_bool",
+            format!("{OUTPUT}[[meshes]]\npath = {suzanne:?}\nantialias = \"yes\"\n"),
+            &["line 6", "antialias", "bool"],
+        ),
+        (
+            "antialias_misspelt",
+            format!("{OUTPUT}[[meshes]]\npath = {suzanne:?}\nanti_alias = true\n"),
+            &["anti_alias", "antialias"],
+        ),
+    ];
+    for (name, scene, needles) in failures {
+        expect_failure(&dir, name, scene, needles);
+    }
+}
+
 /// `shading = "matcap"`: the built-in sphere by default, a PNG by the `matcap` key (a flat red
 /// image paints every pixel of the mesh red), and the key's errors name the mesh and the cause.
 #[test]

@@ -6,8 +6,9 @@ use fixtures::scenes3d::{camera, ROTATION_Y_DEGREES};
 use rasterizer_core::math::{Angle, Fx16, Mat4};
 use rasterizer_core::transform::Transforms;
 
-/// The mesh, converted on the host. (The `textured` configuration draws another.)
-#[cfg_attr(feature = "textured", allow(dead_code))]
+/// The mesh, converted on the host. (The `textured` and `antialias` configurations draw
+/// others.)
+#[cfg_attr(any(feature = "textured", feature = "antialias"), allow(dead_code))]
 pub static MESH: &[u8] = include_bytes!("../../assets/meshes/suzanne.rmsh");
 
 /// Suzanne turned as in M1, seen through M1's camera on a 4:3 frame. The angle is opaque so that

@@ -10,7 +10,7 @@
 
 #[cfg(feature = "all")]
 mod all;
-#[cfg(any(feature = "all", three_d, feature = "framelist"))]
+#[cfg(any(feature = "all", three_d, feature = "framelist", feature = "antialias"))]
 mod m1;
 #[cfg(not(feature = "all"))]
 mod one;

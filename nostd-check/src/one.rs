@@ -15,8 +15,9 @@
 //! 2D: `line2d`, `triangle2d`, `gouraud2d`, `polygon2d`, `aa2d` (an anti-aliased line 3 pixels
 //! wide), each one call into a 320 x 240 Rgb565
 //! framebuffer; `sprite`, a few of workload I1's sprites. A whole screen: `framelist` for workload S1 through the frame list in 16-row
-//! bands (module `s1`; `double` for two band buffers). No feature at all gives the empty
-//! baseline (start-up and panic handler only).
+//! bands (module `s1`; `double` for two band buffers); `antialias` for a cube with a static
+//! adjacency table drawn with anti-aliased silhouettes, whole and in bands. No feature at all
+//! gives the empty baseline (start-up and panic handler only).
 //!
 //! The buffers are `static`s, as firmware would place them, so `.bss` shows the frame memory of
 //! the configuration.
@@ -34,7 +35,7 @@ const H: u32 = 240;
 
 /// A whole 320 x 240 Rgb565 frame (a static, for the 2D calls and the whole-frame 3D draws) as a
 /// framebuffer.
-#[cfg(any(two_d, all(three_d, not(feature = "banded"))))]
+#[cfg(any(two_d, feature = "antialias", all(three_d, not(feature = "banded"))))]
 fn frame() -> Option<
     rasterizer_core::surface::Framebuffer<'static, embedded_graphics_core::pixelcolor::Rgb565>,
 > {
@@ -347,6 +348,144 @@ mod three_d {
     }
 }
 
+/// `antialias`: a cube with its adjacency table in flash, drawn with anti-aliased silhouettes
+/// through M1's camera, whole (`Pipeline::draw_antialiased`) and in 16-row bands
+/// (`Pipeline::draw_banded_antialiased`), flat-lit with a depth buffer. The table is what
+/// `fixtures::adjacency::adjacency` gives for these triangles, written out as firmware would embed
+/// it (a packed mesh from `convert --adjacency` carries its own).
+#[cfg(feature = "antialias")]
+mod antialias {
+    use super::{H, W};
+    use core::hint::black_box;
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use rasterizer_core::depth::{Compare, DepthBuffer};
+    use rasterizer_core::math::{Fx16, Vec3};
+    use rasterizer_core::mesh::{Mesh, MeshSource};
+    use rasterizer_core::pipeline::{Banding, BinEntry, Pipeline, VertexSlot};
+    use rasterizer_core::shade::{FlatLit, Shading};
+    use rasterizer_core::transform::Viewport;
+
+    /// Coordinate `bit` of corner `i`: half the cube's side (16.16), + when the bit is set.
+    const fn at(i: usize, bit: usize) -> Fx16 {
+        Fx16::from_bits(if i >> bit & 1 == 1 {
+            1 << 15
+        } else {
+            -(1 << 15)
+        })
+    }
+    /// The corners: bit 0 of the index is x, bit 1 y, bit 2 z.
+    static CORNERS: [Vec3<Fx16>; 8] = {
+        let mut c = [Vec3::new(at(0, 0), at(0, 1), at(0, 2)); 8];
+        let mut i = 1;
+        while i < 8 {
+            c[i] = Vec3::new(at(i, 0), at(i, 1), at(i, 2));
+            i += 1;
+        }
+        c
+    };
+    /// Two triangles a face, counter-clockwise seen from outside.
+    static TRIANGLES: [[u32; 3]; 12] = [
+        [0, 2, 3],
+        [0, 3, 1],
+        [4, 5, 7],
+        [4, 7, 6],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 6, 7],
+        [2, 7, 3],
+        [0, 4, 6],
+        [0, 6, 2],
+        [1, 3, 7],
+        [1, 7, 5],
+    ];
+    /// Entry `e` of triangle `t`: the triangle across its edge from corner `e` to `e + 1`.
+    static ADJACENCY: [[u32; 3]; 12] = [
+        [9, 7, 1],
+        [0, 10, 4],
+        [5, 11, 3],
+        [2, 6, 8],
+        [1, 11, 5],
+        [4, 2, 8],
+        [9, 3, 7],
+        [6, 10, 0],
+        [5, 3, 9],
+        [8, 6, 0],
+        [1, 7, 11],
+        [10, 2, 4],
+    ];
+    /// Rows per band.
+    const ROWS: u32 = 16;
+
+    type Sh = FlatLit<Fx16, Rgb565, 1>;
+    type Slot = VertexSlot<<Sh as Shading<Fx16>>::Stored>;
+
+    static mut DEPTH: [u16; (W * H) as usize] = [0; (W * H) as usize];
+    static mut BAND: [u16; (W * ROWS) as usize] = [0; (W * ROWS) as usize];
+    /// One a triangle: the cube's visible ones are far fewer than 255 apart.
+    static mut BINS: [BinEntry; 12] = [BinEntry::ZERO; 12];
+    static mut SCRATCH: [Slot; 8] = [Slot::EMPTY; 8];
+
+    fn shading() -> Sh {
+        use fixtures::scenes3d::{light_direction, lighting_with};
+        // The light's direction is opaque, so that its normalisation is not folded away.
+        Sh::new(lighting_with::<1>(black_box(light_direction())))
+    }
+
+    /// Draws the cube whole, then in bands; returns the triangles drawn by both, or 0 when a
+    /// draw was refused or the table does not pair its triangles up.
+    pub fn draw() -> u32 {
+        let mesh = Mesh::new(black_box(&CORNERS[..]), &TRIANGLES[..]).with_adjacency(&ADJACENCY);
+        // A neighbour names its neighbour back: a table out of step with the triangles would
+        // give wrong silhouettes, not a failure, so the run checks it.
+        for t in 0..mesh.triangle_count() {
+            for n in mesh.neighbours(t) {
+                if !mesh.neighbours(n as usize).contains(&(t as u32)) {
+                    return 0;
+                }
+            }
+        }
+        let xf = crate::m1::transforms();
+        let cull = rasterizer_core::cull::CullClockwise;
+        // SAFETY: the only references to these statics, made once.
+        #[allow(static_mut_refs)]
+        let (z, band, bins, scratch) = unsafe { (&mut DEPTH, &mut BAND, &mut BINS, &mut SCRATCH) };
+        z.fill(u16::MAX);
+        let Ok(depth) = DepthBuffer::new(z, W, H, Compare::Less) else {
+            return 0;
+        };
+        let Some(mut fb) = super::frame() else {
+            return 0;
+        };
+        let mut pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading());
+        let whole = pl
+            .draw_antialiased(&mut fb, &mesh, scratch)
+            .map_or(0, |s| s.drawn);
+        black_box(fb.as_slice());
+        let Ok(depth) = DepthBuffer::new(&mut z[..(W * ROWS) as usize], W, ROWS, Compare::Less)
+        else {
+            return 0;
+        };
+        let mut pl = Pipeline::new(&xf, Viewport::new(W, H), cull, depth, shading());
+        let banding = Banding {
+            width: W,
+            height: H,
+            rows: ROWS,
+            background: Rgb565::new(0, 0, 0),
+            clear_depth: u16::MAX,
+        };
+        let banded = pl
+            .draw_banded_antialiased(&mesh, &banding, band, bins, scratch, |b| {
+                // Where firmware would start the display's DMA.
+                black_box(b.framebuffer().as_slice());
+            })
+            .map_or(0, |s| s.drawn);
+        if whole == 0 || banded == 0 {
+            return 0;
+        }
+        whole + banded
+    }
+}
+
 /// The calls of the chosen combination; exits with 1 if a 3D configuration drew nothing.
 #[unsafe(no_mangle)]
 pub extern "C" fn main() -> i32 {
@@ -359,6 +498,13 @@ pub extern "C" fn main() -> i32 {
         drawn += three_d::draw();
         // Nothing drawn means a broken configuration: fail the run.
         if black_box(drawn) == 0 {
+            return 1;
+        }
+    }
+    #[cfg(feature = "antialias")]
+    {
+        // Likewise for the anti-aliased cube (0 also when a draw was refused).
+        if black_box(antialias::draw()) == 0 {
             return 1;
         }
     }

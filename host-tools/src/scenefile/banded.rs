@@ -28,7 +28,9 @@ use super::reference::Real;
 use super::MAX_POLYGON;
 use embedded_graphics_simulator::SimulatorDisplay;
 use rasterizer_core::color::Channels;
-use rasterizer_core::depth::{DepthBuffer, ListDepth, SharedDepth, SharedDepthReadOnly};
+use rasterizer_core::depth::{
+    Compare, DepthBuffer, DepthRows, DepthTest, ListDepth, SharedDepth, SharedDepthReadOnly,
+};
 use rasterizer_core::frame::MeshCommand;
 use rasterizer_core::frame::{
     self, Clear, Command, Fingerprint, FrameError, FrameList, Item, Layout, PolygonFill, Prepared,
@@ -253,10 +255,22 @@ impl<'c, S: Real> ListSink<'c, S> {
     /// A [`MeshCommand`] of the mesh with depth stage `D`, blended with the mesh's opacity.
     fn record<D, Sh, N>(&mut self, job: &Job<'c, S>, depth: D, shading: Sh) -> RenderStats
     where
-        D: ListDepth + core::fmt::Debug + 'static,
+        D: AaDepth + core::fmt::Debug + 'static,
         Sh: Shade<S> + 'c,
         N: Knobs,
     {
+        if job.mesh.antialias {
+            let stage = D::Stage::default();
+            let p = pipeline::<S, _, _, Sh, N>(job, ModeCull(job.mesh.cull), stage, shading);
+            self.command = Some(Box::new(AaCommand {
+                pipeline: p,
+                mesh: self.mesh,
+                scratch: vec![VertexSlot::EMPTY; self.mesh.vertex_count()],
+                opacity: job.mesh.opacity,
+                stats: RenderStats::default(),
+            }));
+            return RenderStats::default();
+        }
         // One command type per stage set, not per culling: `ModeCull` keeps the same triangles.
         let p = pipeline::<S, _, D, Sh, N>(job, ModeCull(job.mesh.cull), depth, shading);
         let (Some(slot), Some(bins)) = (self.scratch.take(), self.bins.take()) else {
@@ -373,6 +387,182 @@ impl<S: Real> Command<Rgb888> for WireCommand<'_, S> {
 impl<S: Real> SceneCommand for WireCommand<'_, S> {
     fn drawn(&self) -> u32 {
         self.stats.drawn
+    }
+}
+
+/// An anti-aliased mesh (`antialias = true`) as a command of the list. The core's
+/// `MeshCommand` has no anti-aliased form, and `Pipeline::draw_banded_antialiased` draws one
+/// mesh into bands of its own (each cleared first), so it cannot share a band with the other
+/// commands. Instead each band calls `Pipeline::draw_antialiased` into the band, as
+/// [`WireCommand`] does for edges: the vertex work is done again in every band, and the
+/// pipeline's depth stage holds the band's rows of the list's depth buffer while it draws. A
+/// blended pixel depends only on what lies beneath it, so the bands give the whole frame's
+/// picture (the example scenes are checked both ways).
+struct AaCommand<'c, S: Real, D, Sh: Shade<S>, N> {
+    pipeline: Pipeline<S, ModeCull, D, Sh, DEFAULT_BITS, N>,
+    mesh: &'c DynMesh<'c, S>,
+    scratch: Vec<VertexSlot<Sh::Stored>>,
+    opacity: u8,
+    /// What the last band's call did (every band's counts the same triangles).
+    stats: RenderStats,
+}
+
+impl<S: Real, D: BandStage, Sh: Shade<S>, N: Knobs> Command<Rgb888> for AaCommand<'_, S, D, Sh, N> {
+    fn prepare(&mut self, layout: &Layout) -> Result<Prepared, FrameError> {
+        Ok(Prepared {
+            bounds: layout.screen(),
+            depth: D::ENABLED,
+        })
+    }
+
+    fn draw(
+        &mut self,
+        _band: u32,
+        target: &mut ClipTo<'_, Band<'_, Rgb888>>,
+        depth: &mut DepthBuffer<'_>,
+    ) {
+        let (p, mesh, scratch) = (&mut self.pipeline, self.mesh, &mut self.scratch);
+        p.depth.load(depth);
+        // Cannot be refused: the loader gave the mesh adjacency, a band reads back, and every
+        // numerics of the scenes takes the fused span loop.
+        self.stats = if self.opacity == u8::MAX {
+            p.draw_antialiased(target, mesh, scratch)
+                .unwrap_or_default()
+        } else {
+            let target = &mut Translucent::new(target, self.opacity);
+            p.draw_antialiased(target, mesh, scratch)
+                .unwrap_or_default()
+        };
+        p.depth.store(depth);
+    }
+
+    fn fingerprint(&self, hash: &mut Fingerprint) {
+        let _ = write!(hash, "aa{:?}{}", self.pipeline, self.opacity);
+    }
+}
+
+impl<S: Real, D: BandStage, Sh: Shade<S>, N: Knobs> SceneCommand for AaCommand<'_, S, D, Sh, N> {
+    fn drawn(&self) -> u32 {
+        self.stats.drawn
+    }
+}
+
+/// A [`ListDepth`] as the depth stage of an [`AaCommand`].
+pub(super) trait AaDepth: ListDepth {
+    /// The stage that stands in for it.
+    type Stage: BandStage;
+}
+
+impl AaDepth for SharedDepth {
+    type Stage = BandDepth<true>;
+}
+
+impl AaDepth for SharedDepthReadOnly {
+    type Stage = BandDepth<false>;
+}
+
+impl AaDepth for NoDepth {
+    type Stage = NoDepth;
+}
+
+/// The depth stage of an [`AaCommand`]'s pipeline: given the list's buffer before each band's
+/// draw and giving it back after.
+pub(super) trait BandStage: DepthTest + Default + core::fmt::Debug + 'static {
+    /// Takes the band's depths from the list's buffer.
+    fn load(&mut self, _list: &mut DepthBuffer<'_>) {}
+    /// Stores them back into it.
+    fn store(&self, _list: &mut DepthBuffer<'_>) {}
+}
+
+impl BandStage for NoDepth {}
+
+/// A copy of one band's rows of the list's depth buffer (the pipeline owns its depth stage, and
+/// the list lends its buffer only for one call), tested and, when `WRITE`, written back.
+#[derive(Default)]
+pub(super) struct BandDepth<const WRITE: bool> {
+    depths: Vec<u16>,
+    width: u32,
+    height: u32,
+    origin_y: i32,
+    compare: Compare,
+}
+
+impl<const WRITE: bool> core::fmt::Debug for BandDepth<WRITE> {
+    // Without the depths: the fingerprint reads this, and they change every band.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "BandDepth<{WRITE}>")
+    }
+}
+
+impl<const WRITE: bool> BandStage for BandDepth<WRITE> {
+    fn load(&mut self, list: &mut DepthBuffer<'_>) {
+        self.compare = list.compare();
+        let Some(rows) = list.depth_rows() else {
+            return;
+        };
+        self.depths.clear();
+        self.depths.extend_from_slice(rows.depths);
+        (self.width, self.height, self.origin_y) = (rows.width, rows.height, rows.origin_y);
+    }
+
+    fn store(&self, list: &mut DepthBuffer<'_>) {
+        if let (true, Some(rows)) = (WRITE, list.depth_rows()) {
+            if rows.depths.len() == self.depths.len() {
+                rows.depths.copy_from_slice(&self.depths);
+            }
+        }
+    }
+}
+
+impl<const WRITE: bool> DepthTest for BandDepth<WRITE> {
+    const WRITE: bool = WRITE;
+
+    fn test_span<E, F>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i64,
+        dz: i64,
+        run: F,
+    ) -> Result<(), E>
+    where
+        F: FnMut(u32, u32) -> Result<(), E>,
+    {
+        // A buffer of the band's rows from row 0: the same entries, the row moved by the origin.
+        let (w, h) = (self.width, self.height);
+        let Ok(buffer) = DepthBuffer::new(&mut self.depths, w, h, self.compare) else {
+            return Ok(());
+        };
+        let y = y.wrapping_sub(self.origin_y);
+        if WRITE {
+            let mut buffer = buffer;
+            buffer.test_span(y, x, len, z, dz, run)
+        } else {
+            buffer.read_only().test_span(y, x, len, z, dz, run)
+        }
+    }
+
+    fn depth_rows(&mut self) -> Option<DepthRows<'_>> {
+        Some(DepthRows {
+            depths: &mut self.depths,
+            width: self.width,
+            height: self.height,
+            origin_y: self.origin_y,
+        })
+    }
+
+    fn comparison(&self) -> Compare {
+        self.compare
+    }
+
+    fn covers(&self, area: &Rectangle) -> bool {
+        let y0 = i64::from(self.origin_y);
+        let (x, y) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
+        x >= 0
+            && x + i64::from(area.size.width) <= i64::from(self.width)
+            && y >= y0
+            && y + i64::from(area.size.height) <= y0 + i64::from(self.height)
     }
 }
 

@@ -967,6 +967,13 @@ where
     let mut p = pipeline::<S, Cu, D, Sh, N>(job, cull, depth, shading);
     // The depth buffer is made for the target, so it always covers the viewport within it.
     let mut scratch = vec![VertexSlot::EMPTY; mesh.vertex_count()];
+    if job.mesh.antialias {
+        // Cannot be refused: the loader gave the mesh adjacency, every target here reads back
+        // and every numerics of the scenes takes the fused span loop (a test draws each kind).
+        return p
+            .draw_antialiased(target, mesh, &mut scratch)
+            .unwrap_or_default();
+    }
     p.draw(target, mesh, &mut scratch).unwrap_or_default()
 }
 

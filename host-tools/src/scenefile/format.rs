@@ -318,6 +318,10 @@ pub struct MeshDef {
     pub opacity: Option<u8>,
     /// Replaces `render.fog`.
     pub fog: Option<FogDef>,
+    /// Anti-aliased silhouettes (`Pipeline::draw_antialiased`): the loader computes the mesh's
+    /// edge adjacency for it.
+    #[serde(default)]
+    pub antialias: bool,
 }
 
 /// The `texture_filter` key.

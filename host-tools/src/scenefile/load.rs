@@ -111,6 +111,8 @@ pub struct SceneMesh {
     pub opacity: u8,
     /// Fog, when the mesh or `[render]` asks for it.
     pub fog: Option<SceneFog>,
+    /// Anti-aliased silhouettes; the mesh then carries edge adjacency.
+    pub antialias: bool,
 }
 
 /// A mesh's texture, loaded and converted to Rgb565.
@@ -577,6 +579,13 @@ fn load_mesh(
         }
         MeshData::Owned(edit(from_raw(raw), &def))
     };
+    // The silhouettes are found through the adjacency: computed here, once, by position (so a
+    // seam of texture coordinates or normals is not taken for an edge of the surface).
+    let data = if def.antialias {
+        data.with_adjacency()
+    } else {
+        data
+    };
     let texture = load_texture(dir, &def, own_texture, &data)?;
     let shading = def.shading.unwrap_or(render.shading);
     if texture.is_some() && shading != ShadingModel::Gouraud {
@@ -634,6 +643,7 @@ fn load_mesh(
         matcap,
         opacity: def.opacity.unwrap_or(u8::MAX),
         fog,
+        antialias: def.antialias,
     })
 }
 
@@ -714,6 +724,17 @@ fn check_stages_apply(def: &MeshDef, render: &RenderOptions, textured: bool) -> 
     {
         return Err(format!(
             "mesh {name}: vertex_colors applies only to shading = \"vertex_colors\" (filled)"
+        ));
+    }
+    if wireframe && def.antialias {
+        return Err(format!(
+            "mesh {name}: antialias = true does not apply to a wireframe mesh{} (its edges are \
+             lines, not the silhouettes of filled triangles); remove it or draw the mesh filled",
+            if def.wireframe.is_some() {
+                ""
+            } else {
+                " (wireframe = true from [render])"
+            }
         ));
     }
     if wireframe && def.depth == Some(true) {
@@ -1115,6 +1136,40 @@ mod tests {
         let obj = MeshData::Owned(from_raw(raw));
         assert!(!obj.has_adjacency());
         assert!(obj.with_adjacency().has_adjacency());
+    }
+
+    /// `antialias = true` gives the mesh adjacency: computed for an OBJ and for a packed mesh
+    /// without its own (unpacked then), the packed table kept (drawn in place); without the key
+    /// an OBJ gets none.
+    #[test]
+    fn antialias_key_gives_the_mesh_adjacency() {
+        let dir = std::env::temp_dir().join(format!("scene-antialias-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("with.rmsh"), packed_cube(true)).unwrap();
+        std::fs::write(dir.join("without.rmsh"), packed_cube(false)).unwrap();
+        std::fs::write(dir.join("cube.obj"), CUBE).unwrap();
+        for (file, antialias, adjacency, packed) in [
+            ("with.rmsh", true, true, true),
+            ("without.rmsh", true, true, false),
+            ("cube.obj", true, true, false),
+            ("cube.obj", false, false, false),
+        ] {
+            let path = dir.join("scene.toml");
+            std::fs::write(
+                &path,
+                format!(
+                    "[output]\nwidth = 32\nheight = 32\n[camera]\neye = [0.0, 0.0, 5.0]\n\
+                     [[meshes]]\npath = \"{file}\"\nantialias = {antialias}\n"
+                ),
+            )
+            .unwrap();
+            let s = load(&path).unwrap();
+            let m = &s.meshes[0];
+            assert_eq!(m.antialias, antialias, "{file}");
+            assert_eq!(m.data.has_adjacency(), adjacency, "{file} {antialias}");
+            assert_eq!(matches!(m.data, MeshData::Packed(_)), packed, "{file}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
