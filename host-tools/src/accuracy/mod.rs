@@ -8,7 +8,8 @@
 //! anti-aliased lines), [`scene`] (the scenes on both sides),
 //! [`metrics`] (the error measures and the Pareto front), [`count`] (callgrind), [`breakdown`]
 //! (the limit sweeps), [`lighting`] (the shaders' directional-light plan), [`matcap`] (the
-//! MatCap lookup), [`sprite`] (the sprites' texel mapping), [`plot`] and
+//! MatCap lookup), [`silhouette`] (anti-aliased silhouettes' coverage), [`sprite`] (the sprites'
+//! texel mapping), [`plot`] and
 //! [`report`] (the output).
 
 pub mod blending;
@@ -22,6 +23,7 @@ pub mod metrics;
 pub mod plot;
 pub mod report;
 pub mod scene;
+pub mod silhouette;
 pub mod sprite;
 pub mod texture;
 

@@ -327,6 +327,7 @@ fn markdown(sweep: &Sweep, meta: &Meta, on_front: &[usize], counted: bool) -> St
     super::fog::section(&mut s);
     super::lighting::section(&mut s);
     super::matcap::section(&mut s);
+    super::silhouette::section(&mut s);
     super::sprite::section(&mut s);
 
     let _ = writeln!(s, "## Where each format breaks down\n");

@@ -216,7 +216,9 @@ where
 
     /// Bins the frame's triangles for bands of `rows` rows on a screen of `height` rows (see
     /// [`BinEntry`]), after [`Pipeline::begin`]: writes the entries to `bins` and returns how
-    /// many there are, and widens `pixels` to hold every pixel the triangles can touch.
+    /// many there are, and widens `pixels` to hold every pixel the triangles can touch. With
+    /// `MARGIN` (anti-aliased silhouettes) each triangle reaches a pixel further each way, as a
+    /// pixel it only partly covers can.
     ///
     /// # Errors
     /// [`BandError::TooFewBins`] when `bins` cannot hold them all.
@@ -248,24 +250,31 @@ where
             }
         };
         for t in 0..mesh.triangle_count() {
-            let Some([left, top, right, bottom]) = self.triangle_extent(mesh, t, scratch, stats)
-            else {
+            let Some(extent) = self.triangle_extent(mesh, t, scratch, stats) else {
                 continue;
             };
+            let [left, top, right, bottom] = if MARGIN {
+                let m = 1 << BITS;
+                let [l, t, r, b] = extent;
+                [
+                    l.saturating_sub(m),
+                    t.saturating_sub(m),
+                    r.saturating_add(m),
+                    b.saturating_add(m),
+                ]
+            } else {
+                extent
+            };
             // The rows whose sample lines the triangle can cross; columns to the whole pixel.
-            // With `MARGIN` (anti-aliased silhouettes) a pixel more each way, which a pixel the
-            // triangle only partly covers can be.
-            let m = if MARGIN { s } else { 0 };
-            let (left, right) = (i64::from(left) - m, i64::from(right) + m);
-            let top = row_at_or_below(i64::from(top) - m, s).max(0);
-            let bottom = row_at_or_below(i64::from(bottom) + m, s).min(i64::from(height));
+            let top = row_at_or_below(i64::from(top), s).max(0);
+            let bottom = row_at_or_below(i64::from(bottom), s).min(i64::from(height));
             if top >= bottom {
                 continue;
             }
             *pixels = pixels.union(&PixelRect {
-                x0: left >> BITS,
+                x0: i64::from(left) >> BITS,
                 y0: top,
-                x1: (right >> BITS) + 1,
+                x1: (i64::from(right) >> BITS) + 1,
                 y1: bottom,
             });
             while t - prev > usize::from(u8::MAX) {
@@ -310,9 +319,22 @@ where
         T: Surface<Color = Sh::Color>,
         M: MeshSource<S>,
     {
-        for t in unit_triangles(bins, unit, cursor) {
-            let front = self.front_again(mesh, t, scratch);
-            self.draw_front(src, target, mesh, front, scratch, stats)?;
+        let (mut lo, mut lo_t) = *cursor;
+        while let Some(e) = bins
+            .get(lo)
+            .filter(|e| e.last() < unit || e.first() > e.last())
+        {
+            lo_t += usize::from(e.step);
+            lo += 1;
+        }
+        *cursor = (lo, lo_t);
+        let mut t = lo_t;
+        for e in bins.get(lo..).unwrap_or_default() {
+            t += usize::from(e.step);
+            if e.first() <= unit && unit <= e.last() {
+                let front = self.front_again(mesh, t, scratch);
+                self.draw_front(src, target, mesh, front, scratch, stats)?;
+            }
         }
         Ok(())
     }
@@ -336,55 +358,6 @@ where
     /// [`BandError`] for a band buffer or depth stage too small for a band, zero rows, or too
     /// few bins (nothing is drawn then).
     pub fn draw_banded<Px, M, F>(
-        &mut self,
-        mesh: &M,
-        banding: &Banding<Px>,
-        band: &mut [Px::Word],
-        bins: &mut [BinEntry],
-        scratch: &mut [VertexSlot<Sh::Stored>],
-        on_band: F,
-    ) -> Result<RenderStats, BandError>
-    where
-        Px: Storage,
-        Sh: Shading<S, Color = Px>,
-        M: MeshSource<S>,
-        F: FnMut(&Band<'_, Px>),
-    {
-        self.banded::<Px, M, F, false>(mesh, banding, band, bins, scratch, on_band)
-    }
-
-    /// [`Pipeline::draw_banded`] with the silhouettes anti-aliased as
-    /// [`Pipeline::draw_antialiased`] draws them: each band draws its triangles' opaque pixels,
-    /// then blends their silhouette edges' pixels. The pixels are exactly those of a
-    /// whole-frame [`Pipeline::draw_antialiased`] of the same scene on the band's background,
-    /// for any band height. A triangle is binned to the bands a pixel beyond it reaches, so a
-    /// frame may need a few more bins than [`Pipeline::draw_banded`].
-    ///
-    /// # Errors
-    /// As [`Pipeline::draw_banded`], and [`BandError::Antialias`] when the mesh has no
-    /// adjacency or the numerics do not take the fused span loop (nothing is drawn).
-    pub fn draw_banded_antialiased<Px, M, F>(
-        &mut self,
-        mesh: &M,
-        banding: &Banding<Px>,
-        band: &mut [Px::Word],
-        bins: &mut [BinEntry],
-        scratch: &mut [VertexSlot<Sh::Stored>],
-        on_band: F,
-    ) -> Result<RenderStats, BandError>
-    where
-        Px: Storage,
-        Sh: Shading<S, Color = Px>,
-        M: MeshSource<S>,
-        F: FnMut(&Band<'_, Px>),
-    {
-        Self::antialias_check::<Framebuffer<'_, Px>, M>(mesh).map_err(BandError::Antialias)?;
-        self.banded::<Px, M, F, true>(mesh, banding, band, bins, scratch, on_band)
-    }
-
-    /// [`Pipeline::draw_banded`], with anti-aliased silhouettes when `AA`.
-    #[inline(always)]
-    fn banded<Px, M, F, const AA: bool>(
         &mut self,
         mesh: &M,
         banding: &Banding<Px>,
@@ -425,7 +398,7 @@ where
         };
         let mut pixels = PixelRect::EMPTY;
         let count =
-            self.bin::<M, AA>(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
+            self.bin::<M, false>(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
         let bins = &bins[..count];
         let bands = height.div_ceil(rows);
         let group = bands.div_ceil(16);
@@ -443,33 +416,16 @@ where
             let mut strip = Band::new(fb, y0 as i32);
             {
                 let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
-                let unit = (b / group) as u8;
-                if AA {
-                    let start = cursor;
-                    for fringe in [false, true] {
-                        cursor = start;
-                        let Ok(()) = self.draw_unit_silhouette(
-                            &mut super::Own,
-                            &mut target,
-                            mesh,
-                            scratch,
-                            unit_triangles(bins, unit, &mut cursor),
-                            &mut scratch_stats,
-                            fringe,
-                        );
-                    }
-                } else {
-                    let Ok(()) = self.draw_unit(
-                        &mut super::Own,
-                        &mut target,
-                        mesh,
-                        scratch,
-                        bins,
-                        unit,
-                        &mut cursor,
-                        &mut scratch_stats,
-                    );
-                }
+                let Ok(()) = self.draw_unit(
+                    &mut super::Own,
+                    &mut target,
+                    mesh,
+                    scratch,
+                    bins,
+                    (b / group) as u8,
+                    &mut cursor,
+                    &mut scratch_stats,
+                );
             }
             on_band(&strip);
         }

@@ -21,6 +21,7 @@ mod perspective;
 mod silhouette;
 mod vertex;
 
+pub use crate::raster::silhouette::AA_RANGE_PIXELS;
 pub use band::{BandError, Banding, BinEntry};
 pub use silhouette::AntialiasError;
 pub use vertex::VertexSlot;

@@ -2,12 +2,17 @@
 //! silhouette edges through its adjacency and hand their triangles to the raster stage's
 //! two-pass silhouette fill ([`crate::raster::silhouette`]).
 
+use super::band::unit_triangles;
 use super::front::{outside, ShaderColor};
 use super::perspective::PerspectiveColor;
 use super::vertex::Projected;
-use super::{DepthFrom, DrawError, Front, MeshSource, Own, Pipeline, RenderStats, VertexSlot};
+use super::{
+    BandError, Banding, BinEntry, DepthFrom, DrawError, Front, MeshSource, Own, Pipeline,
+    RenderStats, VertexSlot,
+};
 use crate::cull::Cull;
 use crate::depth::DepthTest;
+use crate::geom::PixelRect;
 use crate::geom::SubPoint;
 use crate::math::Scalar;
 use crate::mesh::NO_NEIGHBOUR;
@@ -15,7 +20,11 @@ use crate::numerics::Numerics;
 use crate::raster::fused::fill_fused_silhouette;
 use crate::raster::interp::ScreenVertex;
 use crate::shade::Shading;
+use crate::surface::{Band, Framebuffer, Storage};
 use crate::surface::{ClipTo, Surface};
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
 
 /// Why a mesh cannot be drawn with anti-aliased silhouettes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -190,7 +199,7 @@ where
     /// A pixel at least half covered stores its depth; a less covered one does not, so what is
     /// drawn behind it later replaces it: draw the far objects of a scene first. Triangles
     /// that need clipping in homogeneous space, or that reach more than
-    /// [`crate::raster::silhouette::AA_RANGE_PIXELS`] pixels from the screen's origin, are
+    /// [`super::AA_RANGE_PIXELS`] pixels from the screen's origin, are
     /// drawn without anti-aliasing.
     ///
     /// # Errors
@@ -242,6 +251,97 @@ where
                     &mut Own, target, mesh, t, v, scratch, &mut again, true,
                 )?;
             }
+        }
+        Ok(stats)
+    }
+
+    /// [`Pipeline::draw_banded`] with the silhouettes anti-aliased as
+    /// [`Pipeline::draw_antialiased`] draws them: each band draws its triangles' opaque pixels,
+    /// then blends their silhouette edges' pixels. The pixels are exactly those of a
+    /// whole-frame [`Pipeline::draw_antialiased`] of the same scene on the band's background,
+    /// for any band height. A triangle is binned to the bands a pixel beyond it reaches, so a
+    /// frame may need a few more bins than [`Pipeline::draw_banded`].
+    ///
+    /// # Errors
+    /// As [`Pipeline::draw_banded`], and [`BandError::Antialias`] when the mesh has no
+    /// adjacency or the numerics do not take the fused span loop (nothing is drawn).
+    pub fn draw_banded_antialiased<Px, M, F>(
+        &mut self,
+        mesh: &M,
+        banding: &Banding<Px>,
+        band: &mut [Px::Word],
+        bins: &mut [BinEntry],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+        mut on_band: F,
+    ) -> Result<RenderStats, BandError>
+    where
+        Px: Storage,
+        Sh: Shading<S, Color = Px>,
+        M: MeshSource<S>,
+        F: FnMut(&Band<'_, Px>),
+    {
+        Self::antialias_check::<Framebuffer<'_, Px>, M>(mesh).map_err(BandError::Antialias)?;
+        // The checks and the band loop of `draw_banded`, kept apart so that its code (and
+        // its instruction counts) stay as they were.
+        let (width, height, rows) = (banding.width, banding.height, banding.rows);
+        if rows == 0 || height == 0 {
+            return Err(BandError::NoRows);
+        }
+        let needed = Framebuffer::<Px>::required_len(width, rows.min(height))
+            .ok_or(BandError::BadSize { width, height })?;
+        if band.len() < needed {
+            return Err(BandError::BandBufferTooSmall {
+                needed,
+                actual: band.len(),
+            });
+        }
+        self.depth.start_band(0, banding.clear_depth);
+        let first = Rectangle::new(Point::zero(), Size::new(width, rows.min(height)))
+            .intersection(&self.viewport.rectangle());
+        if first.size.width > 0 && first.size.height > 0 && !self.depth.covers(&first) {
+            return Err(BandError::DepthTooSmall { needed: first });
+        }
+        let scratch = self.begin(mesh, scratch);
+        let mut stats = RenderStats {
+            triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
+            ..RenderStats::default()
+        };
+        let mut pixels = PixelRect::EMPTY;
+        let count =
+            self.bin::<M, true>(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
+        let bins = &bins[..count];
+        let bands = height.div_ceil(rows);
+        let group = bands.div_ceil(16);
+        let mut cursor = (0, 0);
+        let mut scratch_stats = RenderStats::default();
+        for b in 0..bands {
+            let y0 = b * rows;
+            let h = rows.min(height - y0);
+            let len = Framebuffer::<Px>::required_len(width, h).unwrap_or(0);
+            let Ok(mut fb) = Framebuffer::<Px>::new(&mut band[..len], width, h) else {
+                return Err(BandError::BadSize { width, height });
+            };
+            let _ = DrawTarget::clear(&mut fb, banding.background);
+            self.depth.start_band(y0 as i32, banding.clear_depth);
+            let mut strip = Band::new(fb, y0 as i32);
+            {
+                let mut target = ClipTo::new(&mut strip, self.viewport.rectangle());
+                let unit = (b / group) as u8;
+                let start = cursor;
+                for fringe in [false, true] {
+                    cursor = start;
+                    let Ok(()) = self.draw_unit_silhouette(
+                        &mut Own,
+                        &mut target,
+                        mesh,
+                        scratch,
+                        unit_triangles(bins, unit, &mut cursor),
+                        &mut scratch_stats,
+                        fringe,
+                    );
+                }
+            }
+            on_band(&strip);
         }
         Ok(stats)
     }

@@ -21,8 +21,8 @@
 //! per edge.
 
 use crate::geom::PixelRect;
-use core::num::NonZeroU64;
 use crate::raster::triangle::setup::SpanSink;
+use core::num::NonZeroU64;
 
 /// What the blending pass asks of a triangle's pixel sink besides spans.
 pub(crate) trait FringeSink: SpanSink {
