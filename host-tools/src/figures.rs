@@ -54,6 +54,8 @@ pub const REQUIRED: &[(&str, &str, &str)] = &[
     ("M1", "ours-phong", "per_primitive"),
     ("M1", "ours-matcap", "instructions"),
     ("M1", "ours-matcap", "per_primitive"),
+    ("M1", "ours-aa", "instructions"),
+    ("M1", "ours-aa", "per_primitive"),
     ("M1", "ours-perspective", "instructions"),
     ("M1", "ours-perspective", "per_primitive"),
     ("M1", "ours-band16", "instructions"),
@@ -95,6 +97,7 @@ const ORDER: &[&str] = &[
     "ours-m1_flat",
     "ours-phong",
     "ours-matcap",
+    "ours-aa",
     "ours-m1_wireframe",
     "ours-m1_band8",
     "ours-band16",
@@ -146,6 +149,8 @@ mod target {
     pub const PERSPECTIVE_RATIO: f64 = 1.30;
     /// M1 with MatCap shading per vertex against the default (Gouraud), per frame.
     pub const MATCAP_RATIO: f64 = 0.85;
+    /// M1 with anti-aliased silhouettes against the default, per frame.
+    pub const AA_RATIO: f64 = 1.25;
     /// 64-bit divisions in one M1 frame.
     pub const M1_DIV64: f64 = 700.0;
     /// 64-bit divisions in one M4 frame.
@@ -1001,6 +1006,12 @@ fn targets(f: &Figures) -> String {
             "M1 MatCap per vertex, against the default (Gouraud, per frame)",
             f.get("M1", "ours-matcap/ours", "ratio"),
             target::MATCAP_RATIO,
+            true,
+        ),
+        (
+            "M1 with anti-aliased silhouettes, against the default (per frame)",
+            f.get("M1", "ours-aa/ours", "ratio"),
+            target::AA_RATIO,
             true,
         ),
         (
