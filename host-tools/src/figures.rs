@@ -965,7 +965,7 @@ fn targets(f: &Figures) -> String {
         None => "-",
     };
     let per = |scene: &str, r: &str| f.get(scene, r, "per_primitive");
-    let rows: [(&str, Option<f64>, f64, bool); 16] = [
+    let rows: [(&str, Option<f64>, f64, bool); 17] = [
         (
             "M1 whole frame, per triangle",
             per("M1", "ours"),
