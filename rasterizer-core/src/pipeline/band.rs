@@ -1,8 +1,7 @@
 //! Band rendering: a frame drawn one horizontal strip at a time, for firmware without room for a
 //! whole frame.
 
-use super::silhouette::AntialiasError;
-use super::{DepthFrom, Front, MeshSource, Pipeline, RenderStats, VertexSlot};
+use super::{AntialiasError, DepthFrom, Front, MeshSource, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::clip_triangle;
 use crate::clip::polygon::ClipVertex;
 use crate::cull::Cull;

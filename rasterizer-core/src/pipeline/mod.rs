@@ -23,7 +23,6 @@ mod vertex;
 
 pub use crate::raster::silhouette::AA_RANGE_PIXELS;
 pub use band::{BandError, Banding, BinEntry};
-pub use silhouette::AntialiasError;
 pub use vertex::VertexSlot;
 
 use crate::clip::polygon::{clip_segment, clip_triangle, ClipVertex};
@@ -107,6 +106,30 @@ impl<E: core::fmt::Debug> core::fmt::Display for DrawError<E> {
 }
 
 impl<E: core::fmt::Debug> core::error::Error for DrawError<E> {}
+
+/// Why a mesh cannot be drawn with anti-aliased silhouettes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AntialiasError {
+    /// The target cannot read back its pixels ([`Surface::READ_BACK`]), which blending needs.
+    CannotReadBack,
+    /// The mesh has no edge adjacency ([`MeshSource::has_adjacency`]): convert it with
+    /// `--adjacency`, or give a [`crate::mesh::Mesh`] one with
+    /// [`crate::mesh::Mesh::with_adjacency`].
+    NoAdjacency,
+    /// The pipeline's numerics do not take the fused span loop ([`crate::numerics::SpanStart`]
+    /// other than `Wrapping`), which the silhouette fill is built on.
+    Numerics,
+}
+
+impl core::fmt::Display for AntialiasError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::CannotReadBack => write!(f, "the target cannot read back pixels to blend into"),
+            Self::NoAdjacency => write!(f, "the mesh has no edge adjacency"),
+            Self::Numerics => write!(f, "anti-aliasing needs the fused span loop's numerics"),
+        }
+    }
+}
 
 /// Where a draw's depth stage comes from: the pipeline's own ([`Own`]), or one lent for the
 /// call ([`Lend`]: a frame list's shared buffer), so that the pipeline need not move to take

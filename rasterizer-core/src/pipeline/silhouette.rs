@@ -7,8 +7,8 @@ use super::front::{outside, ShaderColor};
 use super::perspective::PerspectiveColor;
 use super::vertex::Projected;
 use super::{
-    BandError, Banding, BinEntry, DepthFrom, DrawError, Front, MeshSource, Own, Pipeline,
-    RenderStats, VertexSlot,
+    AntialiasError, BandError, Banding, BinEntry, DepthFrom, DrawError, Front, MeshSource, Own,
+    Pipeline, RenderStats, VertexSlot,
 };
 use crate::cull::Cull;
 use crate::depth::DepthTest;
@@ -25,30 +25,6 @@ use crate::surface::{ClipTo, Surface};
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
-
-/// Why a mesh cannot be drawn with anti-aliased silhouettes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AntialiasError {
-    /// The target cannot read back its pixels ([`Surface::READ_BACK`]), which blending needs.
-    CannotReadBack,
-    /// The mesh has no edge adjacency ([`MeshSource::has_adjacency`]): convert it with
-    /// `--adjacency`, or give a [`crate::mesh::Mesh`] one with
-    /// [`crate::mesh::Mesh::with_adjacency`].
-    NoAdjacency,
-    /// The pipeline's numerics do not take the fused span loop ([`crate::numerics::SpanStart`]
-    /// other than `Wrapping`), which the silhouette fill is built on.
-    Numerics,
-}
-
-impl core::fmt::Display for AntialiasError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            Self::CannotReadBack => write!(f, "the target cannot read back pixels to blend into"),
-            Self::NoAdjacency => write!(f, "the mesh has no edge adjacency"),
-            Self::Numerics => write!(f, "anti-aliasing needs the fused span loop's numerics"),
-        }
-    }
-}
 
 impl<S, C, D, Sh, const BITS: u32, N> Pipeline<S, C, D, Sh, BITS, N>
 where

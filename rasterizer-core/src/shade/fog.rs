@@ -401,6 +401,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Foggable<S> for PhongLit<S, C, N>
 ///     colors: None,
 ///     uvs: None,
 ///     triangles: &[[0u16, 1, 2]],
+///     adjacency: None,
 /// };
 /// let mut pixels = [0u16; 64 * 48];
 /// let mut fb = Framebuffer::<Rgb565>::new(&mut pixels, w, h).unwrap();
