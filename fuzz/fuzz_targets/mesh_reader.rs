@@ -3,8 +3,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use rasterizer_core::math::{Fx16, Vec3};
-use rasterizer_core::mesh::{MeshSource, NO_NEIGHBOUR};
 use rasterizer_core::mesh::PackedMesh;
+use rasterizer_core::mesh::{MeshSource, NO_NEIGHBOUR};
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(m) = PackedMesh::parse(data) {
@@ -24,7 +24,9 @@ fuzz_target!(|data: &[u8]| {
                 assert!(idx.iter().all(|&i| (i as usize) < m.vertices()));
             }
             let n = MeshSource::<Fx16>::neighbours(&m, t);
-            assert!(n.iter().all(|&u| u == NO_NEIGHBOUR || (u as usize) < m.triangles()));
+            assert!(n
+                .iter()
+                .all(|&u| u == NO_NEIGHBOUR || (u as usize) < m.triangles()));
         }
     }
 });
