@@ -86,9 +86,7 @@ impl CeilWalk {
             self.q -= 1;
         }
     }
-}
 
-impl CeilWalk {
     /// A bound that never binds: `q` far beyond any column, never moving.
     const fn fixed(q: i64) -> Self {
         Self {
