@@ -23,7 +23,7 @@ use crate::geom::{PixelRect, SubPoint};
 use crate::geom::{Varyings, MAX_VARYINGS};
 use crate::raster::silhouette::{in_aa_range, walk_silhouette, FringeSink};
 use crate::raster::triangle::setup::{
-    may_cover_a_centre, misses_every_centre, walk_spans_once, Sorted, SpanSink,
+    may_cover_a_centre, rows_in_clip, walk_spans_once, Sorted, SpanSink,
 };
 use crate::surface::{BlendError, DepthSpan, Surface};
 use crate::wide::Reciprocal;
@@ -385,20 +385,26 @@ where
     V: Varyings,
     P: FusedColor<S::Color>,
 {
-    let Some((t, clip, mut sink)) =
+    let Some((t, Some(rows), clip, mut sink)) =
         set_up::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel, true)
     else {
         return Ok(());
     };
-    walk_spans_once(&t, 1 << BITS, &clip, &mut sink)
+    walk_spans_once(&t, 1 << BITS, rows, &clip, &mut sink)
 }
 
-/// What [`set_up`] gives: the sorted triangle, the clip area and the span sink.
-type SetUp<'a, S, D, V, P> = (Sorted, PixelRect, Fused<'a, S, D, V, P>);
+/// What [`set_up`] gives: the sorted triangle, its rows in the clip area ([`rows_in_clip`]), the
+/// clip area and the span sink.
+type SetUp<'a, S, D, V, P> = (
+    Sorted,
+    Option<(i64, i64, i64)>,
+    PixelRect,
+    Fused<'a, S, D, V, P>,
+);
 
-/// The set-up of [`fill_fused`]: the sorted triangle, the clip area and the span sink with its
-/// planes; `None` when nothing is drawn (with `skip_empty`, also for a triangle that surely
-/// covers no pixel centre).
+/// The set-up of [`fill_fused`]: the sorted triangle, its rows, the clip area and the span sink
+/// with its planes; `None` when nothing is drawn (with `skip_empty`, also for a triangle with no
+/// row of pixel centres in the clip area).
 #[inline(always)]
 fn set_up<'a, S, D, V, P, const BITS: u32>(
     surface: &'a mut S,
@@ -422,8 +428,11 @@ where
     let [v0, v1, v2] = t.v;
     let s = 1i64 << BITS;
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    // A triangle that surely covers no pixel skips the set-up of its planes.
-    if skip_empty && misses_every_centre(&t, s, &clip) {
+    // A triangle with no row of centres skips the set-up of its planes. (Testing its columns
+    // and its few centres too, as the other fills do, cost more than it saved here: the pipeline
+    // has already dropped most triangles that cover no centre.)
+    let rows = rows_in_clip(&t, s, &clip);
+    if skip_empty && rows.is_none() {
         return None;
     }
     let sign = t.cross.signum();
@@ -495,7 +504,7 @@ where
         compare,
         _v: core::marker::PhantomData,
     };
-    Some((t, clip, sink))
+    Some((t, rows, clip, sink))
 }
 
 /// Fills a triangle with anti-aliased silhouette edges (bit `k` of `mask`, not zero, for the
@@ -528,7 +537,7 @@ where
             fill_fused::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel)
         };
     }
-    let Some((_, clip, sink)) =
+    let Some((_, _, clip, sink)) =
         set_up::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel, !fringe)
     else {
         return Ok(());
