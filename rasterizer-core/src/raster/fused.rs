@@ -63,6 +63,8 @@ struct Shape {
     /// Its centre minus `v0`, in half sub-pixel units (a centre is half a unit off the grid
     /// when there are no sub-pixel bits).
     offset2: (i64, i64),
+    /// The same for pixel `(0, 0)`: `s - 2 v0`.
+    origin2: (i64, i64),
     /// Every product of the set-up fits `i64` (edges below 2^28 sub-pixels and the anchor on
     /// the top vertex's own pixel); otherwise the planes are set up in `i128`.
     narrow: bool,
@@ -92,24 +94,34 @@ impl Shape {
         let b = d2 * self.e1.0 - d1 * self.e2.0;
         // In [-2^(60 - BITS - frac), 2^(60 - BITS - frac)), a << (BITS + frac) stays within
         // 2^60.
-        let (fa, gx, gy) = 'narrow: {
-            if self.narrow && both_within(a, b, 60 - BITS - frac) {
-                // round(a 2^(BITS + frac) / cross), halves up, with the one reciprocal (the
-                // numerators stay below 2^61, its exact range).
-                let half = self.cross >> 1;
-                let gx = self.recip.floor((a << (BITS + frac)) + half);
-                let gy = self.recip.floor((b << (BITS + frac)) + half);
-                // Gradients of at most 2^(61 - BITS) times the doubled offsets (at most one
-                // pixel) stay within 2^61.
-                if both_within(gx, gy, 61 - BITS) {
-                    // The anchor's centre lies within half a pixel of v0: its value from the
-                    // rounded gradients is within one unit of the last bit, with no division.
-                    let n = gx * self.offset2.0 + gy * self.offset2.1;
-                    break 'narrow ((f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1)), gx, gy);
-                }
+        if self.narrow && both_within(a, b, 60 - BITS - frac) {
+            // round(a 2^(BITS + frac) / cross), halves up, with the one reciprocal (the
+            // numerators stay below 2^61, its exact range).
+            let half = self.cross >> 1;
+            let gx = self.recip.floor((a << (BITS + frac)) + half);
+            let gy = self.recip.floor((b << (BITS + frac)) + half);
+            // Gradients of at most 2^(61 - BITS) times the doubled offsets (at most one pixel)
+            // stay within 2^61.
+            if both_within(gx, gy, 61 - BITS) {
+                // The anchor's centre lies within half a pixel of v0: its value from the rounded
+                // gradients is within one unit of the last bit, with no division. Moved back to
+                // pixel (0, 0) by whole gradients, that value is the one below: the anchor's
+                // whole pixels leave the floor, and the floor's low 32 bits need only the low
+                // 32 + BITS + 1 bits of its numerator, so the products may wrap.
+                let n = gx
+                    .wrapping_mul(self.origin2.0)
+                    .wrapping_add(gy.wrapping_mul(self.origin2.1))
+                    .wrapping_add(1 << BITS);
+                return Plane32 {
+                    k: ((f[0] << frac) as u32)
+                        .wrapping_add((n >> (BITS + 1)) as u32)
+                        .wrapping_add(offset),
+                    gx: gx as u32,
+                    gy: gy as u32,
+                };
             }
-            plane_wide::<BITS>(f[0], a, b, frac, self.cross, self.offset2)
-        };
+        }
+        let (fa, gx, gy) = plane_wide::<BITS>(f[0], a, b, frac, self.cross, self.offset2);
         let (ax, ay) = (self.anchor.0 as u32, self.anchor.1 as u32);
         let (gx, gy) = (gx as u32, gy as u32);
         Plane32 {
@@ -455,6 +467,7 @@ where
         recip: divisor.map_or(Reciprocal::ONE, Reciprocal::new),
         anchor,
         offset2: (2 * (anchor.0 * s - v0.0) + s, 2 * (anchor.1 * s - v0.1) + s),
+        origin2: (s - 2 * v0.0, s - 2 * v0.1),
         narrow,
     };
     let [o0, o1, o2] = t.order;
@@ -655,7 +668,72 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::both_within;
+    use super::{both_within, Shape};
+    use crate::raster::triangle::setup::tests::numbers;
+    use crate::wide::Reciprocal;
+    use core::num::NonZeroU64;
+
+    /// The narrow plane's value at pixel (0, 0) equals the anchor's value moved back by whole
+    /// gradients, to the bit, for any top vertex and anchor on its pixel.
+    #[test]
+    fn narrow_plane_start_is_the_anchors_value_moved_back() {
+        const BITS: u32 = 6;
+        let s = 1i64 << BITS;
+        let mut next = numbers(0x0bad_5eed);
+        let (mut narrow, mut tried) = (0, 0);
+        while tried < 20_000 {
+            // Top vertices anywhere in the guard band's reach, edges up to a few hundred pixels
+            // (small ones now and then, for steep gradients).
+            let v0 = (
+                i64::from(next(1 << 24)) - (1 << 23),
+                i64::from(next(1 << 24)) - (1 << 23),
+            );
+            let span = [1 << 15, 1 << 8, 8][next(3) as usize];
+            let mut edge = || i64::from(next(2 * span)) - i64::from(span);
+            let (e1, e2) = ((edge(), edge()), (edge(), edge()));
+            let cross = e1.0 * e2.1 - e2.0 * e1.1;
+            if cross <= 0 {
+                continue;
+            }
+            tried += 1;
+            let anchor = (v0.0 >> BITS, v0.1 >> BITS);
+            let shape = Shape {
+                e1,
+                e2,
+                cross,
+                recip: Reciprocal::new(NonZeroU64::new(cross as u64).unwrap()),
+                anchor,
+                offset2: (2 * (anchor.0 * s - v0.0) + s, 2 * (anchor.1 * s - v0.1) + s),
+                origin2: (s - 2 * v0.0, s - 2 * v0.1),
+                narrow: true,
+            };
+            let f = [0, 1, 2].map(|_| i64::from(next(1 << 16)));
+            let (frac, offset) = (16, 1 << 15);
+            let p = shape.plane::<BITS>(f, frac, offset);
+            // The gradients, rounded exactly in i128.
+            let (d1, d2) = (f[1] - f[0], f[2] - f[0]);
+            let a = d1 * e2.1 - d2 * e1.1;
+            let b = d2 * e1.0 - d1 * e2.0;
+            let round = |n: i64| {
+                ((i128::from(n) << (BITS + frac)) + i128::from(cross / 2))
+                    .div_euclid(i128::from(cross)) as i64
+            };
+            let (gx, gy) = (round(a), round(b));
+            assert_eq!((p.gx, p.gy), (gx as u32, gy as u32));
+            if !both_within(gx, gy, 61 - BITS) {
+                continue;
+            }
+            narrow += 1;
+            let n = gx * shape.offset2.0 + gy * shape.offset2.1;
+            let fa = (f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1));
+            let k = (fa as u32)
+                .wrapping_add(offset)
+                .wrapping_sub((gx as u32).wrapping_mul(anchor.0 as u32))
+                .wrapping_sub((gy as u32).wrapping_mul(anchor.1 as u32));
+            assert_eq!(p.k, k, "{v0:?} {e1:?} {e2:?} {f:?}");
+        }
+        assert!(narrow * 2 > tried, "{narrow} of {tried}");
+    }
 
     #[test]
     fn both_within_is_the_half_open_range() {
