@@ -151,6 +151,21 @@ fn spans_match_pixels<C: rasterizer_core::surface::Storage + PartialEq + core::f
     assert_eq!(a, b);
 }
 
+/// Every span length a row of 300 can hold, from several starts, against pixel writes: each of
+/// the fill's groups (4, 8, 32, 64 and 128 words) and its overlapping last group, with words
+/// before and after the span left alone.
+#[test]
+fn long_spans_of_every_length_match_pixel_writes() {
+    let w = 300u32;
+    for x in [0i32, 1, 3, 7, 8, 13] {
+        for len in 1..=(w - x as u32) {
+            let spans = [(x, 1, len)];
+            spans_match_pixels::<Rgb565>(300 * 3, w, 3, &spans, Rgb565::new(31, 0, 17));
+            spans_match_pixels::<Gray8>(300 * 3, w, 3, &spans, Gray8::new(200));
+        }
+    }
+}
+
 proptest! {
     #[test]
     fn binary_spans_match_pixel_writes(spans in proptest::collection::vec((0i32..23, 0i32..5), 1..20), on in any::<bool>()) {
