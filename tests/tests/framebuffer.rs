@@ -160,8 +160,8 @@ fn long_spans_of_every_length_match_pixel_writes() {
     for x in [0i32, 1, 3, 7, 8, 13] {
         for len in 1..=(w - x as u32) {
             let spans = [(x, 1, len)];
-            spans_match_pixels::<Rgb565>(300 * 3, w, 3, &spans, Rgb565::new(31, 0, 17));
-            spans_match_pixels::<Gray8>(300 * 3, w, 3, &spans, Gray8::new(200));
+            spans_match_pixels::<Rgb565>(w as usize * 3, w, 3, &spans, Rgb565::new(31, 0, 17));
+            spans_match_pixels::<Gray8>(w as usize * 3, w, 3, &spans, Gray8::new(200));
         }
     }
 }

@@ -265,47 +265,31 @@ fn walk_words<W: Copy>(buf: &mut [W], stride: usize, p: LinePoints, value: W) {
 fn fill_words<W: Copy>(s: &mut [W], v: W) {
     if s.len() < 8 {
         if s.len() >= 4 {
-            if let Some(first) = s.first_chunk_mut::<4>() {
-                *first = [v; 4];
-            }
-            if let Some(last) = s.last_chunk_mut::<4>() {
-                *last = [v; 4];
-            }
+            fill_groups::<W, 4>(s, v);
         } else if !s.is_empty() {
             fill_one_to_three(s, v);
         }
     } else if s.len() >= 128 {
-        let (groups, _) = s.as_chunks_mut::<128>();
-        for g in groups {
-            *g = [v; 128];
-        }
-        if let Some(last) = s.last_chunk_mut::<128>() {
-            *last = [v; 128];
-        }
+        fill_groups::<W, 128>(s, v);
     } else if s.len() >= 64 {
-        let (groups, _) = s.as_chunks_mut::<64>();
-        for g in groups {
-            *g = [v; 64];
-        }
-        if let Some(last) = s.last_chunk_mut::<64>() {
-            *last = [v; 64];
-        }
+        fill_groups::<W, 64>(s, v);
     } else if s.len() >= 32 {
-        let (groups, _) = s.as_chunks_mut::<32>();
-        for g in groups {
-            *g = [v; 32];
-        }
-        if let Some(last) = s.last_chunk_mut::<32>() {
-            *last = [v; 32];
-        }
+        fill_groups::<W, 32>(s, v);
     } else {
-        let (groups, _) = s.as_chunks_mut::<8>();
-        for g in groups {
-            *g = [v; 8];
-        }
-        if let Some(last) = s.last_chunk_mut::<8>() {
-            *last = [v; 8];
-        }
+        fill_groups::<W, 8>(s, v);
+    }
+}
+
+/// [`fill_words`] for a span of at least `N` words: its whole groups of `N`, then the group that
+/// ends at its end.
+#[inline(always)]
+fn fill_groups<W: Copy, const N: usize>(s: &mut [W], v: W) {
+    let (groups, _) = s.as_chunks_mut::<N>();
+    for g in groups {
+        *g = [v; N];
+    }
+    if let Some(last) = s.last_chunk_mut::<N>() {
+        *last = [v; N];
     }
 }
 
