@@ -141,19 +141,24 @@ fn spans_match_pixels<C: rasterizer_core::surface::Storage + PartialEq + core::f
 {
     let mut a = vec![C::Word::default(); words];
     let mut b = vec![C::Word::default(); words];
+    let mut c = vec![C::Word::default(); words];
     let mut fa = Framebuffer::<C>::new(&mut a, w, h).unwrap();
     let mut fb = Framebuffer::<C>::new(&mut b, w, h).unwrap();
+    let mut fc = Framebuffer::<C>::new(&mut c, w, h).unwrap();
     for &(x, y, len) in spans {
         fa.fill_span(x, y, len, color).unwrap();
         fb.draw_iter((x..x + len as i32).map(|x| Pixel(Point::new(x, y), color)))
             .unwrap();
+        // The fill for short spans tests its cases in another order.
+        fc.fill_short_span_in_clip(x, y, len, color).unwrap();
     }
     assert_eq!(a, b);
+    assert_eq!(c, b);
 }
 
 /// Every span length a row of 300 can hold, from several starts, against pixel writes: each of
 /// the fill's groups (4, 8, 32, 64 and 128 words) and its overlapping last group, with words
-/// before and after the span left alone.
+/// before and after the span left alone, by the fills for long and for short spans.
 #[test]
 fn long_spans_of_every_length_match_pixel_writes() {
     let w = 300u32;

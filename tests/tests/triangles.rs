@@ -530,6 +530,51 @@ proptest! {
     }
 }
 
+/// Target of the tall-triangle property: taller than the 32 rows from which a flat fill walks its
+/// edges with fixed-point accumulators.
+const TALL_W: u32 = 24;
+const TALL_H: u32 = 300;
+
+/// One tall-triangle case at `B` sub-pixel bits: the pixels of a framebuffer fill and of a
+/// fill through `AnyTarget` equal the reference's.
+fn check_tall<const B: u32>(corners: [(i32, i32); 3]) -> Result<(), TestCaseError> {
+    let v = corners.map(|(x, y)| SubPoint::<B>::raw(x >> (8 - B), y >> (8 - B)));
+    let want = reference_set(v, TALL_W as i32, TALL_H as i32);
+    prop_assert_eq!(&fill_mock(TALL_W, TALL_H, v).written(), &want);
+    let mut buf = vec![0u16; (TALL_W * TALL_H) as usize];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, TALL_W, TALL_H).unwrap();
+    fill_triangle(&mut fb, v, Rgb565::WHITE).unwrap();
+    let lit: BTreeSet<(i32, i32)> = (0..TALL_H as i32)
+        .flat_map(|y| (0..TALL_W as i32).map(move |x| (x, y)))
+        .filter(|&(x, y)| fb.pixel(Point::new(x, y)) == Some(Rgb565::WHITE))
+        .collect();
+    prop_assert_eq!(&lit, &want);
+    Ok(())
+}
+
+/// A corner in 1/256 pixels: mostly within a few widths of the tall target, sometimes far above,
+/// below or beside it (long edges, large divisors, clipped rows).
+fn tall_corner() -> impl Strategy<Value = (i32, i32)> {
+    prop_oneof![
+        4 => (-40 * 256..64 * 256, -60 * 256..360 * 256),
+        1 => (-4000 * 256..4000 * 256, -40_000 * 256..40_000 * 256),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Tall triangles, whose rows the flat fill walks with fixed-point accumulators when their
+    /// edges' divisors allow (a few dozen pixels of height at 8 sub-pixel bits, thousands at 4)
+    /// and with the exact remainder walk otherwise: the same pixels as the reference either way.
+    #[test]
+    fn tall_triangles_equal_reference(corners in [tall_corner(), tall_corner(), tall_corner()]) {
+        check_tall::<0>(corners)?;
+        check_tall::<4>(corners)?;
+        check_tall::<8>(corners)?;
+    }
+}
+
 /// The pixels the interpolating (3D) fill writes for `v`, with no depth buffer.
 fn interp_mock<const B: u32>(w: u32, h: u32, v: [SubPoint<B>; 3]) -> StrictMock<BinaryColor> {
     let mut mock = StrictMock::new(w, h);

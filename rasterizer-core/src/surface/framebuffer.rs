@@ -286,10 +286,23 @@ fn fill_words<W: Copy>(s: &mut [W], v: W) {
 fn fill_groups<W: Copy, const N: usize>(s: &mut [W], v: W) {
     let (groups, _) = s.as_chunks_mut::<N>();
     for g in groups {
-        *g = [v; N];
+        g.fill(v);
     }
     if let Some(last) = s.last_chunk_mut::<N>() {
-        *last = [v; N];
+        last.fill(v);
+    }
+}
+
+/// [`fill_words`] with the long spans tested first: for the spans of a large triangle, mostly
+/// dozens of words long.
+#[inline(always)]
+fn fill_long_words<W: Copy>(s: &mut [W], v: W) {
+    if s.len() >= 128 {
+        fill_groups::<W, 128>(s, v);
+    } else if s.len() >= 64 {
+        fill_groups::<W, 64>(s, v);
+    } else {
+        fill_words(s, v);
     }
 }
 
@@ -334,7 +347,7 @@ impl Storage for Rgb565 {
     #[inline(always)]
     fn fill_span(buf: &mut [u16], stride: usize, x: usize, y: usize, len: usize, color: Self) {
         let start = y * stride + x;
-        fill_words(
+        fill_long_words(
             &mut buf[start..start + len],
             RawU16::from(color).into_inner(),
         );

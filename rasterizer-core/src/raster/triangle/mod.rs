@@ -7,7 +7,8 @@
 //! OpenGL's (checked against Mesa's llvmpipe in the conformance tests). Either winding is drawn.
 //!
 //! Spans are found by an exact edge walk (`raster/edge.rs`): one division per edge at set-up, then two adds
-//! and a compare per edge per row. Zero-area triangles draw nothing; so does a triangle with a vertex
+//! and a compare per edge per row (one add for a tall flat-filled triangle, whose walk costs two
+//! divisions more an edge). Zero-area triangles draw nothing; so does a triangle with a vertex
 //! outside the guard band ([`crate::geom::GUARD_BAND_PIXELS`]).
 
 pub(crate) mod setup;
@@ -20,7 +21,7 @@ use crate::{geom::line::Line, raster::line::draw_line};
 use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
-use setup::{walk_spans, Sorted, SpanSink};
+use setup::{tall_walks, walk_spans, walk_tall, Sorted, SpanSink};
 use small::Small;
 
 /// Fills a triangle in one colour.
@@ -45,10 +46,28 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
     if let Some(small) = Small::new(&vertices, &clip) {
         return small.walk::<_, BITS>(&mut FlatShort { surface, color });
     }
-    let Some(t) = Sorted::new(&vertices) else {
+    fill_large(surface, &vertices, &clip, color)
+}
+
+/// [`fill_triangle`] for a triangle the `i32` set-up does not take: out of line, so that its
+/// two row loops leave the small triangles' code as it was.
+#[inline(never)]
+fn fill_large<S: Surface, const BITS: u32>(
+    surface: &mut S,
+    vertices: &[SubPoint<BITS>; 3],
+    clip: &PixelRect,
+    color: S::Color,
+) -> Result<(), S::Error> {
+    let Some(t) = Sorted::new(vertices) else {
         return Ok(());
     };
-    walk_spans(&t, 1 << BITS, &clip, &mut Flat { surface, color })
+    let s = 1 << BITS;
+    // A tall triangle's spans are mostly long, a short one's (one that crosses the clip area's
+    // edge) mostly short: each gets the fill that tests its common case first.
+    match tall_walks(&t, s, clip) {
+        Some(tall) => walk_tall(&t, s, clip, tall, &mut Flat { surface, color }),
+        None => walk_spans(&t, s, clip, &mut FlatShort { surface, color }),
+    }
 }
 
 /// A small triangle's spans in one colour: mostly a few pixels long.

@@ -2,7 +2,7 @@
 //! and walk the spans row by row.
 
 use crate::geom::{PixelRect, SubPoint};
-use crate::raster::edge::{row_at_or_below, EdgeWalk};
+use crate::raster::edge::{row_at_or_below, DdaWalk, EdgeWalk};
 
 /// A triangle sorted by y (top first), in `i64` sub-pixel units.
 #[derive(Debug, Clone, Copy)]
@@ -124,6 +124,126 @@ pub(crate) fn walk_spans<K: SpanSink>(
     Ok(())
 }
 
+/// The fewest rows of a triangle that [`tall_walks`] takes for [`DdaWalk`]s: their set-up costs
+/// two 64-bit divisions an edge more than [`EdgeWalk`]'s (tens of cycles each on a Cortex-M),
+/// and saves a test and a conditional subtract an edge on every row.
+const DDA_MIN_ROWS: i64 = 32;
+
+/// The walks of a tall triangle's edges for [`walk_tall`]: the rows inside `clip` (as
+/// [`rows_in_clip`]) and [`DdaWalk`]s for the long, upper and lower edges, when it has at least
+/// [`DDA_MIN_ROWS`] rows and every edge fits their bound; `None` leaves it to [`walk_spans`].
+#[inline(always)]
+pub(crate) fn tall_walks(t: &Sorted, s: i64, clip: &PixelRect) -> Option<TallWalks> {
+    let [v0, v1, v2] = t.v;
+    let rows @ (top, mid, bottom) = rows_in_clip(t, s, clip)?;
+    if bottom - top < DDA_MIN_ROWS {
+        return None;
+    }
+    let long = DdaWalk::new(v0, v2, s, top, bottom - top)?;
+    // An edge with no rows to walk is never read: the long one stands in for it.
+    let upper = match mid > top {
+        true => DdaWalk::new(v0, v1, s, top, mid - top)?,
+        false => long,
+    };
+    let lower = match bottom > mid {
+        true => DdaWalk::new(v1, v2, s, mid, bottom - mid)?,
+        false => long,
+    };
+    Some(TallWalks {
+        rows,
+        walks: [long, upper, lower],
+    })
+}
+
+/// A tall triangle's rows and edge walks ([`tall_walks`]).
+pub(crate) struct TallWalks {
+    rows: (i64, i64, i64),
+    walks: [DdaWalk; 3],
+}
+
+/// [`walk_spans`] for a triangle [`tall_walks`] took: the same spans, one add an edge a row. A
+/// second copy of the row loop, so only for sinks whose spans are small code.
+#[inline(always)]
+pub(crate) fn walk_tall<K: SpanSink>(
+    t: &Sorted,
+    s: i64,
+    clip: &PixelRect,
+    tall: TallWalks,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    walk_halves(t, s, tall.rows, clip, tall.walks, sink)
+}
+
+/// A column walk along one edge: [`EdgeWalk`], or [`DdaWalk`] for a tall triangle.
+trait ColumnWalk: Copy {
+    fn col(&self) -> i64;
+    fn step(&mut self);
+}
+
+impl ColumnWalk for EdgeWalk {
+    #[inline(always)]
+    fn col(&self) -> i64 {
+        EdgeWalk::col(self)
+    }
+    #[inline(always)]
+    fn step(&mut self) {
+        EdgeWalk::step(self);
+    }
+}
+
+impl ColumnWalk for DdaWalk {
+    #[inline(always)]
+    fn col(&self) -> i64 {
+        DdaWalk::col(self)
+    }
+    #[inline(always)]
+    fn step(&mut self) {
+        DdaWalk::step(self);
+    }
+}
+
+/// The rows of [`walk_spans`] from the walks of the long edge and the upper and lower short edges
+/// (the long and upper ones set up at `top`, the lower one at `mid`; an edge with no rows is
+/// never read). [`walk_spans`] keeps its own copy, which sets each short edge up only when it
+/// has rows: written through this one, every Gouraud fill was dearer.
+#[inline(always)]
+fn walk_halves<W: ColumnWalk, K: SpanSink>(
+    t: &Sorted,
+    s: i64,
+    (top, mid, bottom): (i64, i64, i64),
+    clip: &PixelRect,
+    [mut long, upper, lower]: [W; 3],
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    let [v0, v1, v2] = t.v;
+    // Columns need clamping only when the triangle's x extent leaves the clip area: a non-empty
+    // span's ends lie between the leftmost and rightmost vertex.
+    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+    let inside_x = xmin >= clip.x0 * s && xmax <= clip.x1 * s;
+    let short_is_left = t.cross < 0;
+    if top < mid {
+        // The walks are copied into left and right before the loop and the long one copied back
+        // after it: references chosen at run time made the loop select both edges every row,
+        // and a loop per side doubled the code of every fill.
+        let (mut l, mut r) = if short_is_left {
+            (upper, long)
+        } else {
+            (long, upper)
+        };
+        rows_of(&mut l, &mut r, top..mid.min(bottom), clip, inside_x, sink)?;
+        long = if short_is_left { r } else { l };
+    }
+    if mid < bottom {
+        let (mut l, mut r) = if short_is_left {
+            (lower, long)
+        } else {
+            (long, lower)
+        };
+        rows_of(&mut l, &mut r, mid..bottom, clip, inside_x, sink)?;
+    }
+    Ok(())
+}
+
 /// [`walk_spans`] with one copy of the row loop for both halves of the triangle, clipped or
 /// not: the same spans, in a few more instructions per row, for a sink whose span is large code
 /// (the 3D pipeline's fused loop), so that it is inlined once. `rows` are the triangle's rows in
@@ -168,10 +288,13 @@ pub(crate) fn walk_spans_once<K: SpanSink>(
 
 /// The spans of `rows` between two edge walks, clamped to the clip area's columns unless the
 /// triangle lies inside them (`inside_x`).
-#[inline(always)]
-fn rows_of<K: SpanSink>(
-    left: &mut EdgeWalk,
-    right: &mut EdgeWalk,
+// Out of line in an unoptimised build, which gives every inlined copy its own stack slots: a
+// fill then holds one copy's at a time rather than all four's.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn rows_of<W: ColumnWalk, K: SpanSink>(
+    left: &mut W,
+    right: &mut W,
     rows: core::ops::Range<i64>,
     clip: &PixelRect,
     inside_x: bool,
