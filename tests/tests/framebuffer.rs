@@ -142,18 +142,22 @@ fn spans_match_pixels<C: rasterizer_core::surface::Storage + PartialEq + core::f
     let mut a = vec![C::Word::default(); words];
     let mut b = vec![C::Word::default(); words];
     let mut c = vec![C::Word::default(); words];
+    let mut d = vec![C::Word::default(); words];
     let mut fa = Framebuffer::<C>::new(&mut a, w, h).unwrap();
     let mut fb = Framebuffer::<C>::new(&mut b, w, h).unwrap();
     let mut fc = Framebuffer::<C>::new(&mut c, w, h).unwrap();
+    let mut fd = Framebuffer::<C>::new(&mut d, w, h).unwrap();
     for &(x, y, len) in spans {
         fa.fill_span(x, y, len, color).unwrap();
         fb.draw_iter((x..x + len as i32).map(|x| Pixel(Point::new(x, y), color)))
             .unwrap();
-        // The fill for short spans tests its cases in another order.
+        // The fills for short and for long spans test their cases in other orders.
         fc.fill_short_span_in_clip(x, y, len, color).unwrap();
+        fd.fill_long_span_in_clip(x, y, len, color).unwrap();
     }
     assert_eq!(a, b);
     assert_eq!(c, b);
+    assert_eq!(d, b);
 }
 
 /// Every span length a row of 300 can hold, from several starts, against pixel writes: each of

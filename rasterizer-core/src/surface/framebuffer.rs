@@ -128,6 +128,18 @@ pub trait Storage: Channels {
     ) {
         Self::fill(&mut buf[y * stride..(y + 1) * stride], x, len, color);
     }
+    /// [`Storage::fill_span`] for a span that is most likely dozens of pixels long.
+    #[inline(always)]
+    fn fill_long_span(
+        buf: &mut [Self::Word],
+        stride: usize,
+        x: usize,
+        y: usize,
+        len: usize,
+        color: Self,
+    ) {
+        Self::fill_span(buf, stride, x, y, len, color);
+    }
     /// [`Storage::fill_span`] for a span that is most likely a few pixels long.
     #[inline(always)]
     fn fill_short_span(
@@ -347,6 +359,14 @@ impl Storage for Rgb565 {
     #[inline(always)]
     fn fill_span(buf: &mut [u16], stride: usize, x: usize, y: usize, len: usize, color: Self) {
         let start = y * stride + x;
+        fill_words(
+            &mut buf[start..start + len],
+            RawU16::from(color).into_inner(),
+        );
+    }
+    #[inline(always)]
+    fn fill_long_span(buf: &mut [u16], stride: usize, x: usize, y: usize, len: usize, color: Self) {
+        let start = y * stride + x;
         fill_long_words(
             &mut buf[start..start + len],
             RawU16::from(color).into_inner(),
@@ -455,6 +475,11 @@ impl Storage for Gray8 {
     fn fill_span(buf: &mut [u8], stride: usize, x: usize, y: usize, len: usize, color: Self) {
         let start = y * stride + x;
         fill_words(&mut buf[start..start + len], color.luma());
+    }
+    #[inline(always)]
+    fn fill_long_span(buf: &mut [u8], stride: usize, x: usize, y: usize, len: usize, color: Self) {
+        let start = y * stride + x;
+        fill_long_words(&mut buf[start..start + len], color.luma());
     }
     #[inline]
     fn walk(buf: &mut [u8], stride: usize, points: LinePoints, color: Self) {
@@ -765,6 +790,25 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     }
 
     #[inline(always)]
+    fn fill_long_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: C,
+    ) -> Result<(), Self::Error> {
+        C::fill_long_span(
+            self.buf,
+            self.stride,
+            x as usize,
+            y as usize,
+            len as usize,
+            color,
+        );
+        Ok(())
+    }
+
+    #[inline(always)]
     fn fill_short_span_in_clip(
         &mut self,
         x: i32,
@@ -954,6 +998,17 @@ impl<C: Storage> Surface for Band<'_, C> {
     #[inline(always)]
     fn fill_span_in_clip(&mut self, x: i32, y: i32, len: u32, color: C) -> Result<(), Self::Error> {
         self.fb.fill_span_in_clip(x, y - self.y0, len, color)
+    }
+
+    #[inline(always)]
+    fn fill_long_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: C,
+    ) -> Result<(), Self::Error> {
+        self.fb.fill_long_span_in_clip(x, y - self.y0, len, color)
     }
 
     #[inline(always)]

@@ -108,6 +108,23 @@ pub trait Surface: DrawTarget {
         self.fill_span(x, y, len, color)
     }
 
+    /// [`Surface::fill_span_in_clip`] for a span that is most likely dozens of pixels long (a tall
+    /// triangle's): a target may test for long spans first. The default forwards to
+    /// [`Surface::fill_span_in_clip`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn fill_long_span_in_clip(
+        &mut self,
+        x: i32,
+        y: i32,
+        len: u32,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        self.fill_span_in_clip(x, y, len, color)
+    }
+
     /// [`Surface::fill_span_in_clip`] for a span that is most likely a few pixels long (a small
     /// triangle's): a target may test for short spans first. The default forwards to
     /// [`Surface::fill_span_in_clip`].

@@ -65,7 +65,7 @@ fn fill_large<S: Surface, const BITS: u32>(
     // A tall triangle's spans are mostly long, a short one's (one that crosses the clip area's
     // edge) mostly short: each gets the fill that tests its common case first.
     match tall_walks(&t, s, clip) {
-        Some(tall) => walk_tall(&t, s, clip, tall, &mut Flat { surface, color }),
+        Some(tall) => walk_tall(&t, s, clip, tall, &mut FlatLong { surface, color }),
         None => walk_spans(&t, s, clip, &mut FlatShort { surface, color }),
     }
 }
@@ -85,18 +85,18 @@ impl<S: Surface> SpanSink for FlatShort<'_, S> {
     }
 }
 
-/// Spans in one colour.
-struct Flat<'a, S: Surface> {
+/// A tall triangle's spans in one colour: mostly dozens of pixels long.
+struct FlatLong<'a, S: Surface> {
     surface: &'a mut S,
     color: S::Color,
 }
 
-impl<S: Surface> SpanSink for Flat<'_, S> {
+impl<S: Surface> SpanSink for FlatLong<'_, S> {
     type Error = S::Error;
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         self.surface
-            .fill_span_in_clip(x0, row, (x1 - x0) as u32, self.color)
+            .fill_long_span_in_clip(x0, row, (x1 - x0) as u32, self.color)
     }
 }
 
