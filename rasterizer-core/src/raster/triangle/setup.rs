@@ -56,7 +56,7 @@ pub(crate) fn row_order<const BITS: u32>(v: &[SubPoint<BITS>; 3]) -> [usize; 3] 
 /// `clip_lo .. clip_hi`: the columns (or rows) of centres a triangle's bounds reach.
 #[inline(always)]
 fn centres(lo: i64, hi: i64, s: i64, clip_lo: i64, clip_hi: i64) -> core::ops::Range<i64> {
-    row_at_or_below(lo, s).max(clip_lo)..(row_at_or_below(hi, s) + 1).min(clip_hi)
+    row_at_or_below(lo, s).max(clip_lo)..row_at_or_below(hi + 1, s).min(clip_hi)
 }
 
 /// Receives the spans of a triangle.
@@ -508,6 +508,25 @@ pub(crate) mod tests {
                 let _ = walk_spans_once(&t, 16, rows, &clip, &mut b);
             }
             assert_eq!(a.0, b.0, "{v:?} {clip:?}");
+        }
+    }
+
+    /// The columns of centres within `lo ..= hi` against a count of every centre, at 0, 1, 4 and
+    /// 8 sub-pixel bits: none beyond `hi` (a bound between two centres reaches none, so a
+    /// triangle there is rejected before its edges are set up) and none missed at either end.
+    #[test]
+    fn centres_are_exactly_those_within_the_bounds() {
+        for bits in [0, 1, 4, 8] {
+            let s = 1i64 << bits;
+            for lo in -3 * s..3 * s {
+                for hi in lo..lo + 3 * s {
+                    let want: std::vec::Vec<i64> = (-10..10)
+                        .filter(|c| (lo..=hi).contains(&(c * s + s / 2)))
+                        .collect();
+                    let got: std::vec::Vec<i64> = centres(lo, hi, s, -10, 10).collect();
+                    assert_eq!(got, want, "{lo} ..= {hi}, {bits} bits");
+                }
+            }
         }
     }
 
