@@ -260,6 +260,10 @@ fn triangles() -> impl Strategy<Value = [(i64, i64); 3]> {
         prop::array::uniform3((-4 * PX..4 * PX, -4 * PX..4 * PX)),
     )
         .prop_map(|(c, d)| d.map(|d| (c.0 + d.0, c.1 + d.1)));
+    // Within a pixel or so of a point: bounds that hold a few centres or none, which the front
+    // end rejects before their values when they cover none.
+    let tiny = (anywhere(-2, 66), prop::array::uniform3((-PX..PX, -PX..PX)))
+        .prop_map(|(c, d)| d.map(|d| (c.0 + d.0, c.1 + d.1)));
     let medium = prop::array::uniform3(anywhere(-100, 164));
     // Nearly collinear: the third vertex close to the line through the first two.
     let sliver = (
@@ -282,6 +286,7 @@ fn triangles() -> impl Strategy<Value = [(i64, i64); 3]> {
     let near_target = prop::array::uniform3(anywhere(-4, 68));
     let shapes = prop_oneof![
         3 => small,
+        2 => tiny,
         2 => medium,
         2 => sliver,
         2 => large,
