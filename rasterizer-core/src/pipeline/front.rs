@@ -304,22 +304,17 @@ where
             // A triangle whose bounds hold four pixel centres at most and that covers none of
             // them (most of a dense mesh's far triangles) stops here, before its vertices are
             // shaded. The fill repeats the test for those that pass.
-            // A bound's extent, and whether it lies between two centres: no `c` with
-            // `lo <= c s + s/2 <= hi` (doubled, so that s/2 is whole with no sub-pixel bits).
-            let bound = |c: [i32; 3]| {
+            let extent = |c: [i32; 3]| {
                 let (lo, hi) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
-                let (lo, hi) = (i64::from(lo), i64::from(hi));
-                let s = 1i64 << BITS;
-                let between = (2 * hi - s) >> (BITS + 1) < -((s - 2 * lo) >> (BITS + 1));
-                (hi - lo + s, between)
+                i64::from(hi) - i64::from(lo) + (1 << BITS)
             };
-            let ((w, between_x), (h, between_y)) = (
-                bound([v[0].0, v[1].0, v[2].0]),
-                bound([v[0].1, v[1].1, v[2].1]),
+            let (w, h) = (
+                extent([v[0].0, v[1].0, v[2].0]),
+                extent([v[0].1, v[1].1, v[2].1]),
             );
             // Each at most four pixels first, so that the product cannot overflow.
             let few = w <= 4 << BITS && h <= 4 << BITS && w * h <= 4 << (2 * BITS);
-            if few && (between_x || between_y || misses_every_pixel(target, &p)) {
+            if few && misses_every_pixel(target, &p) {
                 return Ok(());
             }
             let fv = if Sh::NEEDS_WORLD && !mesh.has_normals() {
