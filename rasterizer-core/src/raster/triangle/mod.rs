@@ -21,7 +21,7 @@ use crate::{geom::line::Line, raster::line::draw_line};
 use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
-use setup::{tall_walks, walk_spans, walk_tall, Sorted, SpanSink};
+use setup::{tall_walks, walk_spans, walk_tall, Sorted, SpanSink, TallWalks};
 use small::Small;
 
 /// Fills a triangle in one colour.
@@ -65,9 +65,21 @@ fn fill_large<S: Surface, const BITS: u32>(
     // A tall triangle's spans are mostly long, a short one's (one that crosses the clip area's
     // edge) mostly short: each gets the fill that tests its common case first.
     match tall_walks(&t, s, clip) {
-        Some(tall) => walk_tall(&t, s, clip, tall, &mut FlatLong { surface, color }),
+        Some(tall) => fill_tall(surface, &t, tall, color),
         None => walk_spans(&t, s, clip, &mut FlatShort { surface, color }),
     }
+}
+
+/// [`fill_large`]'s tall triangles, in a function of their own: the row loops of both walks in
+/// one function compiled dearer for each.
+#[inline(never)]
+fn fill_tall<S: Surface>(
+    surface: &mut S,
+    t: &Sorted,
+    tall: TallWalks,
+    color: S::Color,
+) -> Result<(), S::Error> {
+    walk_tall(t, tall, &mut FlatLong { surface, color })
 }
 
 /// A small triangle's spans in one colour: mostly a few pixels long.

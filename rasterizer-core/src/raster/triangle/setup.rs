@@ -131,12 +131,16 @@ const DDA_MIN_ROWS: i64 = 32;
 
 /// The walks of a tall triangle's edges for [`walk_tall`]: the rows inside `clip` (as
 /// [`rows_in_clip`]) and [`DdaWalk`]s for the long, upper and lower edges, when it has at least
-/// [`DDA_MIN_ROWS`] rows and every edge fits their bound; `None` leaves it to [`walk_spans`].
+/// [`DDA_MIN_ROWS`] rows, lies within the clip area's columns and every edge fits their bound;
+/// `None` leaves it to [`walk_spans`].
 #[inline(always)]
 pub(crate) fn tall_walks(t: &Sorted, s: i64, clip: &PixelRect) -> Option<TallWalks> {
     let [v0, v1, v2] = t.v;
     let rows @ (top, mid, bottom) = rows_in_clip(t, s, clip)?;
-    if bottom - top < DDA_MIN_ROWS {
+    // Inside the clip area's columns its spans need no clamping (see `walk_spans`): one copy of
+    // the row loop fewer, for the rare tall triangle that crosses the clip area's sides.
+    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+    if bottom - top < DDA_MIN_ROWS || xmin < clip.x0 * s || xmax > clip.x1 * s {
         return None;
     }
     let long = DdaWalk::new(v0, v2, s, top, bottom - top)?;
@@ -166,71 +170,20 @@ pub(crate) struct TallWalks {
 #[inline(always)]
 pub(crate) fn walk_tall<K: SpanSink>(
     t: &Sorted,
-    s: i64,
-    clip: &PixelRect,
     tall: TallWalks,
     sink: &mut K,
 ) -> Result<(), K::Error> {
-    walk_halves(t, s, tall.rows, clip, tall.walks, sink)
-}
-
-/// A column walk along one edge: [`EdgeWalk`], or [`DdaWalk`] for a tall triangle.
-trait ColumnWalk: Copy {
-    fn col(&self) -> i64;
-    fn step(&mut self);
-}
-
-impl ColumnWalk for EdgeWalk {
-    #[inline(always)]
-    fn col(&self) -> i64 {
-        EdgeWalk::col(self)
-    }
-    #[inline(always)]
-    fn step(&mut self) {
-        EdgeWalk::step(self);
-    }
-}
-
-impl ColumnWalk for DdaWalk {
-    #[inline(always)]
-    fn col(&self) -> i64 {
-        DdaWalk::col(self)
-    }
-    #[inline(always)]
-    fn step(&mut self) {
-        DdaWalk::step(self);
-    }
-}
-
-/// The rows of [`walk_spans`] from the walks of the long edge and the upper and lower short edges
-/// (the long and upper ones set up at `top`, the lower one at `mid`; an edge with no rows is
-/// never read). [`walk_spans`] keeps its own copy, which sets each short edge up only when it
-/// has rows: written through this one, every Gouraud fill was dearer.
-#[inline(always)]
-fn walk_halves<W: ColumnWalk, K: SpanSink>(
-    t: &Sorted,
-    s: i64,
-    (top, mid, bottom): (i64, i64, i64),
-    clip: &PixelRect,
-    [mut long, upper, lower]: [W; 3],
-    sink: &mut K,
-) -> Result<(), K::Error> {
-    let [v0, v1, v2] = t.v;
-    // Columns need clamping only when the triangle's x extent leaves the clip area: a non-empty
-    // span's ends lie between the leftmost and rightmost vertex.
-    let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
-    let inside_x = xmin >= clip.x0 * s && xmax <= clip.x1 * s;
+    let (top, mid, bottom) = tall.rows;
+    let [mut long, upper, lower] = tall.walks;
     let short_is_left = t.cross < 0;
+    // As in `walk_spans`, with no clamping: `tall_walks` took the triangle inside the columns.
     if top < mid {
-        // The walks are copied into left and right before the loop and the long one copied back
-        // after it: references chosen at run time made the loop select both edges every row,
-        // and a loop per side doubled the code of every fill.
         let (mut l, mut r) = if short_is_left {
             (upper, long)
         } else {
             (long, upper)
         };
-        rows_of(&mut l, &mut r, top..mid.min(bottom), clip, inside_x, sink)?;
+        rows_inside(&mut l, &mut r, top..mid.min(bottom), sink)?;
         long = if short_is_left { r } else { l };
     }
     if mid < bottom {
@@ -239,7 +192,26 @@ fn walk_halves<W: ColumnWalk, K: SpanSink>(
         } else {
             (long, lower)
         };
-        rows_of(&mut l, &mut r, mid..bottom, clip, inside_x, sink)?;
+        rows_inside(&mut l, &mut r, mid..bottom, sink)?;
+    }
+    Ok(())
+}
+
+/// The spans of `rows` between two walks of a triangle inside the clip area's columns.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn rows_inside<K: SpanSink>(
+    left: &mut DdaWalk,
+    right: &mut DdaWalk,
+    rows: core::ops::Range<i64>,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    for row in rows {
+        if left.col() < right.col() {
+            sink.span(row as i32, left.col() as i32, right.col() as i32)?;
+        }
+        left.step();
+        right.step();
     }
     Ok(())
 }
@@ -292,9 +264,9 @@ pub(crate) fn walk_spans_once<K: SpanSink>(
 // fill then holds one copy's at a time rather than all four's.
 #[cfg_attr(debug_assertions, inline(never))]
 #[cfg_attr(not(debug_assertions), inline(always))]
-fn rows_of<W: ColumnWalk, K: SpanSink>(
-    left: &mut W,
-    right: &mut W,
+fn rows_of<K: SpanSink>(
+    left: &mut EdgeWalk,
+    right: &mut EdgeWalk,
     rows: core::ops::Range<i64>,
     clip: &PixelRect,
     inside_x: bool,
