@@ -62,8 +62,8 @@ fn fill_large<S: Surface, const BITS: u32>(
         return Ok(());
     };
     let s = 1 << BITS;
-    // A tall triangle's spans are mostly long, a short one's (one that crosses the clip area's
-    // edge) mostly short: each gets the fill that tests its common case first.
+    // A tall triangle's spans are mostly long, the others' (a short triangle that crosses the
+    // clip area's edge, mostly) short: each gets the fill that tests its common case first.
     match tall_walks(&t, s, clip) {
         Some(tall) => fill_tall(surface, &t, tall, color),
         None => walk_spans(&t, s, clip, &mut FlatShort { surface, color }),
