@@ -361,11 +361,13 @@ if wanted M1 && [ "$QUICK" = 0 ]; then
     emit_count M1 ours-fog covered "$(field "$OUT/3d-M1-fog.stdout" covered)"
 fi
 
-# --- 64-bit divisions per frame (count-wide build) ---
+# --- 64-bit divisions and wide products per frame (count-wide build) ---
 
 # The same frames from binaries built with host-tools' `count-wide` feature, which keeps every
-# 64-bit (and wider) division of the core out of line in rasterizer-core's `wide` module: the calls
-# to it are the divisions a Cortex-M pays a library call for. Its instruction counts are not figures.
+# 64-bit (and wider) division and every 64 x 64 -> 128-bit product of the core's triangle work
+# out of line in rasterizer-core's `wide` module: the calls to it are the divisions a Cortex-M
+# pays a library call for (`div64`) and the products it pays four multiplies for (`mul64`). Its
+# instruction counts are not figures.
 DIV64_JOBS=(
     "M1 count3d m1 --scene M1 m1"
     "M2 count3d m1 --scene M2 m1"
@@ -373,6 +375,7 @@ DIV64_JOBS=(
     "G1 count2d ours_gouraud G1 ours"
 )
 WIDE_DIV='^rasterizer_core::wide::div'
+WIDE_MUL='^rasterizer_core::wide::mul'
 declare -A WIDE_BIN=()
 for job in "${DIV64_JOBS[@]}"; do
     read -r scene program frame args <<<"$job"
@@ -381,7 +384,7 @@ for job in "${DIV64_JOBS[@]}"; do
         build_example_with count-wide "$program"
         WIDE_BIN[$program]="$BIN"
     fi
-    echo "counting $scene div64..." >&2
+    echo "counting $scene div64 and mul64..." >&2
     base="$OUT/div64-$scene"
     # shellcheck disable=SC2086 # the arguments are words
     DUMP_INSTR=1 callgrind_count "$base" "*frame_${frame}*" "${WIDE_BIN[$program]}" $args >/dev/null
@@ -389,6 +392,7 @@ for job in "${DIV64_JOBS[@]}"; do
     # Zero is the goal, so it is a valid figure; the routing itself is checked by the count
     # of a scene that still divides (M4's textured pixels) coming out non-zero.
     emit "$scene" ours div64 "$calls"
+    emit "$scene" ours mul64 "$(callgrind_entries "$base.out" "${WIDE_BIN[$program]}" "$WIDE_MUL")"
 done
 
 if wanted M1; then

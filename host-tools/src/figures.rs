@@ -71,6 +71,10 @@ pub const REQUIRED: &[(&str, &str, &str)] = &[
     ("M2", "ours", "div64"),
     ("M4", "ours", "div64"),
     ("G1", "ours", "div64"),
+    ("M1", "ours", "mul64"),
+    ("M2", "ours", "mul64"),
+    ("M4", "ours", "mul64"),
+    ("G1", "ours", "mul64"),
     ("S1", "ours", "instructions"),
     ("S1", "ours-band16", "instructions"),
     ("S1", "ours-band16x2", "instructions"),
@@ -107,7 +111,13 @@ const ORDER: &[&str] = &[
 ];
 
 /// Metrics of [`REQUIRED`] that may be zero (a configuration without a vertex scratch has none).
-const MAY_BE_ZERO: &[&str] = &["scratch_bytes", "band_depth_bytes", "bins_bytes", "div64"];
+const MAY_BE_ZERO: &[&str] = &[
+    "scratch_bytes",
+    "band_depth_bytes",
+    "bins_bytes",
+    "div64",
+    "mul64",
+];
 
 /// The documents whose tables are generated, relative to the repository root.
 pub const DOCUMENTS: &[&str] = &["BENCHMARKS.md", "README.md"];
@@ -956,6 +966,32 @@ fn m1_target(f: &Figures) -> String {
     )
 }
 
+/// The wide operations a frame executes (`div64`, `mul64`): what a Cortex-M pays library calls
+/// or multiply sequences for and an x86 count shows as one instruction each.
+fn wide_ops(f: &Figures) -> String {
+    let mut t = Table::new(
+        &[
+            "scene",
+            "64-bit divisions",
+            "64 x 64 -> 128-bit products",
+            "primitives",
+        ],
+        "lrrr",
+    );
+    for scene in ["M1", "M2", "M4", "G1"] {
+        let prims = f
+            .get(scene, "ours", "triangles")
+            .or_else(|| f.get(scene, "ours", "primitives"));
+        t.row(&[
+            scene.to_string(),
+            or_dash(f.get(scene, "ours", "div64"), int),
+            or_dash(f.get(scene, "ours", "mul64"), int),
+            or_dash(prims, int),
+        ]);
+    }
+    t.done()
+}
+
 /// The speed and size targets of the 3D pipeline against the figures.
 fn targets(f: &Figures) -> String {
     let mut t = Table::new(&["figure", "now", "target", "met?"], "lrrl");
@@ -1270,6 +1306,7 @@ pub fn blocks(f: &Figures) -> Vec<Block> {
         b("BENCHMARKS.md", "m1-memory", m1_memory(f)),
         b("BENCHMARKS.md", "m1-target", m1_target(f)),
         b("BENCHMARKS.md", "targets", targets(f)),
+        b("BENCHMARKS.md", "wide-ops", wide_ops(f)),
         b("BENCHMARKS.md", "s1", s1(f)),
         b("BENCHMARKS.md", "scenes-3d", scenes_3d(f)),
         b("BENCHMARKS.md", "ours-vs-euc", ours_vs_euc(f, false)),

@@ -1,13 +1,29 @@
-//! Divisions of 64-bit and wider operands, in one place.
+//! Divisions of 64-bit and wider operands, and products wider than 64 bits, in one place.
 //!
-//! A 32-bit microcontroller has no instruction for them: each is a library call
-//! (`__aeabi_ldivmod` and kin on a Cortex-M, tens of cycles), although an x86 instruction count
-//! shows one instruction. Every such division of the vertex, set-up, span and pixel work goes
-//! through these functions, so that the `count-wide` feature (for the project's counting programs
-//! only) can keep them out of line and a profiler counts their calls; without the feature they
-//! inline as before. (`Fx`'s `const` quotient and square root, used per draw, when clipping and
-//! off the lighting plan, cannot call them and are not counted.) [`Reciprocal`] turns many
-//! divisions by one divisor into one.
+//! A 32-bit microcontroller has no instruction for them: each division is a library call
+//! (`__aeabi_ldivmod` and kin on a Cortex-M, tens of cycles), and each 64 x 64 -> 128-bit
+//! product four 32-bit multiplies with their carries (library calls on a Cortex-M0+), although
+//! an x86 instruction count shows one instruction. Every such division and product of the
+//! triangles' vertex, set-up, span and pixel work goes through these functions, so that the
+//! `count-wide` feature (for the project's counting programs only) can keep them out of line
+//! and a profiler counts their calls; without the feature they inline as before. (`Fx`'s
+//! `const` quotient and square root, used per draw, when clipping and off the lighting plan,
+//! cannot call them and are not counted; nor are the `i128` steps of a clipped or anti-aliased
+//! line's and a sprite's set-up.) [`Reciprocal`] turns many divisions by one divisor into one.
+
+/// `a b` in full: a 64 x 64 -> 128-bit product, unsigned.
+#[cfg_attr(feature = "count-wide", inline(never))]
+#[cfg_attr(not(feature = "count-wide"), inline(always))]
+pub(crate) fn mul_u128(a: u64, b: u64) -> u128 {
+    u128::from(a) * u128::from(b)
+}
+
+/// `a b` in full: a 64 x 64 -> 128-bit product, signed.
+#[cfg_attr(feature = "count-wide", inline(never))]
+#[cfg_attr(not(feature = "count-wide"), inline(always))]
+pub(crate) fn mul_i128(a: i64, b: i64) -> i128 {
+    i128::from(a) * i128::from(b)
+}
 
 /// `n / d`, unsigned, rounded down; `d` is never zero (the callers make sure).
 #[cfg_attr(feature = "count-wide", inline(never))]
@@ -106,7 +122,7 @@ impl Reciprocal {
         // All ones for a negative n: u = !n then, n itself otherwise.
         let sign = n >> 63;
         let u = (n ^ sign) as u64;
-        let q = ((u128::from(u) * u128::from(self.m)) >> 64) as u64;
+        let q = (mul_u128(u, self.m) >> 64) as u64;
         // q <= u / d, so neither the product nor the remainder wraps.
         let q = q + u64::from(u - q * self.d >= self.d);
         q as i64 ^ sign
@@ -134,6 +150,18 @@ mod tests {
         assert_eq!(divmod_floor_i64(7, 0), (0, 0));
         assert_eq!(divmod_floor_i128(-7, 3), (-3, 2));
         assert_eq!(divmod_floor_i128(7, -3), (0, 0));
+    }
+
+    #[test]
+    fn wide_products_are_exact_at_the_extremes() {
+        assert_eq!(mul_u128(u64::MAX, u64::MAX), u128::from(u64::MAX).pow(2));
+        assert_eq!(mul_u128(1 << 63, 2), 1 << 64);
+        assert_eq!(mul_i128(i64::MIN, i64::MIN), 1 << 126);
+        assert_eq!(
+            mul_i128(i64::MIN, i64::MAX),
+            -(1i128 << 63) * i128::from(i64::MAX)
+        );
+        assert_eq!(mul_i128(-3, 5), -15);
     }
 
     #[test]

@@ -148,10 +148,10 @@ fn plane_wide<const BITS: u32>(
     cross: i64,
     offset2: (i64, i64),
 ) -> (i64, i64, i64) {
+    let n = (crate::wide::mul_i128(a, offset2.0) + crate::wide::mul_i128(b, offset2.1)) << frac;
     let (a, b, d) = (i128::from(a), i128::from(b), i128::from(cross));
     let gx = round_div_wide(a << (BITS + frac), d);
     let gy = round_div_wide(b << (BITS + frac), d);
-    let n = (a * i128::from(offset2.0) + b * i128::from(offset2.1)) << frac;
     let fa = (i128::from(f0) << frac) + round_div_wide(n, 2 * d);
     // Truncating keeps the low bits, all the wrapping arithmetic needs.
     (fa as i64, gx as i64, gy as i64)

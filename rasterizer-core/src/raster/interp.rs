@@ -161,7 +161,7 @@ impl<S: Surface, D: DepthTest, V: Varyings, F: FnMut(&V) -> S::Color, N: Numeric
     #[inline(always)]
     fn exact(&mut self, i: usize, dx2: i64, dy2: i64) {
         let p = self.planes[i];
-        let f = i128::from(p.a) * i128::from(dx2) + i128::from(p.b) * i128::from(dy2);
+        let f = crate::wide::mul_i128(p.a, dx2) + crate::wide::mul_i128(p.b, dy2);
         let (q, r) = divmod((f << frac::<N>()) + i128::from(self.den2 / 2), self.den2);
         self.at[i] = Exact { q, r };
     }
@@ -405,11 +405,11 @@ where
         row_at_or_below(v2.1, s).min(clip.y1) - row_at_or_below(v0.1, s).max(clip.y0) == 1;
     let mut setup = |i: usize| {
         let p = planes[i];
-        let (cq, cr) = divmod((i128::from(p.a) * i128::from(2 * s)) << frac::<N>(), den2);
+        let (cq, cr) = divmod(crate::wide::mul_i128(p.a, 2 * s) << frac::<N>(), den2);
         let (rq, rr) = if one_row {
             (0, 0)
         } else {
-            divmod((i128::from(p.b) * i128::from(2 * s)) << frac::<N>(), den2)
+            divmod(crate::wide::mul_i128(p.b, 2 * s) << frac::<N>(), den2)
         };
         // The per-pixel step is the column move rounded: round(a 2s 2^16 / den2).
         steps[i] = cq + i64::from(2 * cr >= den2);

@@ -236,7 +236,7 @@ where
             Some(n) if n.unsigned_abs() < 1 << 62 => {
                 i128::from(crate::wide::div_floor_i64(n + den as i64, 2 * den as i64))
             }
-            _ => round_div(i128::from(g.a[i]) * i128::from(s << (FRAC + 1)), den),
+            _ => round_div(crate::wide::mul_i128(g.a[i], s << (FRAC + 1)), den),
         };
         g.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
         // c0 (2 den) folds the base colour into the numerator, which is then never negative at a
@@ -332,7 +332,7 @@ where
             p.h[i] = h;
             // A pixel is 2s doubled units: its step in 16.16, saturated as `Gouraud`'s is (a step
             // beyond i32 only lands on one-pixel spans).
-            let per_pixel = (i128::from(g) * i128::from(2 * s) + (1 << 15)) >> 16;
+            let per_pixel = (crate::wide::mul_i128(g, 2 * s) + (1 << 15)) >> 16;
             p.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
         }
         Some(p)
@@ -430,10 +430,11 @@ where
             // |dy2| <= 2^31 + 2s at a centre inside the triangle, |a|, |b| < 2^39 and the base
             // below 2^69, so |f| < 2^72 and f 2^16 < 2^88.
             let v = if self.wide {
-                let base = i128::from(self.base[i]) * i128::from(self.den2.get());
+                // 2 den <= 2^61 (above): an i64.
+                let base = crate::wide::mul_i128(self.base[i], self.den2.get() as i64);
                 let f = base
-                    + i128::from(self.a[i]) * i128::from(dx2)
-                    + i128::from(self.b[i]) * i128::from(dy2);
+                    + crate::wide::mul_i128(self.a[i], dx2)
+                    + crate::wide::mul_i128(self.b[i], dy2);
                 round_div(f << FRAC, self.den).clamp(0, 255 << FRAC) as i32
             } else {
                 let f = self.base[i] + self.a[i] * dx2 + self.b[i] * dy2;
