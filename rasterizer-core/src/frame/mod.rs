@@ -368,12 +368,14 @@ impl<'c, C: Storage> FrameList<'c, C> {
         let screen = PixelRect::from_rectangle(&self.layout.screen());
         let bounds = PixelRect::from_rectangle(&bounds).intersection(&screen);
         // A command outside the screen takes a slot and draws in no band (first after last).
-        let rows = i64::from(self.layout.rows);
+        let rows = self.layout.rows;
         let (first, last) = if bounds.is_empty() {
             (1, 0)
         } else {
-            // Within the screen: 0 <= y0 < y1 <= height.
-            ((bounds.y0 / rows) as u16, ((bounds.y1 - 1) / rows) as u16)
+            // Within the screen: 0 <= y0 < y1 <= height, so 32-bit divisions (an instruction on
+            // a Cortex-M3/M4, where a 64-bit one is a library call).
+            let (y0, y1) = (bounds.y0 as u32, bounds.y1 as u32);
+            ((y0 / rows) as u16, ((y1 - 1) / rows) as u16)
         };
         // Within the screen, whose sides are at most 32,767: every coordinate fits i16.
         let bounds = if bounds.is_empty() {
@@ -497,9 +499,10 @@ impl<'c, C: Storage> FrameList<'c, C> {
         if region.is_empty() {
             return 0..0;
         }
-        let rows = i64::from(self.layout.rows);
-        // Within the screen: 0 <= y0 < y1 <= height.
-        (region.y0 / rows) as u32..((region.y1 - 1) / rows) as u32 + 1
+        let rows = self.layout.rows;
+        // Within the screen: 0 <= y0 < y1 <= height; 32-bit divisions, as above.
+        let (y0, y1) = (region.y0 as u32, region.y1 as u32);
+        y0 / rows..(y1 - 1) / rows + 1
     }
 
     /// Draws band `b`, within `region`, into `buf`.

@@ -34,18 +34,56 @@ where
     };
     let span = line.a;
     let points = line.walk_from(k0, k1);
-    let colors = (k0..=k1).map(move |k| {
+    // Each channel is `floor(N(k) / 2A)` with `N(k) = 2 c0 A + A + 2 (c1 - c0) k`, which grows by
+    // a constant per step: walked as quotient and remainder from two divisions at the first step,
+    // so that no pixel divides (a 64-bit division is a library call on a Cortex-M).
+    let mut walks = [Channel::default(); 4];
+    if span > 0 {
+        let d = 2 * span;
+        for (w, (&c0, &c1)) in walks.iter_mut().zip(c_start.iter().zip(&c_end)) {
+            let (c0, c1) = (i64::from(c0), i64::from(c1));
+            // Bound: A < 2^33 and k0 <= A, so |N(k0)| < 2 * 2^8 * 2^34 = 2^43.
+            let (q, r) =
+                crate::wide::divmod_floor_i64(2 * c0 * span + 2 * (c1 - c0) * k0 + span, d);
+            let (dq, dr) = crate::wide::divmod_floor_i64(2 * (c1 - c0), d);
+            *w = Channel { q, r, dq, dr, d };
+        }
+    }
+    let colors = (k0..=k1).map(move |_| {
         if span == 0 {
             return S::Color::from_channels(c_start);
         }
         let mut c = [0u8; 4];
-        for i in 0..S::Color::COUNT {
-            let (c0, c1) = (i64::from(c_start[i]), i64::from(c_end[i]));
-            // |numerator| < 2^8 * 2^34: fits i64.
-            let num = 2 * c0 * span + 2 * (c1 - c0) * k + span;
-            c[i] = num.div_euclid(2 * span) as u8;
+        for (c, w) in c.iter_mut().zip(walks.iter_mut()).take(S::Color::COUNT) {
+            // The quotient at a step of the line lies between the two end colours.
+            *c = w.q as u8;
+            w.step();
         }
         S::Color::from_channels(c)
     });
     surface.draw_iter(points.zip(colors).map(|(p, c)| Pixel(p, c)))
+}
+
+/// One channel's `floor(N / d)` as quotient `q` and remainder `r` in `0..d`, `N` growing by
+/// `dq d + dr` (`dr` in `0..d`) per step.
+#[derive(Debug, Clone, Copy, Default)]
+struct Channel {
+    q: i64,
+    r: i64,
+    dq: i64,
+    dr: i64,
+    d: i64,
+}
+
+impl Channel {
+    #[inline(always)]
+    fn step(&mut self) {
+        // Past the last step the values are not used; |q| stays below 2^9 + 2^8, no overflow.
+        self.q += self.dq;
+        self.r += self.dr;
+        if self.r >= self.d {
+            self.r -= self.d;
+            self.q += 1;
+        }
+    }
 }
