@@ -270,12 +270,12 @@ where
 /// the exact blend, which is what [`Gouraud`]'s exact start gives up to its own rounding.
 struct Planes<'a, S: Surface> {
     surface: &'a mut S,
-    s: i64,
-    v0: (i64, i64),
-    /// `c0 2^32`, and the gradients per doubled unit in 32.32.
+    /// The value in 32.32 at pixel `(0, 0)`'s centre, with the halves that the rounding to
+    /// 16.16 and `from_fixed16` add folded in, and the gradients per pixel: each wrapping, as
+    /// only a value at a pixel inside the triangle (which fits) is ever formed from them.
     base: [i64; 4],
-    g: [i64; 4],
-    h: [i64; 4],
+    gx: [i64; 4],
+    gy: [i64; 4],
     step: [i32; 4],
 }
 
@@ -301,13 +301,13 @@ where
         let [v0, v1, v2] = t.v;
         let mut p = Self {
             surface,
-            s,
-            v0,
             base: [0; 4],
-            g: [0; 4],
-            h: [0; 4],
+            gx: [0; 4],
+            gy: [0; 4],
             step: [0; 4],
         };
+        // Pixel (0, 0)'s centre in doubled units from v0: pixel (x, y)'s is this plus 2s (x, y).
+        let (ox, oy) = (s - 2 * v0.0, s - 2 * v0.1);
         // One index runs over several per-channel arrays at once.
         #[allow(clippy::needless_range_loop)]
         for i in 0..S::Color::COUNT {
@@ -327,9 +327,14 @@ where
             if reach >= 1 << 61 {
                 return None;
             }
-            p.base[i] = c0 << 32;
-            p.g[i] = g;
-            p.h[i] = h;
+            // The value at pixel (x, y) is (c0 << 32) + g (ox + 2s x) + h (oy + 2s y), which fits
+            // i64 inside the triangle; its terms apart may not, hence the wrapping.
+            p.base[i] = (c0 << 32)
+                .wrapping_add(g.wrapping_mul(ox))
+                .wrapping_add(h.wrapping_mul(oy))
+                .wrapping_add((1 << 15) + (1 << (FRAC - 1 + 16)));
+            p.gx[i] = g.wrapping_mul(2 * s);
+            p.gy[i] = h.wrapping_mul(2 * s);
             // A pixel is 2s doubled units: its step in 16.16, saturated as `Gouraud`'s is (a step
             // beyond i32 only lands on one-pixel spans).
             let per_pixel = (crate::wide::mul_i128(g, 2 * s) + (1 << 15)) >> 16;
@@ -347,17 +352,17 @@ where
 
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
-        // Doubled pixel-centre offsets from v0, at most the extents (2^16).
-        let dx2 = (2 * i64::from(x0) + 1) * self.s - 2 * self.v0.0;
-        let dy2 = (2 * i64::from(row) + 1) * self.s - 2 * self.v0.1;
+        let (x, y) = (i64::from(x0), i64::from(row));
         let mut acc = [0i32; 4];
         // One index runs over several per-channel arrays at once.
         #[allow(clippy::needless_range_loop)]
         for i in 0..S::Color::COUNT {
             // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
             // inside the triangle it lies within the vertex colours' range (up to 2^-17).
-            let v = self.base[i] + self.g[i] * dx2 + self.h[i] * dy2;
-            acc[i] = ((v + (1 << 15)) >> 16) as i32 + (1 << (FRAC - 1));
+            let v = self.base[i]
+                .wrapping_add(self.gx[i].wrapping_mul(x))
+                .wrapping_add(self.gy[i].wrapping_mul(y));
+            acc[i] = (v >> 16) as i32;
         }
         shade_stepped(self.surface, row, x0, x1, acc, self.step)
     }
