@@ -295,9 +295,11 @@ where
         if ex + ey > 1 << 16 {
             return None;
         }
-        let den2 = NonZeroU64::new(2 * t.cross.unsigned_abs())?;
+        let den = t.cross.unsigned_abs();
+        let den2 = NonZeroU64::new(2 * den)?;
         let recip = crate::wide::Reciprocal::new(den2);
         let half = (den2.get() / 2) as i64;
+        let fat = reach_bounded(ex, ey, den);
         let [v0, v1, v2] = t.v;
         let mut p = Self {
             surface,
@@ -320,12 +322,14 @@ where
             let h = recip.floor((b << 32) + half);
             // The products at a pixel inside the triangle must fit i64 with the base (up to
             // 2^40): a sliver's gradients can be as large as its colour range over 1/2^BITS.
-            let reach = g
-                .unsigned_abs()
-                .checked_mul(ex)?
-                .checked_add(h.unsigned_abs().checked_mul(ey)?)?;
-            if reach >= 1 << 61 {
-                return None;
+            if !fat {
+                let reach = g
+                    .unsigned_abs()
+                    .checked_mul(ex)?
+                    .checked_add(h.unsigned_abs().checked_mul(ey)?)?;
+                if reach >= 1 << 61 {
+                    return None;
+                }
             }
             // The value at pixel (x, y) is (c0 << 32) + g (ox + 2s x) + h (oy + 2s y), which fits
             // i64 inside the triangle; its terms apart may not, hence the wrapping.
@@ -337,10 +341,35 @@ where
             p.gy[i] = h.wrapping_mul(2 * s);
             // A pixel is 2s doubled units: its step in 16.16, saturated as `Gouraud`'s is (a step
             // beyond i32 only lands on one-pixel spans).
-            let per_pixel = (crate::wide::mul_i128(g, 2 * s) + (1 << 15)) >> 16;
-            p.step[i] = per_pixel.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32;
+            p.step[i] = step16(g, 2 * s);
         }
         Some(p)
+    }
+}
+
+/// Whether every channel of a triangle whose doubled extents are `ex`, `ey` (`ex + ey <= 2^16`)
+/// and doubled area `den` passes [`Planes::new`]'s reach test, from the triangle alone: a
+/// channel's numerators are at most `|a| <= 2^8 ey`, `|b| <= 2^8 ex`, so its gradients at most
+/// `|g| <= 2^39 ey / den + 2`, `|h| <= 2^39 ex / den + 2`, and the reach `|g| ex + |h| ey` below
+/// `2^40 ex ey / den + 2^17`, under `2^61` when `ex ey < 2^20 den`. No overflow: `ex ey <= 2^32`
+/// and `den <= ex ey / 2`.
+#[inline(always)]
+fn reach_bounded(ex: u64, ey: u64, den: u64) -> bool {
+    ex * ey < den << 20
+}
+
+/// A gradient `g` per doubled unit (32.32) times a pixel's `two_s` doubled units, rounded to
+/// 16.16 (halves up) and saturated to `i32`.
+#[inline(always)]
+fn step16(g: i64, two_s: i64) -> i32 {
+    match g.checked_mul(two_s) {
+        // round(v / 2^16): bit 15 is the half, with no add that could overflow.
+        Some(v) => {
+            ((v >> 16) + ((v >> 15) & 1)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+        }
+        // Beyond i64, so far beyond i32: saturated by the sign (`two_s > 0`).
+        None if g < 0 => i32::MIN,
+        None => i32::MAX,
     }
 }
 
@@ -475,4 +504,109 @@ pub fn draw_triangle<S: Surface>(
         surface.draw_iter(fresh.map(|p| Pixel(p, color)))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    /// Xorshift numbers.
+    fn rng(mut x: u64) -> impl FnMut() -> u64 {
+        move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        }
+    }
+
+    #[test]
+    fn step16_is_the_rounded_saturated_product() {
+        let mut next = rng(0x9e37_79b9_7f4a_7c15);
+        let reference = |g: i64, two_s: i64| {
+            let v = (i128::from(g) * i128::from(two_s) + (1 << 15)) >> 16;
+            v.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32
+        };
+        let edges = [
+            0,
+            1,
+            -1,
+            1 << 15,
+            -(1 << 15),
+            i64::MAX,
+            i64::MIN,
+            i64::MAX / 2 + 1,
+        ];
+        for two_s in [2, 32, 512] {
+            for &g in &edges {
+                assert_eq!(step16(g, two_s), reference(g, two_s), "{g} {two_s}");
+            }
+            for _ in 0..100_000 {
+                let g = (next() as i64) >> (next() % 64);
+                assert_eq!(step16(g, two_s), reference(g, two_s), "{g} {two_s}");
+            }
+        }
+    }
+
+    /// Random triangles inside the planes' extent limit (many of them slivers) and colours:
+    /// whenever `reach_bounded` holds, every channel's reach, formed as `Planes::new` forms it
+    /// (in i128 here), is below 2^61.
+    #[test]
+    fn reach_bounded_implies_every_channel_in_reach() {
+        let mut next = rng(0x2545_f491_4f6c_dd1d);
+        let (mut held, mut failed) = (0, 0);
+        for _ in 0..200_000 {
+            let bits = [0, 4, 8][(next() % 3) as usize];
+            let s = 1i64 << bits;
+            let side = 1 + (next() % (1 << 14)) as i64;
+            let mut v = [(0i64, 0i64); 3]
+                .map(|_| ((next() % side as u64) as i64, (next() % side as u64) as i64));
+            match next() % 3 {
+                // A sliver: the third vertex on or next to the line through the first two.
+                0 => {
+                    let t = (next() % 64) as i64;
+                    v[2] = (
+                        v[0].0 + (v[1].0 - v[0].0) * t / 63,
+                        v[0].1 + (v[1].1 - v[0].1) * t / 63,
+                    );
+                    v[2].0 += (next() % 3) as i64 - 1;
+                }
+                // The thinnest: (k, k + 1) and (k + 1, k + 2) from v0 span a doubled area of 1.
+                1 => {
+                    let k = (next() % (side as u64 / 2 + 1)) as i64;
+                    v[1] = (v[0].0 + k, v[0].1 + k + 1);
+                    v[2] = (v[0].0 + k + 1, v[0].1 + k + 2);
+                }
+                _ => {}
+            }
+            v.sort_by_key(|p| (p.1, p.0));
+            let [v0, v1, v2] = v;
+            let cross = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
+            let extent = |a: i64, b: i64, c: i64| {
+                2 * (a.max(b).max(c) - a.min(b).min(c)).unsigned_abs() + 2 * s as u64
+            };
+            let (ex, ey) = (extent(v0.0, v1.0, v2.0), extent(v0.1, v1.1, v2.1));
+            if cross == 0 || ex + ey > 1 << 16 {
+                continue;
+            }
+            let den = cross.unsigned_abs();
+            if !reach_bounded(ex, ey, den) {
+                failed += 1;
+                continue;
+            }
+            held += 1;
+            let c = [0; 3].map(|_| (next() % 256) as i64);
+            let sign = cross.signum();
+            let a = sign * ((c[1] - c[0]) * (v2.1 - v0.1) - (c[2] - c[0]) * (v1.1 - v0.1));
+            let b = sign * ((c[2] - c[0]) * (v1.0 - v0.0) - (c[1] - c[0]) * (v2.0 - v0.0));
+            let round = |n: i64| {
+                (i128::from(n) * (1 << 32) + i128::from(den)).div_euclid(2 * i128::from(den))
+            };
+            let reach = round(a).abs() * i128::from(ex) + round(b).abs() * i128::from(ey);
+            assert!(reach < 1 << 61, "{v:?} {c:?}");
+        }
+        // Both ways taken often (measured: 145,307 and 53,692).
+        assert!(held > 70_000 && failed > 25_000, "{held} {failed}");
+    }
 }
