@@ -359,18 +359,14 @@ fn reach_bounded(ex: u64, ey: u64, den: u64) -> bool {
 }
 
 /// A gradient `g` per doubled unit (32.32) times a pixel's `two_s` doubled units, rounded to
-/// 16.16 (halves up) and saturated to `i32`.
+/// 16.16 (halves up) and saturated to `i32`, for `|g| two_s < 2^63`: [`Planes::new`]'s reach
+/// test keeps `|g| ex` below `2^61`, and a doubled extent `ex` is at least `two_s`. (Beyond the
+/// bound the product wraps: a wrong step, never a panic.)
 #[inline(always)]
 fn step16(g: i64, two_s: i64) -> i32 {
-    match g.checked_mul(two_s) {
-        // round(v / 2^16): bit 15 is the half, with no add that could overflow.
-        Some(v) => {
-            ((v >> 16) + ((v >> 15) & 1)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
-        }
-        // Beyond i64, so far beyond i32: saturated by the sign (`two_s > 0`).
-        None if g < 0 => i32::MIN,
-        None => i32::MAX,
-    }
+    let v = g.wrapping_mul(two_s);
+    // round(v / 2^16): bit 15 is the half, with no add that could overflow.
+    ((v >> 16) + ((v >> 15) & 1)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
 impl<S: Surface> SpanSink for Planes<'_, S>
@@ -528,22 +524,25 @@ mod tests {
             let v = (i128::from(g) * i128::from(two_s) + (1 << 15)) >> 16;
             v.clamp(i128::from(i32::MIN), i128::from(i32::MAX)) as i32
         };
-        let edges = [
-            0,
-            1,
-            -1,
-            1 << 15,
-            -(1 << 15),
-            i64::MAX,
-            i64::MIN,
-            i64::MAX / 2 + 1,
-        ];
-        for two_s in [2, 32, 512] {
+        for two_s in [2i64, 32, 512] {
+            // The largest gradients the bound allows, |g| two_s < 2^63.
+            let top = (i64::MAX / two_s) as u64 + 1;
+            let edges = [
+                0,
+                1,
+                -1,
+                1 << 15,
+                -(1 << 15),
+                1 << 47,
+                top as i64 - 1,
+                1 - top as i64,
+            ];
             for &g in &edges {
                 assert_eq!(step16(g, two_s), reference(g, two_s), "{g} {two_s}");
             }
             for _ in 0..100_000 {
-                let g = (next() as i64) >> (next() % 64);
+                let g = (next() % top) as i64 >> (next() % 64);
+                let g = if next() % 2 == 0 { g } else { -g };
                 assert_eq!(step16(g, two_s), reference(g, two_s), "{g} {two_s}");
             }
         }
