@@ -192,7 +192,7 @@ pub(crate) fn row_at_or_below(y: i64, s: i64) -> i64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// `ceil(N / D)` of row `r` straight from the definition, in `i128`.
@@ -204,7 +204,8 @@ mod tests {
         (-(-n).div_euclid(d)) as i64
     }
 
-    fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
+    /// Xorshift numbers, for the tests of the raster modules.
+    pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
         move || {
             x ^= x << 13;
             x ^= x >> 7;

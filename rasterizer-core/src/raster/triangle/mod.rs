@@ -506,16 +506,7 @@ pub fn draw_triangle<S: Surface>(
 mod tests {
     extern crate std;
     use super::*;
-
-    /// Xorshift numbers.
-    fn rng(mut x: u64) -> impl FnMut() -> u64 {
-        move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        }
-    }
+    use crate::raster::edge::tests::xorshift as rng;
 
     #[test]
     fn step16_is_the_rounded_saturated_product() {
