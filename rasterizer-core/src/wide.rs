@@ -3,14 +3,13 @@
 //! A 32-bit microcontroller has no instruction for them: each division is a library call
 //! (`__aeabi_ldivmod` and kin on a Cortex-M, tens of cycles), and each 64 x 64 -> 128-bit
 //! product four 32-bit multiplies with their carries (library calls on a Cortex-M0+), although
-//! an x86 instruction count shows one instruction. Every such division of the core, and every
-//! such product of the triangles' vertex, set-up, span and pixel work, goes through these
-//! functions, so that the `count-wide` feature (for the project's counting programs only) can
-//! keep them out of line and a profiler counts their calls; without the feature they inline as
-//! before. (`Fx`'s `const` quotient and square root, used per draw, when clipping and off the
-//! lighting plan, cannot call them and are not counted; nor are the `i128` products of a clipped
-//! or anti-aliased line's and a sprite's set-up.) [`Reciprocal`] turns many divisions by one
-//! divisor into one.
+//! an x86 instruction count shows one instruction. Every such division and product of the
+//! triangles' vertex, set-up, span and pixel work goes through these functions, so that the
+//! `count-wide` feature (for the project's counting programs only) can keep them out of line
+//! and a profiler counts their calls; without the feature they inline as before. (`Fx`'s
+//! `const` quotient and square root, used per draw, when clipping and off the lighting plan,
+//! cannot call them and are not counted; nor are the `i128` steps of a clipped or anti-aliased
+//! line's and a sprite's set-up.) [`Reciprocal`] turns many divisions by one divisor into one.
 
 /// `a b` in full: a 64 x 64 -> 128-bit product, unsigned.
 #[cfg_attr(feature = "count-wide", inline(never))]

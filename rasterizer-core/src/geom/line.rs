@@ -83,19 +83,13 @@ impl Line {
         if self.a == 0 {
             return 0;
         }
-        // k >= 0 (a step of the line), so num >= 0 and the floor is the quotient.
         let num = 2 * i128::from(k) * i128::from(self.b) + i128::from(self.a - self.tie());
-        crate::wide::div_floor_i128(num, 2 * i128::from(self.a)) as i64
+        (num / (2 * i128::from(self.a))) as i64
     }
 
     /// The pixel of step `k` (0 ..= A), in `i64` so that it cannot overflow.
     pub(crate) fn point_at(&self, k: i64) -> (i64, i64) {
-        self.point_with_offset(k, self.minor_offset(k))
-    }
-
-    /// The pixel of step `k` whose (unsigned) minor offset is `offset`.
-    fn point_with_offset(&self, k: i64, offset: i64) -> (i64, i64) {
-        let o = offset * i64::from(self.minor_step);
+        let o = self.minor_offset(k) * i64::from(self.minor_step);
         let (sx, sy) = (i64::from(self.start.x), i64::from(self.start.y));
         if self.major_x {
             (sx + k, sy + o)
@@ -158,9 +152,7 @@ impl Line {
             (start, self.a - self.tie())
         } else {
             let num = 2 * i128::from(k0) * i128::from(self.b) + i128::from(self.a - self.tie());
-            // One division for both: the quotient is `minor_offset(k0)`, at most B.
-            let (q, rem) = crate::wide::divmod_floor_i128(num, i128::from(two_major));
-            (self.point_with_offset(k0, q as i64), rem as i64)
+            (self.point_at(k0), (num % i128::from(two_major)) as i64)
         };
         let (step_x, step_y) = if self.major_x {
             (1, self.minor_step)

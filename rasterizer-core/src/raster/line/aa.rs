@@ -75,14 +75,12 @@ pub fn draw_line_aa<S: Surface>(
     let (dc, du) = if big_a == 0 {
         (0, 0)
     } else {
-        // Every operand is at least zero and every divisor positive: floors are the quotients.
         let kb = i128::from(k0) * i128::from(big_b);
-        let (kq, kr) = crate::wide::divmod_floor_i128(kb, i128::from(big_a));
-        // q <= k0 <= A and r < A: both fit i64.
-        (q, r) = (kq as i64, kr as i64);
+        q = (kb / i128::from(big_a)) as i64;
+        r = (kb % i128::from(big_a)) as i64;
         let t = 510 * r + big_a;
-        (c, u) = crate::wide::divmod_floor_i64(t, 2 * big_a);
-        crate::wide::divmod_floor_i64(510 * big_b, 2 * big_a)
+        (c, u) = (t / (2 * big_a), t % (2 * big_a));
+        (510 * big_b / (2 * big_a), 510 * big_b % (2 * big_a))
     };
     for k in k0..=k1 {
         let near = n0 + s * q;

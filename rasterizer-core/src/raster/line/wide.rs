@@ -81,8 +81,7 @@ pub fn draw_line_aa_wide<S: Surface>(
         let a2 = (big_a as u128) * (big_a as u128);
         let b2 = (big_b as u128) * (big_b as u128);
         // At most 2^61: fits u64.
-        // Below 2^127 and positive: the floor of the i128 quotient is the quotient.
-        let ratio = crate::wide::div_floor_i128(((a2 + b2) << 60) as i128, a2 as i128) as u64;
+        let ratio = (((a2 + b2) << 60) / a2) as u64;
         let ratio = i64::try_from(ratio.isqrt()).unwrap_or(i64::MAX >> 20);
         // w ratio < 2^16 2^31: no overflow.
         (w * ratio + (1 << (30 - FRAC))) >> (31 - FRAC)
@@ -127,12 +126,14 @@ pub fn draw_line_aa_wide<S: Surface>(
     let (mut p, mut r, dp, dr) = if big_a == 0 {
         (0, 0, 0, 0)
     } else {
-        // Operands at least zero, divisors positive: floors are the quotients. p <= k0 2^FRAC
-        // and r < A fit i64.
         let num = i128::from(k0) * i128::from(big_b << FRAC);
-        let (p, r) = crate::wide::divmod_floor_i128(num, i128::from(big_a));
-        let (dp, dr) = crate::wide::divmod_floor_i64(big_b << FRAC, big_a);
-        (p as i64, r as i64, dp, dr)
+        let den = i128::from(big_a);
+        (
+            (num / den) as i64,
+            (num % den) as i64,
+            (big_b << FRAC) / big_a,
+            (big_b << FRAC) % big_a,
+        )
     };
     for k in k0..=k1 {
         let m = m0 + k;

@@ -533,7 +533,7 @@ mod tests {
             }
             for _ in 0..100_000 {
                 let g = (next() % top) as i64 >> (next() % 64);
-                let g = if next() % 2 == 0 { g } else { -g };
+                let g = if next() & 1 == 0 { g } else { -g };
                 assert_eq!(step16(g, two_s), reference(g, two_s), "{g} {two_s}");
             }
         }
