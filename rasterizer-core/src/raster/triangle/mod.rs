@@ -341,7 +341,7 @@ where
             p.gy[i] = h.wrapping_mul(2 * s);
             // A pixel is 2s doubled units: its step in 16.16, saturated as `Gouraud`'s is (a step
             // beyond i32 only lands on one-pixel spans).
-            p.step[i] = step16(g, 2 * s);
+            p.step[i] = step16(p.gx[i]);
         }
         Some(p)
     }
@@ -358,13 +358,11 @@ fn reach_bounded(ex: u64, ey: u64, den: u64) -> bool {
     ex * ey < den << 20
 }
 
-/// A gradient `g` per doubled unit (32.32) times a pixel's `two_s` doubled units, rounded to
-/// 16.16 (halves up) and saturated to `i32`, for `|g| two_s < 2^63`: [`Planes::new`]'s reach
-/// test keeps `|g| ex` below `2^61`, and a doubled extent `ex` is at least `two_s`. (Beyond the
-/// bound the product wraps: a wrong step, never a panic.)
+/// A gradient per pixel `v` in 32.32 rounded to 16.16 (halves up) and saturated to `i32`.
+/// [`Planes::new`]'s `gx` is the exact product `g 2s`: its reach test keeps `|g| ex` below
+/// `2^61`, and a doubled extent `ex` is at least `2s`.
 #[inline(always)]
-fn step16(g: i64, two_s: i64) -> i32 {
-    let v = g.wrapping_mul(two_s);
+fn step16(v: i64) -> i32 {
     // round(v / 2^16): bit 15 is the half, with no add that could overflow.
     ((v >> 16) + ((v >> 15) & 1)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
@@ -529,12 +527,12 @@ mod tests {
                 1 - top as i64,
             ];
             for &g in &edges {
-                assert_eq!(step16(g, two_s), reference(g, two_s), "{g} {two_s}");
+                assert_eq!(step16(g * two_s), reference(g, two_s), "{g} {two_s}");
             }
             for _ in 0..100_000 {
                 let g = (next() % top) as i64 >> (next() % 64);
                 let g = if next() & 1 == 0 { g } else { -g };
-                assert_eq!(step16(g, two_s), reference(g, two_s), "{g} {two_s}");
+                assert_eq!(step16(g * two_s), reference(g, two_s), "{g} {two_s}");
             }
         }
     }
