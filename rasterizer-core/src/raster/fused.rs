@@ -65,17 +65,11 @@ struct Shape {
     offset2: (i64, i64),
     /// The same for pixel `(0, 0)`: `s - 2 v0`.
     origin2: (i64, i64),
-    /// Every product of the set-up fits `i64` (edges below 2^28 sub-pixels and the anchor on
-    /// the top vertex's own pixel); otherwise the planes are set up in `i128`.
+    /// The narrow set-up applies: the anchor on the top vertex's own pixel, edges below
+    /// `2^(27 - BITS)` sub-pixels and a doubled area of at least `2^BITS`, so that every
+    /// gradient's numerator and the gradient itself stay in range (see [`Shape::plane`]);
+    /// otherwise the planes are set up in `i128`.
     narrow: bool,
-}
-
-/// Whether `a` and `b` both lie in `[-2^bits, 2^bits)`: each moved up by `2^bits` is then below
-/// `2^(bits + 1)` as an unsigned number (a negative one wraps far above), and so is their OR.
-#[inline(always)]
-fn both_within(a: i64, b: i64, bits: u32) -> bool {
-    let h = 1i64 << bits;
-    (a.wrapping_add(h) | b.wrapping_add(h)) as u64 >> (bits + 1) == 0
 }
 
 /// `round(n / d)` for `d > 0`, halves up, in `i128`.
@@ -92,34 +86,34 @@ impl Shape {
         // The value changes by a / cross per sub-pixel step in x and b / cross in y.
         let a = d1 * self.e2.1 - d2 * self.e1.1;
         let b = d2 * self.e1.0 - d1 * self.e2.0;
-        // In [-2^(60 - BITS - frac), 2^(60 - BITS - frac)), a << (BITS + frac) stays within
-        // 2^60.
-        if self.narrow && both_within(a, b, 60 - BITS - frac) {
-            // round(a 2^(BITS + frac) / cross), halves up, with the one reciprocal (the
-            // numerators stay below 2^61, its exact range).
+        if self.narrow {
+            // Values that keep the shader's contract (each times `2^frac` fits an `i32`, or a
+            // `u32`) differ by less than `2^(32 - frac)`, so with the narrow shape's edges below
+            // `2^(27 - BITS)`, `|a|, |b| < 2^(60 - BITS - frac)`: shifted, they stay below
+            // `2^60`, within the reciprocal's exact range. round(a 2^(BITS + frac) / cross),
+            // halves up, with the one reciprocal of the triangle.
             let half = self.cross >> 1;
-            let gx = self.recip.floor((a << (BITS + frac)) + half);
-            let gy = self.recip.floor((b << (BITS + frac)) + half);
-            // Gradients of at most 2^(61 - BITS) times the doubled offsets (at most one pixel)
-            // stay within 2^61.
-            if both_within(gx, gy, 61 - BITS) {
-                // The anchor's centre lies within half a pixel of v0: its value from the rounded
-                // gradients is within one unit of the last bit, with no division. Moved back to
-                // pixel (0, 0) by whole gradients, that value is the one below: the anchor's
-                // whole pixels leave the floor, and the floor's low 32 bits need only the low
-                // 32 + BITS + 1 bits of its numerator, so the products may wrap.
-                let n = gx
-                    .wrapping_mul(self.origin2.0)
-                    .wrapping_add(gy.wrapping_mul(self.origin2.1))
-                    .wrapping_add(1 << BITS);
-                return Plane32 {
-                    k: ((f[0] << frac) as u32)
-                        .wrapping_add((n >> (BITS + 1)) as u32)
-                        .wrapping_add(offset),
-                    gx: gx as u32,
-                    gy: gy as u32,
-                };
-            }
+            // (Wrapping: values outside the contract give wrong gradients, never a panic.)
+            let gx = self.recip.floor((a << (BITS + frac)).wrapping_add(half));
+            let gy = self.recip.floor((b << (BITS + frac)).wrapping_add(half));
+            // The anchor's centre lies within half a pixel of v0: its value from the rounded
+            // gradients is within one unit of the last bit, with no division. Moved back to
+            // pixel (0, 0) by whole gradients, that value is the one below: the anchor's whole
+            // pixels leave the floor, and the floor's low 32 + BITS + 1 bits need only those of
+            // its numerator, so the products may wrap. (With `cross >= 2^BITS` the gradients
+            // stay below `2^60 / cross + 1 < 2^(61 - BITS)`, so the products by the doubled
+            // offsets, at most one pixel, would stay within `2^61` had they not wrapped.)
+            let n = gx
+                .wrapping_mul(self.origin2.0)
+                .wrapping_add(gy.wrapping_mul(self.origin2.1))
+                .wrapping_add(1 << BITS);
+            return Plane32 {
+                k: ((f[0] << frac) as u32)
+                    .wrapping_add((n >> (BITS + 1)) as u32)
+                    .wrapping_add(offset),
+                gx: gx as u32,
+                gy: gy as u32,
+            };
         }
         let (fa, gx, gy) = plane_wide::<BITS>(f[0], a, b, frac, self.cross, self.offset2);
         let (ax, ay) = (self.anchor.0 as u32, self.anchor.1 as u32);
@@ -455,9 +449,14 @@ where
         own.0.max(area.x0).min(area.x1 - 1),
         own.1.max(area.y0).min(area.y1 - 1),
     );
-    let small = |e: i64| e.abs() < 1 << 28;
-    let narrow = anchor == own && small(e1.0) && small(e1.1) && small(e2.0) && small(e2.1);
+    let small = |e: i64| e.abs() < 1 << (27 - BITS);
     let cross = t.cross.abs();
+    let narrow = anchor == own
+        && cross >= 1 << BITS
+        && small(e1.0)
+        && small(e1.1)
+        && small(e2.0)
+        && small(e2.1);
     // `cross` is never zero (`Sorted` drops flat triangles); the wide set-up needs no reciprocal.
     let divisor = NonZeroU64::new(cross.unsigned_abs()).filter(|_| narrow);
     let shape = Shape {
@@ -668,31 +667,38 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::{both_within, Shape};
+    use super::Shape;
     use crate::raster::triangle::setup::tests::numbers;
     use crate::wide::Reciprocal;
     use core::num::NonZeroU64;
 
-    /// The narrow plane's value at pixel (0, 0) equals the anchor's value moved back by whole
-    /// gradients, to the bit, for any top vertex and anchor on its pixel.
+    /// The narrow plane's gradients are the exactly rounded ones, within the bound its products
+    /// rely on, and its value at pixel (0, 0) equals the anchor's value moved back by whole
+    /// gradients, to the bit, for any top vertex, anchor on its pixel and narrow shape.
     #[test]
     fn narrow_plane_start_is_the_anchors_value_moved_back() {
         const BITS: u32 = 6;
         let s = 1i64 << BITS;
         let mut next = numbers(0x0bad_5eed);
-        let (mut narrow, mut tried) = (0, 0);
+        let (mut slivers, mut tried) = (0, 0);
         while tried < 20_000 {
-            // Top vertices anywhere in the guard band's reach, edges up to a few hundred pixels
-            // (small ones now and then, for steep gradients).
+            // Top vertices anywhere in the guard band's reach, edges of every size (small ones
+            // for steep gradients).
             let v0 = (
                 i64::from(next(1 << 24)) - (1 << 23),
                 i64::from(next(1 << 24)) - (1 << 23),
             );
-            let span = [1 << 15, 1 << 8, 8][next(3) as usize];
+            // (The largest narrow edges too: below 2^(27 - BITS).)
+            let span = [1 << 15, 1 << 8, 8, (1 << (27 - BITS)) - 1][next(4) as usize];
             let mut edge = || i64::from(next(2 * span)) - i64::from(span);
             let (e1, e2) = ((edge(), edge()), (edge(), edge()));
             let cross = e1.0 * e2.1 - e2.0 * e1.1;
             if cross <= 0 {
+                continue;
+            }
+            // Below 2^BITS the set-up is wide (the gradients may pass 2^(61 - BITS)).
+            if cross < s {
+                slivers += 1;
                 continue;
             }
             tried += 1;
@@ -707,8 +713,15 @@ mod tests {
                 origin2: (s - 2 * v0.0, s - 2 * v0.1),
                 narrow: true,
             };
-            let f = [0, 1, 2].map(|_| i64::from(next(1 << 16)));
-            let (frac, offset) = (16, 1 << 15);
+            // Values anywhere in the contract's range (below 2^(32 - frac)), its ends now and
+            // then; 16 fractional bits as the colours and depth, none as the full-word values.
+            let (frac, offset) = [(16, 1 << 15), (0, 0)][next(2) as usize];
+            let top = 1i64 << (32 - frac);
+            let f = [0, 1, 2].map(|_| match next(4) {
+                0 => 0,
+                1 => top - 1,
+                _ => (i64::from(next(1 << 16)) << 16 | i64::from(next(1 << 16))) % top,
+            });
             let p = shape.plane::<BITS>(f, frac, offset);
             // The gradients, rounded exactly in i128.
             let (d1, d2) = (f[1] - f[0], f[2] - f[0]);
@@ -720,10 +733,8 @@ mod tests {
             };
             let (gx, gy) = (round(a), round(b));
             assert_eq!((p.gx, p.gy), (gx as u32, gy as u32));
-            if !both_within(gx, gy, 61 - BITS) {
-                continue;
-            }
-            narrow += 1;
+            let h = 1i64 << (61 - BITS);
+            assert!((-h..h).contains(&gx) && (-h..h).contains(&gy));
             let n = gx * shape.offset2.0 + gy * shape.offset2.1;
             let fa = (f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1));
             let k = (fa as u32)
@@ -732,35 +743,7 @@ mod tests {
                 .wrapping_sub((gy as u32).wrapping_mul(anchor.1 as u32));
             assert_eq!(p.k, k, "{v0:?} {e1:?} {e2:?} {f:?}");
         }
-        assert!(narrow * 2 > tried, "{narrow} of {tried}");
-    }
-
-    #[test]
-    fn both_within_is_the_half_open_range() {
-        for bits in [0u32, 1, 20, 56, 61] {
-            let h = 1i64 << bits;
-            let inside = |v: i64| (-h..h).contains(&v);
-            for a in [
-                i64::MIN,
-                -h - 1,
-                -h,
-                -h + 1,
-                -1,
-                0,
-                1,
-                h - 1,
-                h,
-                h + 1,
-                i64::MAX,
-            ] {
-                for b in [-h - 1, -h, 0, h - 1, h] {
-                    assert_eq!(
-                        both_within(a, b, bits),
-                        inside(a) && inside(b),
-                        "{a} {b} {bits}"
-                    );
-                }
-            }
-        }
+        // Both kinds are drawn often.
+        assert!(slivers > 100, "{slivers} slivers");
     }
 }
