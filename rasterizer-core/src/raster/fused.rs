@@ -66,9 +66,9 @@ struct Shape {
     /// The same for pixel `(0, 0)`: `s - 2 v0`.
     origin2: (i64, i64),
     /// The narrow set-up applies: the anchor on the top vertex's own pixel, edges below
-    /// `2^(27 - BITS)` sub-pixels and a doubled area of at least `2^BITS`, so that every
-    /// gradient's numerator and the gradient itself stay in range (see [`Shape::plane`]);
-    /// otherwise the planes are set up in `i128`.
+    /// `2^(27 - BITS)` sub-pixels (every gradient's numerator then stays in the reciprocal's
+    /// range) and a doubled area of at least `2^BITS` (see [`Shape::plane`]); otherwise the
+    /// planes are set up in `i128`.
     narrow: bool,
 }
 
@@ -100,9 +100,10 @@ impl Shape {
             // gradients is within one unit of the last bit, with no division. Moved back to
             // pixel (0, 0) by whole gradients, that value is the one below: the anchor's whole
             // pixels leave the floor, and the floor's low 32 + BITS + 1 bits need only those of
-            // its numerator, so the products may wrap. (With `cross >= 2^BITS` the gradients
-            // stay below `2^60 / cross + 1 < 2^(61 - BITS)`, so the products by the doubled
-            // offsets, at most one pixel, would stay within `2^61` had they not wrapped.)
+            // its numerator, so the products may wrap: the gradients' size does not matter
+            // here. (`cross >= 2^BITS` only keeps them below `2^60 / cross + 1 <
+            // 2^(61 - BITS)`, the bound the set-up once tested per plane; slivers below that
+            // area take the wide set-up, whose start may differ by one unit.)
             let n = gx
                 .wrapping_mul(self.origin2.0)
                 .wrapping_add(gy.wrapping_mul(self.origin2.1))
