@@ -65,10 +65,9 @@ struct Shape {
     offset2: (i64, i64),
     /// The same for pixel `(0, 0)`: `s - 2 v0`.
     origin2: (i64, i64),
-    /// The narrow set-up applies: the anchor on the top vertex's own pixel, edges below
+    /// The narrow set-up applies: the anchor on the top vertex's own pixel and edges below
     /// `2^(27 - BITS)` sub-pixels (every gradient's numerator then stays in the reciprocal's
-    /// range) and a doubled area of at least `2^BITS` (see [`Shape::plane`]); otherwise the
-    /// planes are set up in `i128`.
+    /// range, see [`Shape::plane`]); otherwise the planes are set up in `i128`.
     narrow: bool,
 }
 
@@ -100,10 +99,8 @@ impl Shape {
             // gradients is within one unit of the last bit, with no division. Moved back to
             // pixel (0, 0) by whole gradients, that value is the one below: the anchor's whole
             // pixels leave the floor, and the floor's low 32 + BITS + 1 bits need only those of
-            // its numerator, so the products may wrap: the gradients' size does not matter
-            // here. (`cross >= 2^BITS` only keeps them below `2^60 / cross + 1 <
-            // 2^(61 - BITS)`, the bound the set-up once tested per plane; slivers below that
-            // area take the wide set-up, whose start may differ by one unit.)
+            // its numerator, so the products may wrap: the gradients' size (below `2^60 + 1`,
+            // slivers' too) does not matter here.
             let n = gx
                 .wrapping_mul(self.origin2.0)
                 .wrapping_add(gy.wrapping_mul(self.origin2.1))
@@ -452,12 +449,7 @@ where
     );
     let small = |e: i64| e.abs() < 1 << (27 - BITS);
     let cross = t.cross.abs();
-    let narrow = anchor == own
-        && cross >= 1 << BITS
-        && small(e1.0)
-        && small(e1.1)
-        && small(e2.0)
-        && small(e2.1);
+    let narrow = anchor == own && small(e1.0) && small(e1.1) && small(e2.0) && small(e2.1);
     // `cross` is never zero (`Sorted` drops flat triangles); the wide set-up needs no reciprocal.
     let divisor = NonZeroU64::new(cross.unsigned_abs()).filter(|_| narrow);
     let shape = Shape {
@@ -697,10 +689,10 @@ mod tests {
             if cross <= 0 {
                 continue;
             }
-            // Below 2^BITS the set-up is wide (the gradients may pass 2^(61 - BITS)).
+            // Slivers (doubled area below 2^BITS) have gradients up to 2^60: the start must
+            // still be exact.
             if cross < s {
                 slivers += 1;
-                continue;
             }
             tried += 1;
             let anchor = (v0.0 >> BITS, v0.1 >> BITS);
@@ -734,10 +726,12 @@ mod tests {
             };
             let (gx, gy) = (round(a), round(b));
             assert_eq!((p.gx, p.gy), (gx as u32, gy as u32));
-            let h = 1i64 << (61 - BITS);
+            // |a|, |b| < 2^(60 - BITS - frac), so the rounded quotients stay within 2^60.
+            let h = (1i64 << 60) + 1;
             assert!((-h..h).contains(&gx) && (-h..h).contains(&gy));
-            let n = gx * shape.offset2.0 + gy * shape.offset2.1;
-            let fa = (f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1));
+            let n = i128::from(gx) * i128::from(shape.offset2.0)
+                + i128::from(gy) * i128::from(shape.offset2.1);
+            let fa = (i128::from(f[0] << frac) + ((n + (1 << BITS)) >> (BITS + 1))) as i64;
             let k = (fa as u32)
                 .wrapping_add(offset)
                 .wrapping_sub((gx as u32).wrapping_mul(anchor.0 as u32))
