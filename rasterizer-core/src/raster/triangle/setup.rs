@@ -250,7 +250,10 @@ pub(crate) fn walk_spans_once<K: SpanSink>(
         };
         let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
         if x0 < x1 {
-            sink.span(row as i32, x0 as i32, x1 as i32)?;
+            // The row passes through `black_box`: otherwise the optimiser turns each product of
+            // the row in the sink (every plane's `gy row`, the depth and colour rows' offsets)
+            // into a sum carried from row to row, which this loop then spills and reloads.
+            sink.span(core::hint::black_box(row) as i32, x0 as i32, x1 as i32)?;
         }
         short.step();
         long.step();
