@@ -65,10 +65,22 @@ struct Shape {
     offset2: (i64, i64),
     /// The same for pixel `(0, 0)`: `s - 2 v0`.
     origin2: (i64, i64),
-    /// The narrow set-up applies: the anchor on the top vertex's own pixel and edges below
-    /// `2^(27 - BITS)` sub-pixels (every gradient's numerator then stays in the reciprocal's
-    /// range, see [`Shape::plane`]); otherwise the planes are set up in `i128`.
+    /// The narrow set-up applies: the anchor on the top vertex's own pixel and edges of at most
+    /// `2^(27 - BITS)` sub-pixels each way ([`narrow_edges`]: every gradient's numerator then
+    /// stays in the reciprocal's range, see [`Shape::plane`]); otherwise the planes are set up
+    /// in `i128`.
     narrow: bool,
+}
+
+/// Whether every component `e` of the edges `e1`, `e2` lies in `-2^k < e <= 2^k`, `k = 27 -
+/// BITS`: small enough for the narrow set-up ([`Shape::plane`]).
+#[inline(always)]
+fn narrow_edges<const BITS: u32>(e1: (i64, i64), e2: (i64, i64)) -> bool {
+    // Moved up by 2^k - 1, each such component lies in 0 .. 2^(k + 1) (any other below zero
+    // or beyond): one test of the four's bits above covers them all.
+    let k = 27 - BITS;
+    let up = |e: i64| e.wrapping_add((1 << k) - 1) as u64;
+    (up(e1.0) | up(e1.1) | up(e2.0) | up(e2.1)) >> (k + 1) == 0
 }
 
 /// `round(n / d)` for `d > 0`, halves up, in `i128`.
@@ -87,8 +99,8 @@ impl Shape {
         let b = d2 * self.e1.0 - d1 * self.e2.0;
         if self.narrow {
             // Values that keep the shader's contract (each times `2^frac` fits an `i32`, or a
-            // `u32`) differ by less than `2^(32 - frac)`, so with the narrow shape's edges below
-            // `2^(27 - BITS)`, `|a|, |b| < 2^(60 - BITS - frac)`: shifted, they stay below
+            // `u32`) differ by less than `2^(32 - frac)`, so with the narrow shape's edges of at
+            // most `2^(27 - BITS)`, `|a|, |b| < 2^(60 - BITS - frac)`: shifted, they stay below
             // `2^60`, within the reciprocal's exact range. round(a 2^(BITS + frac) / cross),
             // halves up, with the one reciprocal of the triangle.
             let half = self.cross >> 1;
@@ -447,9 +459,8 @@ where
         own.0.max(area.x0).min(area.x1 - 1),
         own.1.max(area.y0).min(area.y1 - 1),
     );
-    let small = |e: i64| e.abs() < 1 << (27 - BITS);
     let cross = t.cross.abs();
-    let narrow = anchor == own && small(e1.0) && small(e1.1) && small(e2.0) && small(e2.1);
+    let narrow = narrow_edges::<BITS>(e1, e2) && anchor == own;
     // `cross` is never zero (`Sorted` drops flat triangles); the wide set-up needs no reciprocal.
     let divisor = NonZeroU64::new(cross.unsigned_abs()).filter(|_| narrow);
     let shape = Shape {
@@ -665,6 +676,44 @@ mod tests {
     use crate::wide::Reciprocal;
     use core::num::NonZeroU64;
 
+    /// `narrow_edges` is its definition, `|e| <= 2^(27 - BITS)` for every component (and not
+    /// `-2^(27 - BITS)`), at its limits and anywhere in the guard band.
+    #[test]
+    fn narrow_edges_are_the_small_ones() {
+        const BITS: u32 = 6;
+        let limit = 1i64 << (27 - BITS);
+        let def = |e: i64| -limit < e && e <= limit;
+        let mut next = numbers(0x5eed_ed9e);
+        let near = [
+            -limit - 1,
+            -limit,
+            -limit + 1,
+            -1,
+            0,
+            1,
+            limit - 1,
+            limit,
+            limit + 1,
+        ];
+        let (mut taken, mut refused) = (0, 0);
+        for _ in 0..100_000 {
+            let mut pick = || match next(3) {
+                0 => near[next(near.len() as u32) as usize],
+                1 => i64::from(next(1 << 31)) - (1 << 30),
+                _ => i64::from(next(4 * limit as u32)) - 2 * limit,
+            };
+            let (e1, e2) = ((pick(), pick()), (pick(), pick()));
+            let want = def(e1.0) && def(e1.1) && def(e2.0) && def(e2.1);
+            assert_eq!(super::narrow_edges::<BITS>(e1, e2), want, "{e1:?} {e2:?}");
+            if want {
+                taken += 1;
+            } else {
+                refused += 1;
+            }
+        }
+        assert!(taken > 1000 && refused > 1000, "{taken} {refused}");
+    }
+
     /// The narrow plane's gradients are the exactly rounded ones, within the bound its products
     /// rely on, and its value at pixel (0, 0) equals the anchor's value moved back by whole
     /// gradients, to the bit, for any top vertex, anchor on its pixel and narrow shape.
@@ -681,9 +730,9 @@ mod tests {
                 i64::from(next(1 << 24)) - (1 << 23),
                 i64::from(next(1 << 24)) - (1 << 23),
             );
-            // (The largest narrow edges too: below 2^(27 - BITS).)
-            let span = [1 << 15, 1 << 8, 8, (1 << (27 - BITS)) - 1][next(4) as usize];
-            let mut edge = || i64::from(next(2 * span)) - i64::from(span);
+            // (The largest narrow edges too: up to 2^(27 - BITS) either way.)
+            let span = [1 << 15, 1 << 8, 8, 1 << (27 - BITS)][next(4) as usize];
+            let mut edge = || i64::from(next(2 * span + 1)) - i64::from(span);
             let (e1, e2) = ((edge(), edge()), (edge(), edge()));
             let cross = e1.0 * e2.1 - e2.0 * e1.1;
             if cross <= 0 {
