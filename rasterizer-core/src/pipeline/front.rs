@@ -382,7 +382,7 @@ where
         M: MeshSource<S>,
     {
         stats.clipped += 1;
-        let var = self.face_values(mesh, idx, scratch);
+        let var = self.face_values_rare(mesh, idx, scratch);
         let tri = [0, 1, 2].map(|k| ClipVertex {
             pos: clip[k],
             var: var[k],

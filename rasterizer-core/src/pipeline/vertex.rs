@@ -219,6 +219,30 @@ where
         ]
     }
 
+    /// [`face_values`](Self::face_values) for the clipper's rare path: one out-of-line copy of
+    /// the slot read instead of three inlined ones.
+    pub(super) fn face_values_rare<M: MeshSource<S>>(
+        &mut self,
+        mesh: &M,
+        idx: [usize; 3],
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> [Sh::Varyings; 3] {
+        if Sh::NEEDS_WORLD && !mesh.has_normals() {
+            return self.face_normal_values(mesh, idx);
+        }
+        idx.map(|i| self.slot_values_rare(mesh, i, scratch))
+    }
+
+    #[inline(never)]
+    fn slot_values_rare<M: MeshSource<S>>(
+        &mut self,
+        mesh: &M,
+        i: usize,
+        scratch: &mut [VertexSlot<Sh::Stored>],
+    ) -> Sh::Varyings {
+        self.slot_values(mesh, i, scratch)
+    }
+
     /// The shader values of a triangle of a mesh without normals: its face normal at all three
     /// vertices. Out of line: one copy for every caller.
     #[inline(never)]

@@ -385,10 +385,10 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             let d = transpose(p - t);
             Vec3::new(d.x / s2, d.y / s2, d.z / s2)
         };
-        let mut out = self.clone();
-        out.eye = back(self.eye);
-        for light in out.lights.iter_mut() {
-            *light = match *light {
+        // Built afresh rather than cloned: `prepare` recomputes the terms.
+        let mut lights = Vec::new();
+        for light in &self.lights {
+            let moved = match *light {
                 Light::Directional { direction, color } => Light::Directional {
                     direction: transpose(direction).normalize()?,
                     color,
@@ -398,7 +398,18 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
                     color,
                 },
             };
+            // As many as `self` holds, so the push cannot fail.
+            let _ = lights.push(moved);
         }
+        let mut out = Self {
+            lights,
+            material: self.material,
+            ambient: self.ambient,
+            specular: self.specular,
+            eye: back(self.eye),
+            terms: Vec::new(),
+            ambient_sum: [0; 3],
+        };
         out.prepare();
         Some(out)
     }
@@ -621,6 +632,8 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// `bias[c]` (a caller's rounding offset, added for free), or `None` when the plan does not
     /// apply: a floating-point format, a point light, or Phong highlights.
     /// `16 <= out_bits <= 32`, `scale[c] < 2^16` and `bias[c] < 2^48`.
+    // Out of line: a frame's set-up calls it twice (target colours and sums), once is flash enough.
+    #[inline(never)]
     pub(crate) fn directional_plan(
         &self,
         scale: [u32; 3],
@@ -1090,7 +1103,8 @@ fn raw3<S: Scalar>(v: Vec3<S>) -> Option<[i64; 3]> {
 
 /// The unit vector along `v` in 2.30 (`2^30` is one), or `None` for the zero vector: one
 /// reciprocal square root and three products.
-#[inline(always)]
+// Out of line: the view vector, point lights and the slow normal each called a copy.
+#[inline(never)]
 fn unit30(v: [i64; 3]) -> Option<[i64; 3]> {
     let big = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
     if big == 0 {
