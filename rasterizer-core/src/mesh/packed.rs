@@ -293,6 +293,36 @@ fn u32_at(b: &[u8], i: usize) -> u32 {
     u32::from_le_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]])
 }
 
+/// Record `i` of a section of `L`-byte records, or `None` past its end: one bounds check for the
+/// record, and none for the fields read from it. The caller keeps `i` below its count (at most
+/// `MAX_COUNT`), so `i * L` cannot overflow.
+#[inline(always)]
+fn record<const L: usize>(b: &[u8], i: usize) -> Option<&[u8; L]> {
+    b.get(i * L..i * L + L)?.try_into().ok()
+}
+
+/// The three little-endian `u16`s of a 6-byte record.
+#[inline(always)]
+fn u16x3(r: &[u8; 6]) -> [u16; 3] {
+    let [a, b, c, d, e, f] = *r;
+    [
+        u16::from_le_bytes([a, b]),
+        u16::from_le_bytes([c, d]),
+        u16::from_le_bytes([e, f]),
+    ]
+}
+
+/// The three little-endian `u32`s of a 12-byte record.
+#[inline(always)]
+fn u32x3(r: &[u8; 12]) -> [u32; 3] {
+    let [a, b, c, d, e, f, g, h, i, j, k, l] = *r;
+    [
+        u32::from_le_bytes([a, b, c, d]),
+        u32::from_le_bytes([e, f, g, h]),
+        u32::from_le_bytes([i, j, k, l]),
+    ]
+}
+
 impl<'a> PackedMesh<'a> {
     /// Validates `bytes` and reads the mesh in place.
     ///
@@ -398,56 +428,60 @@ impl<'a> PackedMesh<'a> {
             adjacency: (flags & FLAG_ADJACENCY != 0).then(|| sec(adj)),
         };
         for v in 0..n {
-            let bad = |b: &[u8]| (0..3).any(|k| u16_at(b, 6 * v + 2 * k) == 0x8000);
+            let bad = |b: &[u8]| record(b, v).is_some_and(|r| u16x3(r).contains(&0x8000));
             if bad(mesh.positions) || mesh.normals.is_some_and(bad) {
                 return Err(MeshError::BadQuantum { vertex: v });
             }
         }
         for tri in 0..t {
-            for k in 0..3 {
-                let index = mesh.raw_index(tri, k);
+            for index in mesh.raw_indices(tri) {
                 if index as usize >= n {
                     return Err(MeshError::IndexOutOfRange {
                         triangle: tri,
                         index,
                     });
                 }
-                // `t` is at most 2^24, so the none value is never a triangle number.
-                if let Some(entry) = mesh.raw_neighbour(tri, k) {
-                    if entry != NO_NEIGHBOUR && entry as usize >= t {
-                        return Err(MeshError::NeighbourOutOfRange {
-                            triangle: tri,
-                            entry,
-                        });
-                    }
+            }
+            // `t` is at most 2^24, so the none value is never a triangle number.
+            for entry in mesh.raw_neighbours(tri).unwrap_or_default() {
+                if entry != NO_NEIGHBOUR && entry as usize >= t {
+                    return Err(MeshError::NeighbourOutOfRange {
+                        triangle: tri,
+                        entry,
+                    });
                 }
             }
         }
         Ok(mesh)
     }
 
-    /// Entry `k` of triangle `tri`'s neighbours, the `u16` none widened to [`NO_NEIGHBOUR`];
-    /// `None` without adjacency.
+    /// Triangle `tri`'s neighbours (`tri` below the count), the `u16` none widened to
+    /// [`NO_NEIGHBOUR`]; `None` without adjacency.
     #[inline(always)]
-    fn raw_neighbour(&self, tri: usize, k: usize) -> Option<u32> {
+    fn raw_neighbours(&self, tri: usize) -> Option<[u32; 3]> {
         let b = self.adjacency?;
-        Some(if wide_neighbours(self.triangles) {
-            u32_at(b, 12 * tri + 4 * k)
+        if wide_neighbours(self.triangles) {
+            record(b, tri).map(u32x3)
         } else {
-            match u16_at(b, 6 * tri + 2 * k) {
-                NO_NEIGHBOUR_U16 => NO_NEIGHBOUR,
-                e => u32::from(e),
-            }
-        })
+            record(b, tri).map(|r| {
+                u16x3(r).map(|e| match e {
+                    NO_NEIGHBOUR_U16 => NO_NEIGHBOUR,
+                    e => u32::from(e),
+                })
+            })
+        }
     }
 
+    /// Triangle `tri`'s vertex indices (`tri` below the count; the section holds them all, so
+    /// the zeros are never returned).
     #[inline(always)]
-    fn raw_index(&self, tri: usize, k: usize) -> u32 {
-        if self.wide {
-            u32_at(self.indices, 12 * tri + 4 * k)
+    fn raw_indices(&self, tri: usize) -> [u32; 3] {
+        let indices = if self.wide {
+            record(self.indices, tri).map(u32x3)
         } else {
-            u32::from(u16_at(self.indices, 6 * tri + 2 * k))
-        }
+            record(self.indices, tri).map(|r| u16x3(r).map(u32::from))
+        };
+        indices.unwrap_or_default()
     }
 
     /// Number of vertices.
@@ -471,8 +505,9 @@ impl<'a> PackedMesh<'a> {
         if i >= self.vertices {
             return None;
         }
+        let r = u16x3(record(self.positions, i)?);
         Some([0, 1, 2].map(|k| {
-            let q = i64::from(u16_at(self.positions, 6 * i + 2 * k) as i16);
+            let q = i64::from(r[k] as i16);
             // Checked at parse time to stay inside i32.
             (i64::from(self.offset[k]) + ((q * i64::from(self.scale[k]) + (1 << 15)) >> 16)) as i32
         }))
@@ -482,8 +517,9 @@ impl<'a> PackedMesh<'a> {
     #[inline]
     pub fn normal_bits(&self, i: usize) -> Option<[i32; 3]> {
         let b = self.normals.filter(|_| i < self.vertices)?;
+        let r = u16x3(record(b, i)?);
         Some([0, 1, 2].map(|k| {
-            let q = i32::from(u16_at(b, 6 * i + 2 * k) as i16);
+            let q = i32::from(r[k] as i16);
             // q / 32767 in 16.16, rounded half up; |q 65536 + 16383| <= 2^31 - 16385 fits i32, so
             // the division is a 32-bit one (by a constant: a multiplication).
             (q * 65536 + 16383).div_euclid(32767)
@@ -494,7 +530,8 @@ impl<'a> PackedMesh<'a> {
     #[inline]
     pub fn color_of(&self, i: usize) -> Option<Rgb888> {
         let b = self.colors.filter(|_| i < self.vertices)?;
-        Some(Rgb888::new(b[3 * i], b[3 * i + 1], b[3 * i + 2]))
+        let &[r, g, b] = record(b, i)?;
+        Some(Rgb888::new(r, g, b))
     }
 
     /// Vertex `i`'s texture coordinates (16.16, [`crate::texture`]), or `None` without them or
@@ -502,7 +539,11 @@ impl<'a> PackedMesh<'a> {
     #[inline]
     pub fn uv_bits(&self, i: usize) -> Option<[i32; 2]> {
         let b = self.uvs.filter(|_| i < self.vertices)?;
-        Some([0, 1].map(|k| u32_at(b, 8 * i + 4 * k) as i32))
+        let r: &[u8; 8] = record(b, i)?;
+        Some(
+            [0, 1]
+                .map(|k| i32::from_le_bytes([r[4 * k], r[4 * k + 1], r[4 * k + 2], r[4 * k + 3]])),
+        )
     }
 
     /// True when the mesh has texture coordinates.
@@ -520,7 +561,7 @@ impl<'a> PackedMesh<'a> {
     /// Triangle `t`'s vertex indices, or `None` past the end.
     #[inline]
     pub fn triangle_indices(&self, t: usize) -> Option<[u32; 3]> {
-        (t < self.triangles).then(|| [0, 1, 2].map(|k| self.raw_index(t, k)))
+        (t < self.triangles).then(|| self.raw_indices(t))
     }
 
     /// True when the mesh has edge adjacency (version 3, [`FLAG_ADJACENCY`]).
@@ -537,8 +578,7 @@ impl<'a> PackedMesh<'a> {
         if t >= self.triangles {
             return None;
         }
-        let [a, b, c] = [0, 1, 2].map(|k| self.raw_neighbour(t, k));
-        Some([a?, b?, c?])
+        self.raw_neighbours(t)
     }
 }
 

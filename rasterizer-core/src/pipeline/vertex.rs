@@ -490,10 +490,12 @@ impl<S: Scalar> Space<'_, S> {
     /// Vertex `i`'s position where the shader lights.
     #[inline(always)]
     fn position<M: MeshSource<S>>(&self, mesh: &M, i: usize) -> Vec3<S> {
+        // Read once, before the branch: one copy of the mesh's decoding, not two.
+        let p = mesh.position(i);
         if self.model_space {
-            mesh.position(i)
+            p
         } else {
-            self.model.transform_point(mesh.position(i)).xyz()
+            self.model.transform_point(p).xyz()
         }
     }
 
@@ -531,16 +533,17 @@ impl<S: Scalar> Space<'_, S> {
             };
         }
         let normal = mesh.normal(i).unwrap_or_default();
+        let position = mesh.position(i);
         if self.model_space {
             return VertexIn {
-                position: mesh.position(i),
+                position,
                 normal,
                 color,
                 uv,
             };
         }
         VertexIn {
-            position: self.model.transform_point(mesh.position(i)).xyz(),
+            position: self.model.transform_point(position).xyz(),
             normal: self.normal_matrix.transform_dir(normal),
             color,
             uv,
