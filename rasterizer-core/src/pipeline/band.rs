@@ -132,6 +132,43 @@ impl core::fmt::Display for BandError {
 
 impl core::error::Error for BandError {}
 
+/// Per bin unit, one past the last entry of `bins` that touches it (0 when none does), so that
+/// a band's scan stops there rather than at the end of the bins; [`UNIT_END_NONE`] when that
+/// index does not fit a `u16` (the scan then reads to the end). 32 bytes, on the stack of a
+/// banded draw.
+pub(super) fn unit_ends(bins: &[BinEntry]) -> [u16; 16] {
+    let mut ends = [0u16; 16];
+    for (i, e) in bins.iter().enumerate() {
+        let end = u16::try_from(i + 1).unwrap_or(UNIT_END_NONE);
+        let (first, last) = (usize::from(e.first()), usize::from(e.last()));
+        // A filler's first unit is beyond its last: it touches none.
+        if first > last {
+            continue;
+        }
+        // Most triangles touch one or two units: their ends without a loop.
+        ends[first] = end;
+        ends[last] = end;
+        if last > first + 1 {
+            for slot in ends.iter_mut().take(last).skip(first + 1) {
+                *slot = end;
+            }
+        }
+    }
+    ends
+}
+
+/// [`unit_ends`]' mark of an end too far for a `u16`.
+pub(super) const UNIT_END_NONE: u16 = u16::MAX;
+
+/// The entries of `bins` that unit `unit`'s scan reads: those up to its end ([`unit_ends`]).
+#[inline(always)]
+pub(super) fn unit_bins<'b>(bins: &'b [BinEntry], ends: &[u16; 16], unit: u8) -> &'b [BinEntry] {
+    match ends.get(usize::from(unit)) {
+        Some(&end) if end != UNIT_END_NONE => bins.get(..usize::from(end)).unwrap_or(bins),
+        _ => bins,
+    }
+}
+
 /// The binned triangles (`bins`, in mesh order) that touch bin unit `unit` (band `b` is in unit
 /// `b / ceil(bands / 16)`). `cursor` (entry, triangle) skips the leading entries that ended
 /// above the unit: start it at `(0, 0)` and pass it again for later bands, in order.
@@ -401,6 +438,7 @@ where
         let bins = &bins[..count];
         let bands = height.div_ceil(rows);
         let group = bands.div_ceil(16);
+        let ends = unit_ends(bins);
         let mut cursor = (0, 0);
         let mut scratch_stats = RenderStats::default();
         for b in 0..bands {
@@ -420,7 +458,7 @@ where
                     &mut target,
                     mesh,
                     scratch,
-                    bins,
+                    unit_bins(bins, &ends, (b / group) as u8),
                     (b / group) as u8,
                     &mut cursor,
                     &mut scratch_stats,
@@ -429,5 +467,90 @@ where
             on_band(&strip);
         }
         Ok(stats)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::vec::Vec;
+
+    fn entry(first: u8, last: u8) -> BinEntry {
+        BinEntry {
+            step: 1,
+            bands: first << 4 | last,
+        }
+    }
+
+    /// Per unit, one past the last entry touching it, by definition.
+    fn naive_ends(bins: &[BinEntry]) -> [usize; 16] {
+        let mut ends = [0; 16];
+        for (u, end) in ends.iter_mut().enumerate() {
+            let touches = |e: &BinEntry| usize::from(e.first()) <= u && u <= usize::from(e.last());
+            *end = bins.iter().rposition(touches).map_or(0, |i| i + 1);
+        }
+        ends
+    }
+
+    #[test]
+    fn unit_ends_are_one_past_each_units_last_entry() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |n: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % n) as u8
+        };
+        for _ in 0..500 {
+            let len = usize::from(next(60));
+            let bins: Vec<BinEntry> = (0..len)
+                .map(|_| match next(8) {
+                    0 => BinEntry::FILLER,
+                    // Most span one or two units, some up to all sixteen.
+                    1 => {
+                        let first = next(16);
+                        entry(first, first + next(16 - u64::from(first)))
+                    }
+                    _ => {
+                        let first = next(15);
+                        entry(first, first + next(2))
+                    }
+                })
+                .collect();
+            let ends = unit_ends(&bins);
+            let want = naive_ends(&bins);
+            for u in 0..16 {
+                assert_eq!(usize::from(ends[u]), want[u], "unit {u} of {bins:?}");
+                // The scan of the cut bins meets every entry of its unit.
+                let cut = unit_bins(&bins, &ends, u as u8);
+                let count = |b: &[BinEntry]| {
+                    b.iter()
+                        .filter(|e| e.first() <= u as u8 && u as u8 <= e.last())
+                        .count()
+                };
+                assert_eq!(count(cut), count(&bins));
+            }
+        }
+    }
+
+    #[test]
+    fn unit_ends_beyond_a_u16_read_to_the_end() {
+        let mut bins = std::vec![BinEntry::FILLER; 70_000];
+        bins[100] = entry(5, 5);
+        bins[65_533] = entry(2, 3);
+        bins[65_534] = entry(3, 4);
+        bins[69_999] = entry(4, 4);
+        let ends = unit_ends(&bins);
+        assert_eq!(ends[5], 101);
+        assert_eq!(ends[2], 65_534);
+        assert_eq!(ends[3], UNIT_END_NONE);
+        assert_eq!(ends[4], UNIT_END_NONE);
+        assert_eq!(ends[0], 0);
+        assert_eq!(unit_bins(&bins, &ends, 5).len(), 101);
+        assert_eq!(unit_bins(&bins, &ends, 2).len(), 65_534);
+        assert_eq!(unit_bins(&bins, &ends, 4).len(), 70_000);
+        assert_eq!(unit_bins(&bins, &ends, 3).len(), 70_000);
+        assert!(unit_bins(&bins, &ends, 0).is_empty());
     }
 }

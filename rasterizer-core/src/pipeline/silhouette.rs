@@ -2,7 +2,7 @@
 //! silhouette edges through its adjacency and hand their triangles to the raster stage's
 //! two-pass silhouette fill ([`crate::raster::silhouette`]).
 
-use super::band::unit_triangles;
+use super::band::{unit_bins, unit_ends, unit_triangles};
 use super::front::{outside, ShaderColor};
 use super::perspective::PerspectiveColor;
 use super::vertex::Projected;
@@ -288,6 +288,7 @@ where
         let bins = &bins[..count];
         let bands = height.div_ceil(rows);
         let group = bands.div_ceil(16);
+        let ends = unit_ends(bins);
         let mut cursor = (0, 0);
         let mut scratch_stats = RenderStats::default();
         for b in 0..bands {
@@ -311,7 +312,7 @@ where
                         &mut target,
                         mesh,
                         scratch,
-                        unit_triangles(bins, unit, &mut cursor),
+                        unit_triangles(unit_bins(bins, &ends, unit), unit, &mut cursor),
                         &mut scratch_stats,
                         fringe,
                     );
