@@ -39,8 +39,6 @@ impl<S: Scalar> Vec3<S> {
     }
 
     /// Dot product, rounded once.
-    // Out of line: inlined into the frame set-up, it made the draw loops compile worse.
-    #[inline(never)]
     pub fn dot(self, o: Self) -> S {
         S::dot4([self.x, self.y, self.z, S::ZERO], [o.x, o.y, o.z, S::ZERO])
     }
