@@ -233,6 +233,8 @@ where
         idx.map(|i| self.slot_values_rare(mesh, i, scratch))
     }
 
+    /// [`slot_values`](Self::slot_values), out of line for
+    /// [`face_values_rare`](Self::face_values_rare).
     #[inline(never)]
     fn slot_values_rare<M: MeshSource<S>>(
         &mut self,

@@ -632,7 +632,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// `bias[c]` (a caller's rounding offset, added for free), or `None` when the plan does not
     /// apply: a floating-point format, a point light, or Phong highlights.
     /// `16 <= out_bits <= 32`, `scale[c] < 2^16` and `bias[c] < 2^48`.
-    // Out of line: a frame's set-up calls it twice (target colours and sums), once is flash enough.
+    // Out of line: a frame's set-up calls it twice (target colours and sums); one copy serves.
     #[inline(never)]
     pub(crate) fn directional_plan(
         &self,
