@@ -19,7 +19,8 @@
 # count3d compare natively for pixels and the ours-against-euc pictures; tests/tests/stack.rs in
 # release for the RAM figures (its MEMORY lines); nostd-check built per configuration for .text.
 # Every build is --release for the default x86-64 target with RUSTFLAGS cleared (no
-# target-cpu=native). Honours CARGO_TARGET_DIR; each count's files go to $CARGO_TARGET_DIR/figures.
+# target-cpu=native), but for `text_bytes_thumbv7em`: the same nostd-check configurations built
+# for a Cortex-M4F (thumbv7em-none-eabihf, which rustup adds when missing), the flash they need. Honours CARGO_TARGET_DIR; each count's files go to $CARGO_TARGET_DIR/figures.
 # Any count that fails, or comes out empty or zero, stops the script with a non-zero status.
 set -euo pipefail
 
@@ -472,6 +473,7 @@ if wanted M1; then
         nostd_build "$config"
         emit_count M1 "$r" text_bytes "$(section_bytes "$config" text)"
         emit_count M1 "$r" rodata_bytes "$(section_bytes "$config" rodata)"
+        emit_count M1 "$r" text_bytes_thumbv7em "$(thumb_text_bytes "$config")"
     done
 fi
 
@@ -525,6 +527,7 @@ if wanted S1; then
     done
     nostd_build s1_band16
     emit_count S1 ours-band16 text_bytes "$(section_bytes s1_band16 text)"
+    emit_count S1 ours-band16 text_bytes_thumbv7em "$(thumb_text_bytes s1_band16)"
     emit_count S1 ours-band16 rodata_bytes "$(section_bytes s1_band16 rodata)"
     unset S1 MEM_S1
 fi

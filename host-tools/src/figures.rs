@@ -738,9 +738,10 @@ fn m1_memory(f: &Figures) -> String {
             "framebuffer (the output)",
             "`Pipeline` value",
             ".text",
+            ".text (Cortex-M4F)",
             ".rodata",
         ],
-        "llrrrrrrrrrr",
+        "llrrrrrrrrrrr",
     );
     for r in f.renderers("M1") {
         let g = |m: &str| f.get("M1", r, m);
@@ -773,6 +774,7 @@ fn m1_memory(f: &Figures) -> String {
             bytes(g("framebuffer_bytes")),
             bytes(g("pipeline_bytes")),
             bytes(g("text_bytes")),
+            bytes(g("text_bytes_thumbv7em")),
             bytes(g("rodata_bytes")),
         ]);
     }
@@ -1001,7 +1003,7 @@ fn targets(f: &Figures) -> String {
         None => "-",
     };
     let per = |scene: &str, r: &str| f.get(scene, r, "per_primitive");
-    let rows: [(&str, Option<f64>, f64, bool); 17] = [
+    let rows: [(&str, Option<f64>, f64, bool); 18] = [
         (
             "M1 whole frame, per triangle",
             per("M1", "ours"),
@@ -1068,6 +1070,12 @@ fn targets(f: &Figures) -> String {
         (
             "`.text` of the no_std check, M1 configuration (bytes)",
             f.get("M1", "ours", "text_bytes"),
+            target::TEXT,
+            false,
+        ),
+        (
+            "the same built for a Cortex-M4F (`thumbv7em-none-eabihf`): the flash it needs (bytes)",
+            f.get("M1", "ours", "text_bytes_thumbv7em"),
             target::TEXT,
             false,
         ),
@@ -1172,8 +1180,9 @@ fn s1(f: &Figures) -> String {
     }
     let mut out = t.done();
     out.push_str(&format!(
-        "\n`.text` of the no_std build of S1 through the frame list (nostd-check `framelist`, x86-64, opt-level s): {} bytes.\n",
-        or_dash(f.get("S1", "ours-band16", "text_bytes"), int)
+        "\n`.text` of the no_std build of S1 through the frame list (nostd-check `framelist`, opt-level s): {} bytes for x86-64, {} bytes for a Cortex-M4F (`thumbv7em-none-eabihf`).\n",
+        or_dash(f.get("S1", "ours-band16", "text_bytes"), int),
+        or_dash(f.get("S1", "ours-band16", "text_bytes_thumbv7em"), int)
     ));
     out
 }
@@ -1256,9 +1265,10 @@ fn readme_memory(f: &Figures) -> String {
             "M1",
             "RAM besides mesh and framebuffer",
             "of it peak stack",
-            "code (`.text`)",
+            "code (`.text`, x86-64)",
+            "code (`.text`, Cortex-M4F)",
         ],
-        "lrrr",
+        "lrrrr",
     );
     for (r, what) in [
         (
@@ -1276,6 +1286,7 @@ fn readme_memory(f: &Figures) -> String {
             or_dash(g("ram_bytes"), |v| format!("{} B", int(v))),
             or_dash(g("stack_bytes"), |v| format!("{} B", int(v))),
             or_dash(g("text_bytes"), |v| format!("{} B", int(v))),
+            or_dash(g("text_bytes_thumbv7em"), |v| format!("{} B", int(v))),
         ]);
     }
     t.done()

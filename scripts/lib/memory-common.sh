@@ -56,6 +56,36 @@ nostd_build() {
     fi
 }
 
+# The Cortex-M4F target of the flash figures (`text_bytes_thumbv7em`): on it `.text` is what a
+# firmware image holds, with the 64-bit arithmetic a 32-bit core does in several instructions
+# and the memory routines that the host's C library supplies elsewhere.
+THUMB_TARGET=thumbv7em-none-eabihf
+
+# thumb_text_bytes NAME: builds configuration NAME of nostd-check for $THUMB_TARGET (it links
+# there but cannot run here) and prints its .text size. rustup adds the target's standard
+# library when it is missing.
+thumb_text_bytes() {
+    local name="$1" features args=(--target "$THUMB_TARGET")
+    command -v size >/dev/null || {
+        echo "needs size (binutils)" >&2
+        return 1
+    }
+    if ! rustup target list --installed 2>/dev/null | grep -qx "$THUMB_TARGET"; then
+        rustup target add "$THUMB_TARGET" >&2 || {
+            echo "could not add the $THUMB_TARGET target (rustup target add $THUMB_TARGET)" >&2
+            return 1
+        }
+    fi
+    features="$(features_of "$name")"
+    if [ "$name" != all ]; then
+        args+=(--no-default-features)
+        [ -n "$features" ] && args+=(--features "$features")
+    fi
+    echo "nostd-check $name for $THUMB_TARGET (${features:-default features})" >&2
+    (cd "$ROOT/nostd-check" && CARGO_TARGET_DIR="$NOSTD_DIR" RUSTFLAGS="" cargo build --quiet --release "${args[@]}") || return 1
+    size -A "$NOSTD_DIR/$THUMB_TARGET/release/nostd-check" | awk '$1 == ".text" { print $2 }'
+}
+
 # section_bytes NAME SECTION: the size of SECTION (text, rodata, data, bss) of a variant that
 # nostd_build built; 0 when the binary has no such section.
 section_bytes() {
