@@ -50,7 +50,7 @@ pub(crate) fn div_floor_i128(n: i128, d: i128) -> i128 {
     if d <= 0 {
         return 0;
     }
-    n.div_euclid(d)
+    divmod_euclid_i128(n, d).0
 }
 
 /// `(floor(n / d), n mod d)` for `d > 0`, the remainder in `0..d`; `(0, 0)` for `d <= 0`.
@@ -70,7 +70,68 @@ pub(crate) fn divmod_floor_i128(n: i128, d: i128) -> (i128, i128) {
     if d <= 0 {
         return (0, 0);
     }
-    (n.div_euclid(d), n.rem_euclid(d))
+    divmod_euclid_i128(n, d)
+}
+
+/// `(floor(n / d), n mod d)` for `d > 0`. Operands that fit in 64 bits (nearly all) take one
+/// 64-bit division; wider ones the compiler's 128-bit division on a 64-bit target (a library
+/// routine with a hardware step), and [`divrem_long`] on a 32-bit one, which has no such
+/// routine: there the compiler would expand each division inline into more than a kilobyte of
+/// code. `const`, for [`crate::math::Fx`]'s constant conversions.
+pub(crate) const fn divmod_euclid_i128(n: i128, d: i128) -> (i128, i128) {
+    // A negative n is folded onto u = !n = -n - 1 >= 0: with u = q d + r, n = (-q - 1) d + (d
+    // - 1 - r), whose remainder lies in 0..d as well.
+    let neg = n < 0;
+    let u = (if neg { !n } else { n }) as u128;
+    let d = d as u128;
+    let (q, r) = if (u | d) >> 64 == 0 {
+        let (u, d) = (u as u64, d as u64);
+        ((u / d) as u128, (u % d) as u128)
+    } else {
+        divrem_wide(u, d)
+    };
+    if neg {
+        (!(q as i128), (d - 1 - r) as i128)
+    } else {
+        (q as i128, r as i128)
+    }
+}
+
+/// `(u / d, u % d)` for `0 < d`, `u < 2^127`, as [`divmod_euclid_i128`] takes it on this target.
+#[cfg(target_pointer_width = "64")]
+const fn divrem_wide(u: u128, d: u128) -> (u128, u128) {
+    let q = u / d;
+    (q, u - q * d)
+}
+
+/// `(u / d, u % d)` for `0 < d`, `u < 2^127`, as [`divmod_euclid_i128`] takes it on this target.
+#[cfg(not(target_pointer_width = "64"))]
+const fn divrem_wide(u: u128, d: u128) -> (u128, u128) {
+    divrem_long(u, d)
+}
+
+/// `(u / d, u % d)` for `0 < d`, `u < 2^127`, by shifting and subtracting one quotient bit at
+/// a time from the divisor aligned under `u`'s top bit: small code, with only constant shifts
+/// in the loop. (Built on every target, so that the host's tests check it.)
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+const fn divrem_long(mut u: u128, d: u128) -> (u128, u128) {
+    if u < d {
+        return (0, u);
+    }
+    let shift = d.leading_zeros() - u.leading_zeros();
+    let mut step = d << shift;
+    let mut q = 0u128;
+    let mut k = 0;
+    while k <= shift {
+        q <<= 1;
+        if u >= step {
+            u -= step;
+            q |= 1;
+        }
+        step >>= 1;
+        k += 1;
+    }
+    (q, u)
 }
 
 /// `(n / d, n % d)` for `d > 0`: a 32-bit division when both operands fit in 32 bits (a
@@ -221,6 +282,63 @@ mod tests {
             ] {
                 let expected = i128::from(n).div_euclid(i128::from(d)) as i64;
                 assert_eq!(r.floor(n), expected, "{n} / {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn wide_division_matches_the_compilers() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let wide = |hi: u64, lo: u64| (u128::from(hi) << 64 | u128::from(lo)) as i128;
+        let edge = [
+            0,
+            1,
+            -1,
+            2,
+            -2,
+            i128::from(i64::MAX),
+            i128::from(i64::MIN),
+            i128::from(u64::MAX),
+            1 << 64,
+            -(1 << 64),
+            i128::MAX,
+            i128::MIN,
+            i128::MIN + 1,
+            i128::MAX - 1,
+        ];
+        let check = |n: i128, d: i128| {
+            let want = (n.div_euclid(d), n.rem_euclid(d));
+            assert_eq!(divmod_euclid_i128(n, d), want, "{n} / {d}");
+        };
+        for _ in 0..20_000 {
+            // Operands of every width: both below 2^64, one above, both above.
+            let n = wide(next(), next()) >> (next() % 128);
+            let d = ((wide(next(), next()) >> (next() % 128)) as u128 >> 1).max(1) as i128;
+            check(n, d);
+            for e in edge {
+                check(e, d);
+                if e > 0 {
+                    check(n, e);
+                }
+            }
+        }
+        for n in edge {
+            for d in edge.into_iter().filter(|&d| d > 0) {
+                check(n, d);
+            }
+        }
+        // The long division itself, which the host's path above only takes on 32-bit targets.
+        for _ in 0..20_000 {
+            let u = (wide(next(), next()) >> (next() % 128)) as u128 >> 1;
+            let d = ((wide(next(), next()) >> (next() % 128)) as u128 >> 1).max(1);
+            for (u, d) in [(u, d), (u, 1), (u128::MAX >> 1, d), (u, u.max(1)), (d - 1, d)] {
+                assert_eq!(divrem_long(u, d), (u / d, u % d), "{u} / {d}");
             }
         }
     }

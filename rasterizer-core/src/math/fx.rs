@@ -176,7 +176,7 @@ impl<const F: u32> Fx<F> {
 /// `round(n / d)`, halves towards +inf, `d != 0`.
 pub(crate) const fn round_div_i128(n: i128, d: i128) -> i128 {
     let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
-    (2 * n + d).div_euclid(2 * d)
+    crate::wide::divmod_euclid_i128(2 * n + d, 2 * d).0
 }
 
 /// `floor(sqrt(v))`.
