@@ -431,7 +431,12 @@ where
         while screen.len() >= 3 {
             match (0..screen.len()).find(|&k| !turns(&screen, k)) {
                 Some(k) => {
-                    screen.remove(k);
+                    // By hand: `Vec::remove` would link `memmove`, 1.5 KB of a Cortex-M's flash.
+                    let n = screen.len();
+                    for j in k..n - 1 {
+                        screen[j] = screen[j + 1];
+                    }
+                    screen.truncate(n - 1);
                 }
                 None => break,
             }
