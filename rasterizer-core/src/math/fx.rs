@@ -168,8 +168,12 @@ impl<const F: u32> Fx<F> {
                 }
             }
         }
-        let s = p[0] as i128 + p[1] as i128 + p[2] as i128 + p[3] as i128;
-        Self::saturate_i128((s + (1 << (F - 1))) >> F)
+        // Each product split at bit F, p = (p >> F) 2^F + low bits: the whole parts and the
+        // fractions sum in i64 without overflow, and the sum rounds as the exact one would.
+        let mask = (1 << F) - 1;
+        let whole = (p[0] >> F) + (p[1] >> F) + (p[2] >> F) + (p[3] >> F);
+        let frac = (p[0] & mask) + (p[1] & mask) + (p[2] & mask) + (p[3] & mask) + (1 << (F - 1));
+        Self::saturate(whole + (frac >> F))
     }
 }
 
@@ -393,6 +397,67 @@ mod tests {
             }
         }
         lo as u64
+    }
+
+    /// `Fx::<F>::dot4` against the exact sum in i128, rounded half up and saturated.
+    fn dot4_matches_the_exact_sum<const F: u32>() {
+        use super::Fx;
+        let reference = |a: [i32; 4], b: [i32; 4]| {
+            let s: i128 = (0..4).map(|k| i128::from(a[k]) * i128::from(b[k])).sum();
+            ((s + (1 << (F - 1))) >> F).clamp(i32::MIN.into(), i32::MAX.into()) as i32
+        };
+        let extremes = [
+            i32::MIN,
+            i32::MIN + 1,
+            -(1 << F),
+            -1,
+            0,
+            1,
+            1 << F,
+            i32::MAX,
+        ];
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for i in 0..100_000 {
+            let mut v = [0i32; 8];
+            for e in &mut v {
+                let r = next();
+                // Near the limits (where the i64 sum overflows), or of any size.
+                *e = if i % 2 == 0 {
+                    extremes[(r % 8) as usize]
+                } else {
+                    (r as i32) >> (r >> 59)
+                };
+            }
+            let (mut a, mut b) = ([v[0], v[1], v[2], v[3]], [v[4], v[5], v[6], v[7]]);
+            if i % 3 == 0 {
+                // The first two products sum past i64 (2^62 each) and the last two take it back
+                // (about -2^62 each): a result in range, rounded from the low bits the odd
+                // factors of the fourth set.
+                let small = |k: usize| v[k] & 0xfff;
+                a = [i32::MIN, i32::MIN, i32::MIN, i32::MAX - small(0)];
+                b = [
+                    i32::MIN,
+                    i32::MIN,
+                    i32::MAX - small(1),
+                    i32::MIN + 1 + small(2),
+                ];
+            }
+            let got = Fx::<F>::dot4(a.map(Fx::from_bits), b.map(Fx::from_bits)).to_bits();
+            assert_eq!(got, reference(a, b), "{a:?} . {b:?}");
+        }
+    }
+
+    #[test]
+    fn dot4_rounds_the_exact_sum_once() {
+        dot4_matches_the_exact_sum::<16>();
+        dot4_matches_the_exact_sum::<1>();
+        dot4_matches_the_exact_sum::<30>();
     }
 
     #[test]
