@@ -9,6 +9,8 @@
 //!
 //! On a microcontroller, `main` would be the reset handler and the band callback would start the
 //! display's DMA; here the C runtime calls `main` and the process exit code reports the result.
+//! Built for a Cortex-M4F (`--target thumbv7em-none-eabihf`), it links with its own entry point,
+//! for the flash it needs (CI prints it); it does not run here.
 #![no_std]
 #![no_main]
 
@@ -36,6 +38,7 @@ static mut SCRATCH: [VertexSlot; VERTICES] = [VertexSlot::EMPTY; VERTICES];
 // A panic ends the process with status 101 (as a std program's would) so that CI sees a failure;
 // looping forever, as firmware might, would hang CI instead. The message is a fixed string: printing
 // the `PanicInfo` would link `core::fmt` into every build and blur the code sizes measured here.
+#[cfg(not(target_os = "none"))]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
     const MSG: &[u8] = b"panicked\n";
@@ -51,6 +54,27 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
 #[unsafe(no_mangle)]
 pub extern "C" fn rust_eh_personality() {}
 
+// On a bare-metal target nothing can report a panic: the core stops, as firmware's would.
+#[cfg(target_os = "none")]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    loop {
+        core::hint::spin_loop();
+    }
+}
+
+/// On a bare-metal target, the linker's default entry point (where the reset handler would be):
+/// it calls `main` and keeps its code linked.
+#[cfg(target_os = "none")]
+#[unsafe(no_mangle)]
+pub extern "C" fn _start() -> ! {
+    core::hint::black_box(main());
+    loop {
+        core::hint::spin_loop();
+    }
+}
+
+#[cfg(not(target_os = "none"))]
 #[link(name = "c")]
 unsafe extern "C" {
     fn write(fd: i32, buf: *const u8, count: usize) -> isize;
