@@ -337,7 +337,13 @@ mod tests {
         for _ in 0..20_000 {
             let u = (wide(next(), next()) >> (next() % 128)) as u128 >> 1;
             let d = ((wide(next(), next()) >> (next() % 128)) as u128 >> 1).max(1);
-            for (u, d) in [(u, d), (u, 1), (u128::MAX >> 1, d), (u, u.max(1)), (d - 1, d)] {
+            for (u, d) in [
+                (u, d),
+                (u, 1),
+                (u128::MAX >> 1, d),
+                (u, u.max(1)),
+                (d - 1, d),
+            ] {
                 assert_eq!(divrem_long(u, d), (u / d, u % d), "{u} / {d}");
             }
         }
