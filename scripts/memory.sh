@@ -4,7 +4,9 @@
 # - Code size: builds nostd-check (the no_std, no_main link-check binary) once per effects
 #   combination with `--no-default-features --features ...` (nostd-check/src/one.rs), plus the
 #   empty baseline and the default all-entry-points build, and reads `size -A` (.text, .rodata,
-#   .data, .bss). Each binary is also run: a 3D one exits non-zero when it drew nothing.
+#   .data, .bss). Each binary is also run: a 3D one exits non-zero when it drew nothing. Each
+#   is built once more for a Cortex-M4F (thumbv7em-none-eabihf, which rustup adds when missing),
+#   for the flash a firmware image needs (its .text); that build links but does not run here.
 # - RAM: runs tests/tests/stack.rs (release, then debug), which measures the peak stack of each
 #   render call by stack painting and computes the buffer sizes from the types (`size_of`), and
 #   collects the `MEMORY ...` lines it prints.
@@ -47,13 +49,19 @@ done
 PRIMITIVES=(line triangle gouraud_triangle polygon)
 
 declare -A SIZE
-# build NAME: builds one nostd-check variant and records its sections.
+# build NAME: builds one nostd-check variant and records its sections, and its .text for the
+# Cortex-M4F.
 build() {
     nostd_build "$1"
     local sec
     for sec in text rodata data bss; do
         SIZE["$1.$sec"]=$(section_bytes "$1" "$sec")
     done
+    SIZE["$1.thumb"]=$(thumb_text_bytes "$1")
+    [ -n "${SIZE[$1.thumb]}" ] || {
+        echo "memory.sh: no $THUMB_TARGET .text for $1" >&2
+        exit 1
+    }
 }
 
 build all
@@ -118,13 +126,17 @@ the band buffers and bins; the vertex scratch), the peak stack of the render cal
   local array is measured at $(commas "$(m selfcheck four_kb)") B). The test fails if the deepest
   byte is at the bottom of the painted region, and asserts an upper bound per configuration (1.5 x
   the measured figure) in debug (what \`cargo test --workspace\` runs in CI) and release.
-- **This is the host's x86-64 stack** (release build, \`--release\` as the benchmarks): no Cortex-M
-  target is installed on the machine that measured it (\`rustup target list --installed\` shows only
-  x86_64), so the stack figures are an estimate for firmware: 32-bit frames are smaller, 64-bit
-  arithmetic on a 32-bit core spills more. Re-measure on the target. The debug-build figures are
+- **This is the host's x86-64 stack** (release build, \`--release\` as the benchmarks): the
+  configurations link for a Cortex-M4F (their code size below) but cannot run here, so the stack
+  figures are an estimate for firmware: 32-bit frames are smaller, 64-bit arithmetic on a 32-bit
+  core spills more. Re-measure on the target. The debug-build figures are
   given too: an unoptimised build keeps every temporary on the stack.
 - **Code size**: \`nostd-check\` built with \`--no-default-features --features <combination>\`
-  (release: \`opt-level = "s"\`, LTO, one codegen unit, \`panic = "abort"\`), x86-64, \`size -A\`.
+  (release: \`opt-level = "s"\`, LTO, one codegen unit, \`panic = "abort"\`), x86-64, \`size -A\`;
+  and the same build for a Cortex-M4F (\`--target $THUMB_TARGET\`), whose \`.text\` is the flash a
+  firmware image needs: each 64-bit product, shift and compare takes several Thumb-2 instructions,
+  and \`memcpy\`, \`memset\` and the 64-bit division routines are linked in where the host's C
+  library or an instruction serves the x86-64 build.
   \`.rodata\` of the 3D builds includes the $(commas "$(stat -c %s assets/meshes/suzanne.rmsh)")-byte packed mesh.
   The buffers are \`static\`s there, so \`.bss\` is the frame memory (bins for every triangle, the
   vertex scratch unless \`noscratch\`). The empty baseline (start-up, panic handler, nothing drawn) is
@@ -134,10 +146,11 @@ the band buffers and bins; the vertex scratch), the peak stack of the render cal
 ## RAM and code size per configuration
 
 Bytes. RAM total = framebuffer + depth + band buffers + bins + vertex scratch + pipeline + peak stack
-(release). Code = \`.text\` + \`.rodata\` of the configuration's no_std build.
+(release). Code = \`.text\` + \`.rodata\` of the configuration's no_std build, \`.text\` for x86-64
+and for a Cortex-M4F.
 
-| configuration | framebuffer | depth buffer | band colour + depth | bins (visible) | vertex scratch | pipeline | peak stack (release) | peak stack (debug) | RAM total | .text | .rodata |
-|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|
+| configuration | framebuffer | depth buffer | band colour + depth | bins (visible) | vertex scratch | pipeline | peak stack (release) | peak stack (debug) | RAM total | .text | .text (Cortex-M4F) | .rodata |
+|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|
 EOF
     for c in "${PRIMITIVES[@]}" "${CONFIGS[@]}"; do
         fb=$(m "$c" framebuffer)
@@ -163,7 +176,7 @@ EOF
         [ "$fb" != 0 ] && fbcol=$(commas "$fb")
         plcol="-"
         [ "$pl" != 0 ] && plcol=$(commas "$pl")
-        echo "| \`$c\` | $fbcol | $zcol | $bandcol | $binscol | $scratchcol | $plcol | $(commas "$st") | $(commas "$std") | $(commas "$total") | $(commas "${SIZE[$c.text]}") | $(commas "${SIZE[$c.rodata]}") |"
+        echo "| \`$c\` | $fbcol | $zcol | $bandcol | $binscol | $scratchcol | $plcol | $(commas "$st") | $(commas "$std") | $(commas "$total") | $(commas "${SIZE[$c.text]}") | $(commas "${SIZE[$c.thumb]}") | $(commas "${SIZE[$c.rodata]}") |"
     done
     cat <<EOF
 
@@ -177,16 +190,17 @@ builds a few hundred bytes apart are the same within that noise.
 
 ## Sections of each no_std build
 
-\`size -A\` of \`nostd-check\` per build, bytes (\`.bss\` holds the configuration's static buffers).
+\`size -A\` of \`nostd-check\` per build, bytes (\`.bss\` holds the configuration's static buffers), and
+the \`.text\` of the same build for a Cortex-M4F.
 
-| build | features | .text | .rodata | .data | .bss |
-|---|---|---:|---:|---:|---:|
+| build | features | .text | .text (Cortex-M4F) | .rodata | .data | .bss |
+|---|---|---:|---:|---:|---:|---:|
 EOF
     for c in all empty "${PRIMITIVES[@]}" "${CONFIGS[@]}"; do
         f="$(features_of "$c")"
         [ "$c" = all ] && f="(default: every entry point)"
         [ "$c" = empty ] && f="(none)"
-        echo "| \`$c\` | $f | $(commas "${SIZE[$c.text]}") | $(commas "${SIZE[$c.rodata]}") | $(commas "${SIZE[$c.data]}") | $(commas "${SIZE[$c.bss]}") |"
+        echo "| \`$c\` | $f | $(commas "${SIZE[$c.text]}") | $(commas "${SIZE[$c.thumb]}") | $(commas "${SIZE[$c.rodata]}") | $(commas "${SIZE[$c.data]}") | $(commas "${SIZE[$c.bss]}") |"
     done
     cat <<EOF
 
@@ -196,6 +210,7 @@ EOF
 scripts/memory.sh                                   # rewrites this file
 cargo test -p tests --test stack -- --nocapture     # the stack figures alone (debug; --release too)
 cd nostd-check && cargo build --release --no-default-features --features gouraud,depth,cull
+cargo build --release --target $THUMB_TARGET --no-default-features --features gouraud,depth,cull
 \`\`\`
 EOF
 } >"$OUT.tmp"
