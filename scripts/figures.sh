@@ -20,7 +20,8 @@
 # release for the RAM figures (its MEMORY lines); nostd-check built per configuration for .text.
 # Every build is --release for the default x86-64 target with RUSTFLAGS cleared (no
 # target-cpu=native), but for `text_bytes_thumbv7em`: the same nostd-check configurations built
-# for a Cortex-M4F (thumbv7em-none-eabihf, which rustup adds when missing), the flash they need. Honours CARGO_TARGET_DIR; each count's files go to $CARGO_TARGET_DIR/figures.
+# for a Cortex-M4F (thumbv7em-none-eabihf, which rustup adds when missing), the flash they need.
+# Honours CARGO_TARGET_DIR; each count's files go to $CARGO_TARGET_DIR/figures.
 # Any count that fails, or comes out empty or zero, stops the script with a non-zero status.
 set -euo pipefail
 

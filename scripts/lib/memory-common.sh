@@ -36,19 +36,27 @@ features_of() {
     esac
 }
 
-# nostd_build NAME: builds the nostd-check variant of configuration NAME (`all`: the default
-# features, every entry point) in release, keeps it as $NOSTD_DIR/bin/NAME and runs it: a 3D
-# variant exits non-zero when it drew nothing. RUSTFLAGS is cleared, as for the counts.
-nostd_build() {
+# nostd_cargo_build NAME [CARGO ARGS...]: builds configuration NAME of nostd-check (`all`: the
+# default features, every entry point) in release into $NOSTD_DIR, with the extra cargo
+# arguments given (a target). RUSTFLAGS is cleared, as for the counts.
+nostd_cargo_build() {
     local name="$1" features args=()
+    shift
     features="$(features_of "$name")"
     if [ "$name" != all ]; then
         args=(--no-default-features)
         [ -n "$features" ] && args+=(--features "$features")
     fi
-    echo "nostd-check $name (${features:-default features})" >&2
+    echo "nostd-check $name (${features:-default features})${*:+ $*}" >&2
+    (cd "$ROOT/nostd-check" && CARGO_TARGET_DIR="$NOSTD_DIR" RUSTFLAGS="" cargo build --quiet --release "${args[@]}" "$@")
+}
+
+# nostd_build NAME: builds the nostd-check variant of configuration NAME, keeps it as
+# $NOSTD_DIR/bin/NAME and runs it: a 3D variant exits non-zero when it drew nothing.
+nostd_build() {
+    local name="$1"
+    nostd_cargo_build "$name" || return 1
     mkdir -p "$NOSTD_DIR/bin"
-    (cd "$ROOT/nostd-check" && CARGO_TARGET_DIR="$NOSTD_DIR" RUSTFLAGS="" cargo build --quiet --release "${args[@]}")
     cp "$NOSTD_DIR/release/nostd-check" "$NOSTD_DIR/bin/$name"
     if ! "$NOSTD_DIR/bin/$name"; then
         echo "nostd-check $name exited non-zero (drew nothing?)" >&2
@@ -62,28 +70,20 @@ nostd_build() {
 THUMB_TARGET=thumbv7em-none-eabihf
 
 # thumb_text_bytes NAME: builds configuration NAME of nostd-check for $THUMB_TARGET (it links
-# there but cannot run here) and prints its .text size. rustup adds the target's standard
-# library when it is missing.
+# there but cannot run here), keeps it as $NOSTD_DIR/bin/NAME.$THUMB_TARGET and prints its .text
+# size. rustup adds the target's standard library when it is missing.
 thumb_text_bytes() {
-    local name="$1" features args=(--target "$THUMB_TARGET")
-    command -v size >/dev/null || {
-        echo "needs size (binutils)" >&2
-        return 1
-    }
+    local name="$1"
     if ! rustup target list --installed 2>/dev/null | grep -qx "$THUMB_TARGET"; then
         rustup target add "$THUMB_TARGET" >&2 || {
             echo "could not add the $THUMB_TARGET target (rustup target add $THUMB_TARGET)" >&2
             return 1
         }
     fi
-    features="$(features_of "$name")"
-    if [ "$name" != all ]; then
-        args+=(--no-default-features)
-        [ -n "$features" ] && args+=(--features "$features")
-    fi
-    echo "nostd-check $name for $THUMB_TARGET (${features:-default features})" >&2
-    (cd "$ROOT/nostd-check" && CARGO_TARGET_DIR="$NOSTD_DIR" RUSTFLAGS="" cargo build --quiet --release "${args[@]}") || return 1
-    size -A "$NOSTD_DIR/$THUMB_TARGET/release/nostd-check" | awk '$1 == ".text" { print $2 }'
+    nostd_cargo_build "$name" --target "$THUMB_TARGET" || return 1
+    mkdir -p "$NOSTD_DIR/bin"
+    cp "$NOSTD_DIR/$THUMB_TARGET/release/nostd-check" "$NOSTD_DIR/bin/$name.$THUMB_TARGET"
+    section_bytes "$name.$THUMB_TARGET" text
 }
 
 # section_bytes NAME SECTION: the size of SECTION (text, rodata, data, bss) of a variant that
