@@ -18,11 +18,16 @@
 //! clips, the clipped polygon is reproduced with the library's own `clip_triangle` and
 //! `Pipeline::project` (the clip's rounding is not what is tested here), and the reference covers
 //! the union of its fan's triangles. Only the coverage rule is computed independently.
+//!
+//! Each triangle is drawn span by span through a strict `DrawTarget` (which fails on a pixel
+//! written twice), and with a depth buffer into framebuffers, whose words the fused loop writes
+//! directly (its lean path, and its general one for other layouts and formats).
 
 use proptest::prelude::*;
 use rasterizer_core::clip::polygon::{clip_triangle, outcode, ClipVertex};
 use rasterizer_core::math::Vec4;
 use rasterizer_core::prelude::*;
+use rasterizer_core::surface::Storage;
 use std::collections::BTreeSet;
 use tests::StrictMock;
 
@@ -213,18 +218,81 @@ fn check<const B: u32>(v: [(i64, i64); 3], z: [i32; 3], vx: i32, vy: i32) -> Res
     let mut p = p0;
     p.draw(&mut AnyTarget::new(&mut mock), &mesh, &mut scratch)
         .unwrap();
-    let got = mock.written();
-    if got == expected {
-        return Ok(());
+    let spans = mock.written();
+    // The same triangle with a depth test into framebuffers, whose words the fused loop writes
+    // directly: its lean path (one word a pixel, depth laid out as the colour) and its general
+    // path (a depth buffer wider than the target; three words a pixel).
+    let words = [
+        (
+            "Rgb565",
+            written_through_words::<B, Rgb565>(&pos, vx, vy, TW),
+        ),
+        (
+            "Rgb565, wider depth",
+            written_through_words::<B, Rgb565>(&pos, vx, vy, TW + 5),
+        ),
+        (
+            "Rgb888",
+            written_through_words::<B, Rgb888>(&pos, vx, vy, TW),
+        ),
+    ];
+    for (what, got) in [("spans", spans)].into_iter().chain(words) {
+        if got != expected {
+            let extra: Vec<_> = got.difference(&expected).take(8).collect();
+            let missing: Vec<_> = expected.difference(&got).take(8).collect();
+            return Err(format!(
+                "{what}: B = {B}, viewport at ({vx}, {vy}), screen triangles {tris:?}: \
+                 {} pixels too many {extra:?}, {} missing {missing:?}",
+                got.difference(&expected).count(),
+                expected.difference(&got).count()
+            ));
+        }
     }
-    let extra: Vec<_> = got.difference(&expected).take(8).collect();
-    let missing: Vec<_> = expected.difference(&got).take(8).collect();
-    Err(format!(
-        "B = {B}, viewport at ({vx}, {vy}), screen triangles {tris:?}: \
-         {} pixels too many {extra:?}, {} missing {missing:?}",
-        got.difference(&expected).count(),
-        expected.difference(&got).count()
-    ))
+    Ok(())
+}
+
+/// The pixels [`check`]'s triangle covers when drawn with a depth buffer (`depth_width` entries a
+/// row, every test passing) into a `TW` x `TH` framebuffer of `C` cleared to black, in white.
+fn written_through_words<const B: u32, C>(
+    pos: &[Vec3<Fx16>; 3],
+    vx: i32,
+    vy: i32,
+    depth_width: u32,
+) -> BTreeSet<(i32, i32)>
+where
+    C: Storage + RgbColor,
+    C::Word: Default,
+{
+    let (o, l) = (Fx16::ZERO, Fx16::ONE);
+    let w = Fx16::from_bits(w_raw::<B>() as i32);
+    let t = Transforms {
+        model: Mat4::identity(),
+        view: Mat4::identity(),
+        projection: Mat4::from_rows([[l, o, o, o], [o, l, o, o], [o, o, l, o], [o, o, o, w]]),
+    };
+    let vp = Viewport {
+        x: vx,
+        y: vy,
+        width: VP,
+        height: VP,
+    };
+    let mut zbuf = vec![u16::MAX; (depth_width * TH) as usize];
+    let depth = DepthBuffer::new(&mut zbuf, depth_width, TH, Compare::Always).unwrap();
+    let mut p = Pipeline::new(&t, vp, NoCull, depth, Unlit { color: C::WHITE }).with_bits::<B>();
+    let mut words = vec![C::Word::default(); Framebuffer::<C>::required_len(TW, TH).unwrap()];
+    let mut fb = Framebuffer::<C>::new(&mut words, TW, TH).unwrap();
+    let mesh = Mesh::new(pos, &[[0u16, 1, 2]]);
+    let mut scratch = [VertexSlot::<[i32; 0]>::EMPTY; 3];
+    p.draw(&mut fb, &mesh, &mut scratch).unwrap();
+    let mut set = BTreeSet::new();
+    for y in 0..TH as i32 {
+        for x in 0..TW as i32 {
+            if fb.pixel(Point::new(x, y)) == Some(C::WHITE) {
+                set.insert((x, y));
+            }
+        }
+    }
+    set
 }
 
 /// [`check`] with the sub-pixel bits chosen at run time; vertices are given in 1/256 pixel and

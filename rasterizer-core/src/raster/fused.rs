@@ -18,14 +18,18 @@
 //! leaves `0 .. 2^32` for values and depths the vertices hold in `0 ..= 2^(32 - FRAC) - 1`, so the
 //! wrapping arithmetic needs no clamp per pixel.
 
+use crate::depth::DepthRows;
 use crate::depth::{Compare, DepthTest};
 use crate::geom::{PixelRect, SubPoint};
 use crate::geom::{Varyings, MAX_VARYINGS};
+use crate::raster::edge::{row_at_or_below, EdgeWalk};
 use crate::raster::silhouette::{in_aa_range, walk_silhouette, FringeSink};
+use crate::raster::triangle::setup::row_order;
 use crate::raster::triangle::setup::{
     may_cover_a_centre, rows_in_clip, walk_spans_once, Sorted, SpanSink,
 };
 use crate::surface::{BlendError, DepthSpan, Surface};
+use crate::surface::{DepthTriangle, Storage};
 use crate::wide::Reciprocal;
 use core::num::NonZeroU64;
 
@@ -250,8 +254,58 @@ impl<C, P: FusedColor<C>, V: Varyings, D: DepthTest, const LESS: bool> DepthSpan
     }
 }
 
+/// Draws one span's pixels through `$draw`, with `$px` bound to the span's pixel type: the
+/// usual depth test (`Less`, known at compile time) or another, and the screen position tracked
+/// only for a colour that needs it ([`FusedColor::AT`]).
+macro_rules! depth_pixels {
+    ($less:expr, $P:ident, $V:ident, $D:ident, $acc:expr, $step:expr, $z:expr, $dz:expr,
+     $compare:expr, $pixel:expr, $x:expr, $y:expr, |$px:ident| $draw:expr) => {
+        if $less {
+            let $px = DepthPixels::<$P, $V, $D, true> {
+                acc: $acc,
+                step: $step,
+                z: $z,
+                dz: $dz,
+                compare: $compare,
+                pixel: $pixel,
+                _v: core::marker::PhantomData,
+            };
+            if $P::AT {
+                let $px = DepthPixelsAt {
+                    pixels: $px,
+                    x: $x,
+                    y: $y,
+                };
+                $draw
+            } else {
+                $draw
+            }
+        } else {
+            let $px = DepthPixels::<$P, $V, $D, false> {
+                acc: $acc,
+                step: $step,
+                z: $z,
+                dz: $dz,
+                compare: $compare,
+                pixel: $pixel,
+                _v: core::marker::PhantomData,
+            };
+            if $P::AT {
+                let $px = DepthPixelsAt {
+                    pixels: $px,
+                    x: $x,
+                    y: $y,
+                };
+                $draw
+            } else {
+                $draw
+            }
+        }
+    };
+}
+
 /// The span sink of one triangle.
-struct Fused<'a, S: Surface, D, V, P> {
+struct Fused<'a, S: Surface + ?Sized, D, V, P> {
     surface: &'a mut S,
     /// The depth buffer's entries, checked to cover the clip area (empty without depth).
     zbuf: &'a mut [u16],
@@ -268,7 +322,7 @@ struct Fused<'a, S: Surface, D, V, P> {
 
 impl<S, D, V, P> SpanSink for Fused<'_, S, D, V, P>
 where
-    S: Surface,
+    S: Surface + ?Sized,
     D: DepthTest,
     V: Varyings,
     P: FusedColor<S::Color>,
@@ -401,53 +455,467 @@ where
     V: Varyings,
     P: FusedColor<S::Color>,
 {
-    let Some((t, Some(rows), clip, mut sink)) =
-        set_up::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel, true)
-    else {
+    if !D::ENABLED {
+        let Some((t, Some(rows), clip, mut sink)) =
+            set_up::<S, D, V, P, BITS>(surface, depth, vertices, area, pixel, true)
+        else {
+            return Ok(());
+        };
+        return walk_spans_once(&t, 1 << BITS, rows, &clip, &mut sink);
+    }
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    let compare = depth.comparison();
+    let Some(zrows) = depth.depth_rows() else {
         return Ok(());
     };
-    walk_spans_once(&t, 1 << BITS, rows, &clip, &mut sink)
+    surface.shade_triangle_depth_in_clip(FusedTriangle::<D, V, P, BITS> {
+        vertices,
+        area,
+        clip,
+        zrows,
+        compare,
+        pixel,
+        _d: core::marker::PhantomData,
+    })
 }
 
-/// What [`set_up`] gives: the sorted triangle, its rows in the clip area ([`rows_in_clip`]), the
-/// clip area and the span sink.
-type SetUp<'a, S, D, V, P> = (
-    Sorted,
-    Option<(i64, i64, i64)>,
-    PixelRect,
-    Fused<'a, S, D, V, P>,
-);
-
-/// The set-up of [`fill_fused`]: the sorted triangle, its rows, the clip area and the span sink
-/// with its planes; `None` when nothing is drawn (with `skip_empty`, also for a triangle with no
-/// row of pixel centres in the clip area).
-#[inline(always)]
-fn set_up<'a, S, D, V, P, const BITS: u32>(
-    surface: &'a mut S,
-    depth: &'a mut D,
-    vertices: &[FusedVertex<V, BITS>; 3],
-    area: &PixelRect,
+/// A triangle of [`fill_fused`] with a depth buffer, handed to the surface
+/// ([`Surface::shade_triangle_depth_in_clip`]).
+struct FusedTriangle<'a, D, V, P, const BITS: u32> {
+    vertices: &'a [FusedVertex<V, BITS>; 3],
+    area: &'a PixelRect,
+    clip: PixelRect,
+    zrows: DepthRows<'a>,
+    compare: Compare,
     pixel: P,
-    skip_empty: bool,
-) -> Option<SetUp<'a, S, D, V, P>>
+    _d: core::marker::PhantomData<D>,
+}
+
+impl<C, D, V, P, const BITS: u32> DepthTriangle<C> for FusedTriangle<'_, D, V, P, BITS>
 where
-    S: Surface,
     D: DepthTest,
     V: Varyings,
-    P: FusedColor<S::Color>,
+    P: FusedColor<C>,
+{
+    #[inline(always)]
+    fn by_spans<S: Surface<Color = C> + ?Sized>(self, surface: &mut S) -> Result<(), S::Error> {
+        let clip = self.clip;
+        let Some((t, Some(rows), values, z)) =
+            planes::<D, V, BITS, false>(self.vertices, self.area, &clip, P::PRECISION, true)
+        else {
+            return Ok(());
+        };
+        let Some((zbuf, zwidth, zorigin)) = depth_entries(self.zrows, &clip) else {
+            return Ok(());
+        };
+        let mut sink = Fused::<S, D, V, P> {
+            surface,
+            zbuf,
+            zwidth,
+            zorigin,
+            pixel: self.pixel,
+            values,
+            z,
+            less: self.compare == Compare::Less,
+            compare: self.compare,
+            _v: core::marker::PhantomData,
+        };
+        walk_spans_once(&t, 1 << BITS, rows, &clip, &mut sink)
+    }
+
+    #[inline(always)]
+    fn by_words(self, words: &mut [C::Word], stride: usize, y0: i32)
+    where
+        C: Storage,
+    {
+        // The lean path needs the depth entries laid out as the words (one index a pixel for
+        // both): so they are for a depth buffer the size of the framebuffer or band.
+        let same_layout =
+            C::WORD_PER_PIXEL && self.zrows.width as usize == stride && self.zrows.origin_y == y0;
+        if same_layout {
+            if let Some(lean) = Lean::new(self.vertices, self.area, &self.clip) {
+                let off0 = (lean.rows.0 as i32).wrapping_sub(y0) as u32 as usize * stride;
+                return lean.draw::<C, D, V, P>(
+                    self.vertices,
+                    words,
+                    self.zrows.depths,
+                    stride,
+                    off0,
+                    &self.pixel,
+                    self.compare,
+                );
+            }
+        }
+        by_words_general::<C, D, V, P, BITS>(self, words, stride, y0);
+    }
+}
+
+/// [`DepthTriangle::by_words`] for the triangles the lean path does not take (columns to clamp,
+/// wide planes, an anchor moved into the viewport, another layout), span by span: out of line,
+/// so that the lean path keeps its registers.
+#[inline(never)]
+fn by_words_general<C, D, V, P, const BITS: u32>(
+    t: FusedTriangle<'_, D, V, P, BITS>,
+    words: &mut [C::Word],
+    stride: usize,
+    y0: i32,
+) where
+    C: Storage,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<C>,
+{
+    let clip = t.clip;
+    let Some((sorted, Some((top, mid, bottom)), values, z)) =
+        planes::<D, V, BITS, true>(t.vertices, t.area, &clip, P::PRECISION, true)
+    else {
+        return;
+    };
+    let Some((zbuf, zwidth, zorigin)) = depth_entries(t.zrows, &clip) else {
+        return;
+    };
+    let mut sink = WordSpans::<C, D, V, P> {
+        words,
+        stride,
+        y0,
+        zbuf,
+        zwidth,
+        zorigin,
+        pixel: t.pixel,
+        values,
+        z,
+        compare: t.compare,
+        _v: core::marker::PhantomData,
+    };
+    // `walk_spans_once` with its walks set up out of line: these triangles are few, and their
+    // code is better small.
+    let s = 1i64 << BITS;
+    let [v0, v1, v2] = sorted.v;
+    let mut long = edge_walk(v0, v2, s, top);
+    let mut short = if top < mid {
+        edge_walk(v0, v1, s, top)
+    } else {
+        edge_walk(v1, v2, s, mid)
+    };
+    let short_is_left = sorted.cross < 0;
+    for row in top..bottom {
+        if row == mid && top < mid {
+            short = edge_walk(v1, v2, s, mid);
+        }
+        let (l, r) = if short_is_left {
+            (short.col(), long.col())
+        } else {
+            (long.col(), short.col())
+        };
+        let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
+        if x0 < x1 {
+            let Ok(()) = sink.span(row as i32, x0 as i32, x1 as i32);
+        }
+        short.step();
+        long.step();
+    }
+}
+
+/// [`EdgeWalk::new`] out of line, for [`by_words_general`].
+#[inline(never)]
+fn edge_walk(a: (i64, i64), b: (i64, i64), s: i64, row: i64) -> EdgeWalk {
+    EdgeWalk::new(a, b, s, row)
+}
+
+/// [`Shape::plane`] out of line, for [`planes`] when its caller is rare.
+#[inline(never)]
+fn plane_out_of_line<const BITS: u32>(
+    shape: &Shape,
+    f: [i64; 3],
+    frac: u32,
+    offset: u32,
+) -> Plane32 {
+    shape.plane::<BITS>(f, frac, offset)
+}
+
+/// The span sink of [`by_words_general`]: [`Fused`] writing straight into a framebuffer's words,
+/// with the general depth test only (its triangles are few).
+struct WordSpans<'a, C: Storage, D, V, P> {
+    words: &'a mut [C::Word],
+    stride: usize,
+    y0: i32,
+    zbuf: &'a mut [u16],
+    zwidth: usize,
+    zorigin: i32,
+    pixel: P,
+    values: [Plane32; MAX_VARYINGS],
+    z: Plane32,
+    compare: Compare,
+    _v: core::marker::PhantomData<(D, V)>,
+}
+
+impl<C, D, V, P> SpanSink for WordSpans<'_, C, D, V, P>
+where
+    C: Storage,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<C>,
+{
+    type Error = core::convert::Infallible;
+
+    #[inline(always)]
+    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), Self::Error> {
+        let len = (x1 - x0) as usize;
+        // In range (the buffers cover the clip area): the checks never fail.
+        let zstart = row.wrapping_sub(self.zorigin) as u32 as usize * self.zwidth + x0 as usize;
+        let fstart = row.wrapping_sub(self.y0) as u32 as usize * self.stride;
+        let (Some(zrow), Some(crow)) = (
+            self.zbuf.get_mut(zstart..zstart + len),
+            self.words.get_mut(fstart..),
+        ) else {
+            return Ok(());
+        };
+        let (x, pixel) = (x0 as usize, &self.pixel);
+        let mut acc = [0u32; MAX_VARYINGS];
+        let mut step = [0u32; MAX_VARYINGS];
+        for k in 0..V::LEN.min(MAX_VARYINGS) {
+            acc[k] = self.values[k].at(x0, row);
+            step[k] = self.values[k].gx;
+        }
+        let (z, dz, compare) = (self.z.at(x0, row), self.z.gx, self.compare);
+        depth_pixels!(
+            false,
+            P,
+            V,
+            D,
+            acc,
+            step,
+            z,
+            dz,
+            compare,
+            pixel,
+            x0,
+            row,
+            |pixels| C::shade_depth(crow, x, zrow, pixels)
+        );
+        Ok(())
+    }
+}
+
+/// A triangle the lean path of [`DepthTriangle::by_words`] takes: its columns inside the clip
+/// area (no span needs clamping), its edges narrow and its top vertex's pixel inside the
+/// viewport ([`Shape::plane`]'s narrow set-up), on a framebuffer of one word a pixel whose rows
+/// the depth buffer shares. Its planes and walks come from the same formulas as the general
+/// path's, so its pixels are the same to the bit.
+struct Lean<const BITS: u32> {
+    /// The sorted vertices and their permutation.
+    v: [(i64, i64); 3],
+    order: [usize; 3],
+    /// The doubled area, signed (negative when the middle vertex lies left of the long edge).
+    cross: i64,
+    /// The edges from `v[0]`, times the area's sign.
+    e1: (i64, i64),
+    e2: (i64, i64),
+    /// The rows: `top .. bottom`, the lower half from `mid`.
+    rows: (i64, i64, i64),
+}
+
+impl<const BITS: u32> Lean<BITS> {
+    /// The triangle, when the lean path takes it (`None` leaves it to the general path, which
+    /// also settles flat and rowless triangles).
+    #[inline(always)]
+    fn new<V>(
+        vertices: &[FusedVertex<V, BITS>; 3],
+        area: &PixelRect,
+        clip: &PixelRect,
+    ) -> Option<Self> {
+        let s = 1i64 << BITS;
+        let p = [vertices[0].0, vertices[1].0, vertices[2].0];
+        let order = row_order(&p);
+        let v = order.map(|i| (i64::from(p[i].x), i64::from(p[i].y)));
+        let [v0, v1, v2] = v;
+        let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+        // The clip area lies inside a framebuffer (below 2^15 pixels): columns inside it are
+        // inside the guard band; the rows are checked here (v0 is the highest, v2 the lowest).
+        let band = i64::from(crate::geom::GUARD_BAND_PIXELS) << BITS;
+        if xmin < clip.x0 * s || xmax > clip.x1 * s || v0.1 < -band || v2.1 > band {
+            return None;
+        }
+        let cross = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
+        let top = row_at_or_below(v0.1, s).max(clip.y0);
+        let mid = row_at_or_below(v1.1, s).clamp(top, clip.y1.max(top));
+        let bottom = row_at_or_below(v2.1, s).min(clip.y1);
+        let sign = cross.signum();
+        let e1 = (sign * (v1.0 - v0.0), sign * (v1.1 - v0.1));
+        let e2 = (sign * (v2.0 - v0.0), sign * (v2.1 - v0.1));
+        let own = (v0.0 >> BITS, v0.1 >> BITS);
+        let own_inside = own.0 >= area.x0 && own.0 < area.x1 && own.1 >= area.y0 && own.1 < area.y1;
+        if cross == 0 || top >= bottom || !own_inside || !narrow_edges::<BITS>(e1, e2) {
+            return None;
+        }
+        Some(Self {
+            v,
+            order,
+            cross,
+            e1,
+            e2,
+            rows: (top, mid, bottom),
+        })
+    }
+
+    /// Draws the triangle: its planes, then its rows; `off0` is the index of its first row's
+    /// first word, in `words` and in `zbuf` alike.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn draw<C, D, V, P>(
+        self,
+        vertices: &[FusedVertex<V, BITS>; 3],
+        words: &mut [C::Word],
+        zbuf: &mut [u16],
+        stride: usize,
+        off0: usize,
+        pixel: &P,
+        compare: Compare,
+    ) where
+        C: Storage,
+        D: DepthTest,
+        V: Varyings,
+        P: FusedColor<C>,
+    {
+        let s = 1i64 << BITS;
+        let [v0, v1, v2] = self.v;
+        let cross = self.cross.abs();
+        let own = (v0.0 >> BITS, v0.1 >> BITS);
+        // `cross` is not zero (`Lean::new`).
+        let recip = NonZeroU64::new(cross.unsigned_abs()).map_or(Reciprocal::ONE, Reciprocal::new);
+        let shape = Shape {
+            e1: self.e1,
+            e2: self.e2,
+            cross,
+            recip,
+            anchor: own,
+            offset2: (2 * (own.0 * s - v0.0) + s, 2 * (own.1 * s - v0.1) + s),
+            origin2: (s - 2 * v0.0, s - 2 * v0.1),
+            narrow: true,
+        };
+        let Precision { frac, offset } = P::PRECISION;
+        let [o0, o1, o2] = self.order;
+        let n = V::LEN.min(MAX_VARYINGS);
+        let mut values = [Plane32::default(); MAX_VARYINGS];
+        let mut step = [0u32; MAX_VARYINGS];
+        for k in 0..n {
+            let f = |o: usize| i64::from(vertices[o].2.as_slice()[k]);
+            values[k] = shape.plane::<BITS>([f(o0), f(o1), f(o2)], frac, offset);
+            step[k] = values[k].gx;
+        }
+        let z = {
+            let f = |o: usize| i64::from(vertices[o].1);
+            // As in `planes`.
+            let near = vertices.iter().any(|v| v.1 == 0);
+            let zoffset = if near { 1 << (Z_FRAC - 1) } else { 0 };
+            shape.plane::<BITS>([f(o0), f(o1), f(o2)], Z_FRAC, zoffset)
+        };
+        let (top, mid, bottom) = self.rows;
+        let long = edge_walk(v0, v2, s, top);
+        let first = if top < mid {
+            edge_walk(v0, v1, s, top)
+        } else {
+            edge_walk(v1, v2, s, mid)
+        };
+        let short_is_left = self.cross < 0;
+        let (mut l, mut r) = if short_is_left {
+            (first, long)
+        } else {
+            (long, first)
+        };
+        let less = compare == Compare::Less;
+        let mut off = off0;
+        let mut row = top;
+        let mut end = if top < mid { mid } else { bottom };
+        loop {
+            while row < end {
+                let (x0, x1) = (l.col(), r.col());
+                if x0 < x1 {
+                    // Opaque, so that the planes' products by the row stay products rather than
+                    // sums carried from row to row.
+                    let y = core::hint::black_box(row) as i32;
+                    // Inside the clip area, whose rows both buffers hold: the checks never fail
+                    // (the pipeline refuses a depth buffer that does not cover the viewport).
+                    let (a, b) = (off.wrapping_add(x0 as usize), off.wrapping_add(x1 as usize));
+                    if let (Some(zrow), Some(crow)) = (zbuf.get_mut(a..b), words.get_mut(a..b)) {
+                        let x = x0 as i32;
+                        let mut acc = [0u32; MAX_VARYINGS];
+                        for k in 0..n {
+                            acc[k] = values[k].at(x, y);
+                        }
+                        let (zx, dz) = (z.at(x, y), z.gx);
+                        depth_pixels!(
+                            less,
+                            P,
+                            V,
+                            D,
+                            acc,
+                            step,
+                            zx,
+                            dz,
+                            compare,
+                            pixel,
+                            x,
+                            y,
+                            |pixels| C::shade_depth(crow, 0, zrow, pixels)
+                        );
+                    }
+                }
+                off = off.wrapping_add(stride);
+                l.step();
+                r.step();
+                row += 1;
+            }
+            if end == bottom {
+                return;
+            }
+            // The lower short edge from the middle vertex's row on.
+            let lower = edge_walk(v1, v2, s, mid);
+            if short_is_left {
+                l = lower;
+            } else {
+                r = lower;
+            }
+            end = bottom;
+        }
+    }
+}
+
+/// What [`planes`] gives: the sorted triangle, its rows in the clip area ([`rows_in_clip`]), and
+/// the planes of its values and of its depth.
+type Planes = (
+    Sorted,
+    Option<(i64, i64, i64)>,
+    [Plane32; MAX_VARYINGS],
+    Plane32,
+);
+
+/// The planes of [`fill_fused`]'s triangle at `precision` (depth's too when `D` is enabled);
+/// `None` when nothing is drawn (with `skip_empty`, also for a triangle with no row of pixel
+/// centres in `clip`).
+#[inline(always)]
+fn planes<D, V, const BITS: u32, const OUT_OF_LINE: bool>(
+    vertices: &[FusedVertex<V, BITS>; 3],
+    area: &PixelRect,
+    clip: &PixelRect,
+    precision: Precision,
+    skip_empty: bool,
+) -> Option<Planes>
+where
+    D: DepthTest,
+    V: Varyings,
 {
     let Precision {
         frac: vfrac,
         offset: voffset,
-    } = P::PRECISION;
+    } = precision;
     let t = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0])?;
     let [v0, v1, v2] = t.v;
     let s = 1i64 << BITS;
-    let clip = PixelRect::from_rectangle(&surface.clip_area());
     // A triangle with no row of centres skips the set-up of its planes. (Testing its columns
     // and its few centres too, as the other fills do, cost more than it saved here: the pipeline
     // has already dropped most triangles that cover no centre.)
-    let rows = rows_in_clip(&t, s, &clip);
+    let rows = rows_in_clip(&t, s, clip);
     if skip_empty && rows.is_none() {
         return None;
     }
@@ -476,9 +944,16 @@ where
     let [o0, o1, o2] = t.order;
     let n = V::LEN.min(MAX_VARYINGS);
     let mut values = [Plane32::default(); MAX_VARYINGS];
+    let plane = |f: [i64; 3], frac: u32, offset: u32| {
+        if OUT_OF_LINE {
+            plane_out_of_line::<BITS>(&shape, f, frac, offset)
+        } else {
+            shape.plane::<BITS>(f, frac, offset)
+        }
+    };
     for (k, p) in values.iter_mut().enumerate().take(n) {
         let f = |o: usize| i64::from(vertices[o].2.as_slice()[k]);
-        *p = shape.plane::<BITS>([f(o0), f(o1), f(o2)], vfrac, voffset);
+        *p = plane([f(o0), f(o1), f(o2)], vfrac, voffset);
     }
     let z = if D::ENABLED {
         let f = |o: usize| i64::from(vertices[o].1);
@@ -486,25 +961,58 @@ where
         // vertex is rounded to the nearest step, so no pixel wraps below 0.
         let near = vertices.iter().any(|v| v.1 == 0);
         let offset = if near { 1 << (Z_FRAC - 1) } else { 0 };
-        shape.plane::<BITS>([f(o0), f(o1), f(o2)], Z_FRAC, offset)
+        plane([f(o0), f(o1), f(o2)], Z_FRAC, offset)
     } else {
         Plane32::default()
     };
+    Some((t, rows, values, z))
+}
+
+/// The depth entries of the whole clip area (entries, entries a row, the first one's screen
+/// row), checked here once a triangle rather than per span; `None` when they do not cover it.
+/// The pipeline refuses to draw with a depth buffer that does not cover the viewport, so a
+/// triangle is never dropped here in practice.
+#[inline(always)]
+fn depth_entries<'a>(rows: DepthRows<'a>, clip: &PixelRect) -> Option<(&'a mut [u16], usize, i32)> {
+    let y0 = i64::from(rows.origin_y);
+    let covered = clip.x0 >= 0
+        && clip.x1 <= i64::from(rows.width)
+        && clip.y0 >= y0
+        && clip.y1 <= y0 + i64::from(rows.height);
+    covered.then_some((rows.depths, rows.width as usize, rows.origin_y))
+}
+
+/// What [`set_up`] gives: the sorted triangle, its rows in the clip area ([`rows_in_clip`]), the
+/// clip area and the span sink.
+type SetUp<'a, S, D, V, P> = (
+    Sorted,
+    Option<(i64, i64, i64)>,
+    PixelRect,
+    Fused<'a, S, D, V, P>,
+);
+
+/// [`planes`] and the span sink of a triangle drawn through `surface` span by span.
+#[inline(always)]
+fn set_up<'a, S, D, V, P, const BITS: u32>(
+    surface: &'a mut S,
+    depth: &'a mut D,
+    vertices: &[FusedVertex<V, BITS>; 3],
+    area: &PixelRect,
+    pixel: P,
+    skip_empty: bool,
+) -> Option<SetUp<'a, S, D, V, P>>
+where
+    S: Surface,
+    D: DepthTest,
+    V: Varyings,
+    P: FusedColor<S::Color>,
+{
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    let (t, rows, values, z) =
+        planes::<D, V, BITS, false>(vertices, area, &clip, P::PRECISION, skip_empty)?;
     let compare = depth.comparison();
-    // The depth entries of the whole clip area, checked here once rather than per span. The
-    // pipeline refuses to draw with a depth buffer that does not cover the viewport, so a
-    // triangle is never dropped here in practice.
     let (zbuf, zwidth, zorigin) = if D::ENABLED {
-        let rows = depth.depth_rows()?;
-        let y0 = i64::from(rows.origin_y);
-        let covered = clip.x0 >= 0
-            && clip.x1 <= i64::from(rows.width)
-            && clip.y0 >= y0
-            && clip.y1 <= y0 + i64::from(rows.height);
-        if !covered {
-            return None;
-        }
-        (rows.depths, rows.width as usize, rows.origin_y)
+        depth_entries(depth.depth_rows()?, &clip)?
     } else {
         (&mut [][..], 0, 0)
     };

@@ -4,7 +4,7 @@
 //! [`BinaryColor`] rows). Spans become `slice::fill` or a tight loop; line walks step a buffer index
 //! instead of recomputing `y * width + x` per pixel.
 
-use super::{BlendError, DepthSpan, Surface};
+use super::{BlendError, DepthSpan, DepthTriangle, Surface};
 use crate::color::{blend, blend_channel, Channels};
 use crate::geom::line::LinePoints;
 use embedded_graphics_core::draw_target::DrawTarget;
@@ -71,6 +71,8 @@ impl core::error::Error for FramebufferError {}
 pub trait Storage: Channels {
     /// The element type of the slice.
     type Word: Copy + core::fmt::Debug;
+    /// Each pixel is one word (`row_words(w) == w`): a span's words are its pixels.
+    const WORD_PER_PIXEL: bool = false;
     /// Words one row of `width` pixels takes.
     fn row_words(width: usize) -> usize;
     /// Sets pixel `x` of a row.
@@ -341,6 +343,7 @@ fn fill_short_words<W: Copy>(s: &mut [W], v: W) {
 
 impl Storage for Rgb565 {
     type Word = u16;
+    const WORD_PER_PIXEL: bool = true;
     fn row_words(width: usize) -> usize {
         width
     }
@@ -456,6 +459,7 @@ impl Storage for Rgb565 {
 
 impl Storage for Gray8 {
     type Word = u8;
+    const WORD_PER_PIXEL: bool = true;
     fn row_words(width: usize) -> usize {
         width
     }
@@ -852,6 +856,15 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     }
 
     #[inline(always)]
+    fn shade_triangle_depth_in_clip<T: DepthTriangle<C>>(
+        &mut self,
+        triangle: T,
+    ) -> Result<(), Self::Error> {
+        triangle.by_words(self.buf, self.stride, 0);
+        Ok(())
+    }
+
+    #[inline(always)]
     fn draw_line_points_in_clip(
         &mut self,
         points: LinePoints,
@@ -1032,6 +1045,15 @@ impl<C: Storage> Surface for Band<'_, C> {
     ) -> Result<(), Self::Error> {
         self.fb
             .shade_span_depth_in_clip(x, y - self.y0, depth, shade)
+    }
+
+    #[inline(always)]
+    fn shade_triangle_depth_in_clip<T: DepthTriangle<C>>(
+        &mut self,
+        triangle: T,
+    ) -> Result<(), Self::Error> {
+        triangle.by_words(self.fb.buf, self.fb.stride, self.y0);
+        Ok(())
     }
 
     #[inline(always)]

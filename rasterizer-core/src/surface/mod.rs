@@ -179,6 +179,18 @@ pub trait Surface: DrawTarget {
         }))
     }
 
+    /// Draws a whole triangle with a depth test (the 3D pipeline's fused loop), so that a
+    /// surface that keeps its pixels in rows of words can let the triangle step through them
+    /// directly ([`DepthTriangle::by_words`]). The default draws it span by span through
+    /// [`Surface::shade_span_depth_in_clip`] ([`DepthTriangle::by_spans`]).
+    #[inline(always)]
+    fn shade_triangle_depth_in_clip<T: DepthTriangle<Self::Color>>(
+        &mut self,
+        triangle: T,
+    ) -> Result<(), Self::Error> {
+        triangle.by_spans(self)
+    }
+
     /// [`Surface::draw_line_points`] for a walk known to lie inside [`Surface::clip_area`].
     ///
     /// # Panics
@@ -269,6 +281,20 @@ pub trait DepthSpan<C> {
     /// stored depth (which it updates when the pixel passes), or `None` to leave the pixel as it
     /// is.
     fn pixel(&mut self, i: usize, depth: &mut u16) -> Option<C>;
+}
+
+/// A triangle with a depth test, as [`Surface::shade_triangle_depth_in_clip`] receives it: it can
+/// draw itself through any surface's span methods, or straight into rows of pixel words. Made by
+/// the 3D pipeline; a surface only chooses which of the two to call.
+pub trait DepthTriangle<C> {
+    /// Draws the triangle span by span through `surface`
+    /// ([`Surface::shade_span_depth_in_clip`]).
+    fn by_spans<S: Surface<Color = C> + ?Sized>(self, surface: &mut S) -> Result<(), S::Error>;
+    /// Draws the triangle into `words`: `stride` words a row, the first row standing for screen
+    /// row `y0`, holding every pixel of the surface's [`Surface::clip_area`].
+    fn by_words(self, words: &mut [C::Word], stride: usize, y0: i32)
+    where
+        C: Storage;
 }
 
 /// Lets any embedded-graphics `DrawTarget` (a display driver, `SimulatorDisplay`, `MockDisplay`) be
@@ -437,6 +463,14 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
         shade: F,
     ) -> Result<(), Self::Error> {
         self.inner.shade_span_depth_in_clip(x, y, depth, shade)
+    }
+
+    #[inline(always)]
+    fn shade_triangle_depth_in_clip<R: DepthTriangle<Self::Color>>(
+        &mut self,
+        triangle: R,
+    ) -> Result<(), Self::Error> {
+        self.inner.shade_triangle_depth_in_clip(triangle)
     }
 
     #[inline(always)]
