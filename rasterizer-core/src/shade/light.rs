@@ -708,8 +708,10 @@ impl<const N: usize> DirectionalPlan<N> {
         let one = 1u64 << (2 * f);
         // 1 / |n| in 2.30: a normal of unit length within 2^-12 (a mesh's) takes one Newton
         // step from 1, within 2^-25; any other of length 2^-8 to 2^8 a reciprocal square root.
-        let rn = if nn.abs_diff(one) < one >> 12 {
-            (1i64 << 30) - shr(nn as i64 - one as i64, 2 * f as i32 - 29)
+        // |nn - one| < one / 2^12, as one unsigned comparison of d + one / 2^12 - 1.
+        let (d, q) = (nn.wrapping_sub(one) as i64, (one >> 12) as i64);
+        let rn = if (d.wrapping_add(q - 1) as u64) < 2 * q as u64 - 1 {
+            (1i64 << 30) - shr(d, 2 * f as i32 - 29)
         } else if nn >= one >> 16 && nn >> 16 < one {
             let (r, k) = rsqrt_fast(nn);
             // 2^f / sqrt(nn) in 2.30 = r 2^(f + 30 - k), below 2^39.
@@ -726,13 +728,16 @@ impl<const N: usize> DirectionalPlan<N> {
         let w = [e[0] - position[0], e[1] - position[1], e[2] - position[2]];
         // The eye at the point (no highlight there) and an eye far away along an axis take the
         // general path.
-        let big = w[0].unsigned_abs() | w[1].unsigned_abs() | w[2].unsigned_abs();
-        if self.specular && big.wrapping_sub(1) >= (1 << 30) - 1 {
+        // Each |c| below 2^30: c + 2^30 - 1 in [0, 2^31 - 2] (unsigned), and not all zero.
+        let t = |c: i64| c.wrapping_add((1 << 30) - 1) as u64;
+        let far = t(w[0]).max(t(w[1])).max(t(w[2])) >= (1 << 31) - 1;
+        if self.specular && (far || w[0] | w[1] | w[2] == 0) {
             return None;
         }
         // V in 2.30 and N·V, for a specular power, made when a light first reaches the point.
         let mut view: Option<([i64; 3], i64)> = None;
-        for light in &self.lights {
+        // At most N lights: a bound the loop can be unrolled by.
+        for light in self.lights.iter().take(N) {
             let nl = cos(light.l);
             if nl <= 0 {
                 continue;
@@ -911,11 +916,14 @@ impl<const N: usize> DirectionalPlan<N> {
 /// the odd power, then `twos` squarings, each rounded half up in 0.30.
 #[inline(always)]
 fn plan_power(x: u32, odd: u16, twos: u32) -> u32 {
-    let mut p = if odd == 1 { x } else { pow30(x, odd) };
-    for _ in 0..twos {
-        p = mul30(p, p);
+    // mul30 in u64: p <= 2^30, so p² + 2^29 fits and the square stays at most 2^30.
+    let mut p = u64::from(if odd == 1 { x } else { pow30(x, odd) });
+    let mut t = twos;
+    while t != 0 {
+        p = (p * p + (1 << 29)) >> 30;
+        t -= 1;
     }
-    to_q16(p)
+    to_q16(p as u32)
 }
 
 /// The cut of a [`DirectionalPlan`]'s zero test of the highlight: with `t` the least `x` whose
