@@ -935,7 +935,8 @@ fn plan_power(x: u32, odd: u16, twos: u32) -> u32 {
 /// lands at or below the root, and its three truncations of `t` lower `t` by at most 6 units of
 /// `2^-30`, which lifts the step by at most `6 y / 2^31 <= 6`), a factor of at most
 /// `1 + 6 · 2^-30`. So `N·H = (a r) >> (k - 30) <= a 2^30 (1 + 6 · 2^-30) / sqrt(hh) < t`, and
-/// the power, monotonic in `x` (every rounded product is), is zero.
+/// the power, monotonic in `x` (every rounded product is), is zero. (For `shininess = 1` the
+/// cut is 0, no test: `t = 2^-17` squared is below the cut's unit.)
 fn spec_cut(odd: u16, twos: u32) -> u64 {
     // power(0) = 0 and power(1) = 1 for a positive exponent: bisect for the least x.
     let (mut lo, mut hi) = (0u32, ONE30);
@@ -1503,6 +1504,48 @@ mod tests {
             }
         }
         assert!(checked > 100_000, "{checked}");
+    }
+
+    /// [`spec_cut`]'s test passes only highlights whose power is zero: at the largest `a` it
+    /// passes for a given `|h|²`, over `|h|²` from tiny to the largest the plan forms, the
+    /// power of `N·H` as the plan computes it is zero; and a few percent above, it is not.
+    #[test]
+    fn spec_cut_passes_only_zero_highlights() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        for shininess in [1u16, 2, 3, 5, 7, 8, 16, 17, 24, 64, 100, 255, 1024, 40_000] {
+            let twos = shininess.trailing_zeros().min(15);
+            let odd = shininess >> twos;
+            let cut = spec_cut(odd, twos);
+            // x^1 is zero only below 2^-17, whose square the cut's 2.30 does not hold: no test.
+            if cut == 0 {
+                assert_eq!(shininess, 1);
+                continue;
+            }
+            let mut above = 0;
+            for i in 0..20_000u64 {
+                // |h|² in 4.60: at most (2 (1 + 2^-15))² 2^60, and tiny where L and V nearly
+                // cancel.
+                let hh = match i {
+                    0..64 => (1 << 62) + (1 << 49) - i,
+                    64..1000 => next(&mut x) >> (2 + next(&mut x) % 60),
+                    _ => (1 << 56) + next(&mut x) % ((1 << 62) - (1 << 56)),
+                }
+                .max(1);
+                let bound = cut * (hh >> 30);
+                if bound == 0 {
+                    continue;
+                }
+                // The largest a with a² < bound.
+                let a = isqrt_u64(bound - 1);
+                assert!(a * a < bound);
+                let (r, k) = rsqrt_fast(hh);
+                let nh = |a: u64| ((a * r) >> (k - 30)).min(u64::from(ONE30)) as u32;
+                assert_eq!(plan_power(nh(a), odd, twos), 0, "{shininess} {hh} {a}");
+                above += u32::from(plan_power(nh(a + (a >> 5) + 1), odd, twos) != 0);
+            }
+            // The test is tight: 3 % more than its largest a makes a highlight almost always.
+            assert!(above > 18_000, "{shininess}: {above}");
+        }
     }
 
     /// The plan's shortcuts change no bit of its sums: against the reference over random
