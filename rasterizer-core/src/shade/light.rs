@@ -1129,8 +1129,9 @@ impl PowerTable {
         let i = (pos >> POWER_FRAC) as usize;
         let f = pos & ((1 << POWER_FRAC) - 1);
         let (a, b) = (u32::from(self.entries[i]), u32::from(self.entries[i + 1]));
-        // The entries increase; both factors below 2^16.
-        a + ((b.saturating_sub(a) * f) >> POWER_FRAC)
+        // The entries do not decrease (the rounded power is monotonic in x), so b - a does not
+        // wrap; both factors below 2^16.
+        a + (((b - a) * f) >> POWER_FRAC)
     }
 }
 
@@ -1545,6 +1546,23 @@ mod tests {
             }
             // The test is tight: 3 % more than its largest a makes a highlight almost always.
             assert!(above > 18_000, "{shininess}: {above}");
+        }
+    }
+
+    /// A [`PowerTable`]'s entries never decrease (its interpolation subtracts neighbours
+    /// without a saturating step), and its power stays within its entries' range.
+    #[test]
+    fn power_table_entries_never_decrease() {
+        let mut table = PowerTable::none();
+        for shininess in [1u16, 2, 3, 7, 16, 33, 64, 128, 1000, u16::MAX] {
+            table.make(shininess);
+            assert!(
+                table.entries.windows(2).all(|e| e[0] <= e[1]),
+                "{shininess}"
+            );
+            for x in (0..=ONE30).step_by(4099) {
+                assert!(table.power(x) <= u32::from(u16::MAX));
+            }
         }
     }
 
