@@ -583,7 +583,8 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
 /// [`Lighting::shade_sums`]: the normal's length is applied to the cosines instead of to its
 /// components, Blinn-Phong's `N·H` comes from the cosines as `(N·L + N·V) / sqrt(2 + 2 L·V)`
 /// (no half vector is built), and the colour products are scaled once to the caller's unit so
-/// that a channel is a multiply-add and a shift.
+/// that a channel is a multiply-add and a shift. A highlight that one product proves zero (its
+/// `N·H` below the least argument whose power is not zero, [`spec_cut`]) takes no root or power.
 ///
 /// Its results differ from [`Lighting::shade_sums`]' only by rounding (the cosines are rounded
 /// at other points, within a few `2^-30`): see [`Lighting::directional_plan`].
