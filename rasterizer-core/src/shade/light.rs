@@ -212,6 +212,9 @@ pub struct Lighting<S, const N: usize> {
     terms: Vec<LightTerms, N>,
     /// `Ma La` per channel, in the units of the sums.
     ambient_sum: [u64; 3],
+    /// [`spec_cut`] for the material's shininess (0 for none), made when the material is set
+    /// rather than with every plan, as a draw makes one or two.
+    spec_cut: u64,
 }
 
 /// A light's terms that do not depend on the point lit: a directional light's unit direction in
@@ -270,8 +273,10 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             eye,
             terms: Vec::new(),
             ambient_sum: [0; 3],
+            spec_cut: 0,
         };
         out.prepare();
+        out.spec_cut = material_cut(&material);
         out
     }
 
@@ -349,6 +354,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
     pub fn set_material(&mut self, material: Material) {
         self.material = material;
         self.prepare();
+        self.spec_cut = material_cut(&material);
     }
 
     /// The same lighting with its lights and eye carried into the space of a model whose matrix
@@ -409,6 +415,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             eye: back(self.eye),
             terms: Vec::new(),
             ambient_sum: [0; 3],
+            spec_cut: self.spec_cut,
         };
         out.prepare();
         Some(out)
@@ -687,7 +694,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             spec_one: any && shininess == 0,
             odd,
             twos,
-            spec_cut: if specular { spec_cut(odd, twos) } else { 0 },
+            spec_cut: if specular { self.spec_cut } else { 0 },
         })
     }
 }
@@ -927,6 +934,14 @@ fn plan_power(x: u32, odd: u16, twos: u32) -> u32 {
     to_q16(p as u32)
 }
 
+/// [`spec_cut`] of a material's shininess (`odd 2^twos` as [`Lighting::directional_plan`]
+/// splits it).
+fn material_cut(material: &Material) -> u64 {
+    let s = material.shininess;
+    let twos = s.trailing_zeros().min(15);
+    spec_cut(s >> twos, twos)
+}
+
 /// The cut of a [`DirectionalPlan`]'s zero test of the highlight: with `t` the least `x` whose
 /// [`plan_power`] is not zero, at most `t² (1 - 2^-24) / 2^30`.
 ///
@@ -939,6 +954,10 @@ fn plan_power(x: u32, odd: u16, twos: u32) -> u32 {
 /// the power, monotonic in `x` (every rounded product is), is zero. (For `shininess = 1` the
 /// cut is 0, no test: `t = 2^-17` squared is below the cut's unit.)
 fn spec_cut(odd: u16, twos: u32) -> u64 {
+    // A caller's exponent is positive; 0 would have no zero highlights to find.
+    if odd == 0 {
+        return 0;
+    }
     // power(0) = 0 and power(1) = 1 for a positive exponent: bisect for the least x.
     let (mut lo, mut hi) = (0u32, ONE30);
     while hi - lo > 1 {
