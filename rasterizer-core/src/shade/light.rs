@@ -772,8 +772,9 @@ impl<const N: usize> DirectionalPlan<N> {
                 let a = nl + nv;
                 // Components below 2^31: each square below 2^62.
                 let hh = sq(h[0]) + sq(h[1]) + sq(h[2]);
-                // |a| < 2^32 (each cosine within (1 + 2^-16) 2^30), so a² fits; the cut is
-                // below 2^30 and hh >> 30 below 2^34, the product below 2^64.
+                // |a| <= 2^31 (1 + 2^-15) (each cosine within (1 + 2^-16) 2^30), so a² fits
+                // an i64; the cut is at most 2^30 and hh >> 30 below 2^34, their product
+                // below 2^64.
                 if a <= 0 || hh == 0 || sq(a) < self.spec_cut * (hh >> 30) {
                     0
                 } else {
