@@ -566,8 +566,7 @@ fn shade_vertex<S: Scalar, Sh: Shading<S>, M: MeshSource<S>>(
     i: usize,
     normal: Option<Vec3<S>>,
 ) -> Sh::Stored {
-    use crate::shade::Stored;
-    Sh::Stored::pack(&shading.vertex(&space.vertex_in_with::<Sh, M>(mesh, i, normal)))
+    shading.vertex_stored(&space.vertex_in_with::<Sh, M>(mesh, i, normal))
 }
 
 /// [`shade_vertex`], or for a shader whose values depend on the vertex's clip-space `w`

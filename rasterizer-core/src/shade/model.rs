@@ -125,6 +125,13 @@ pub trait Shading<S: Scalar> {
     const NEEDS_W: bool = false;
     /// Per vertex: the values to interpolate.
     fn vertex(&mut self, v: &VertexIn<S>) -> Self::Varyings;
+    /// Per vertex: the values as the vertex scratch keeps them, always
+    /// `Stored::pack(&self.vertex(v))`. A shader whose values are known to lie in the packed
+    /// range overrides it to skip the packing's clamps.
+    #[inline(always)]
+    fn vertex_stored(&mut self, v: &VertexIn<S>) -> Self::Stored {
+        Self::Stored::pack(&self.vertex(v))
+    }
     /// With [`Shading::NEEDS_W`], per vertex after [`Shading::vertex`] and again for every vertex
     /// the clipper makes (whose other values are interpolated in clip space): sets what depends
     /// on the vertex's clip-space `w` (`w > 0`), such as `1 / w` for perspective-correct values.
@@ -481,10 +488,30 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
                 return s.map(|s| (s >> PLAN_BITS) as i32);
             }
         }
+        self.vertex_general(v)
+    }
+    #[inline(always)]
+    fn vertex_stored(&mut self, v: &VertexIn<S>) -> [u16; 3] {
+        if let Some(plan) = &self.plan {
+            if let Some(s) = plan.sums(v.position, v.normal) {
+                // A sum is at most its full value, `max 2^frac` plus the bias (below
+                // `2^(frac - 1)` after the shift), which `channel_frac` keeps below 65,408:
+                // within the packed range, so the packing's clamps would change nothing.
+                return s.map(|s| (s >> PLAN_BITS) as u16);
+            }
+        }
+        <[u16; 3] as Stored<[i32; 3]>>::pack(&self.vertex_general(v))
+    }
+    channel_pixels!();
+}
+
+impl<S: Scalar, C: ShadeColor, const N: usize> GouraudLit<S, C, N> {
+    /// A vertex's values where the directional plan does not apply.
+    #[inline(always)]
+    fn vertex_general(&self, v: &VertexIn<S>) -> [i32; 3] {
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
         target_channels::<C>(lighting.shade_sums(v.position, v.normal), 255 << 16)
     }
-    channel_pixels!();
 }
 
 /// Lit per pixel: the normal and the world position are interpolated (in 16.16) and lit at every
