@@ -28,6 +28,7 @@ use crate::raster::triangle::setup::row_order;
 use crate::raster::triangle::setup::{
     may_cover_a_centre, rows_in_clip, walk_spans_once, Sorted, SpanSink,
 };
+use crate::raster::triangle::small::{Edge, SMALL_PIXELS};
 use crate::surface::{BlendError, DepthSpan, Surface};
 use crate::surface::{DepthTriangle, Storage};
 use crate::wide::Reciprocal;
@@ -698,10 +699,11 @@ where
 }
 
 /// A triangle the lean path of [`DepthTriangle::by_words`] takes: its columns inside the clip
-/// area (no span needs clamping), its edges narrow and its top vertex's pixel inside the
-/// viewport ([`Shape::plane`]'s narrow set-up), on a framebuffer of one word a pixel whose rows
-/// the depth buffer shares. Its planes and walks come from the same formulas as the general
-/// path's, so its pixels are the same to the bit.
+/// area (no span needs clamping), at most [`SMALL_PIXELS`] pixels each way (its edge walks set
+/// up in `i32`, [`Edge`], and its edges narrow) and its top vertex's pixel inside the viewport
+/// ([`Shape::plane`]'s narrow set-up), on a framebuffer of one word a pixel whose rows the depth
+/// buffer shares. Its planes and walks come from the same formulas as the general path's, so its
+/// pixels are the same to the bit.
 struct Lean<const BITS: u32> {
     /// The sorted vertices and their permutation.
     v: [(i64, i64); 3],
@@ -732,8 +734,17 @@ impl<const BITS: u32> Lean<BITS> {
         let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
         // The clip area lies inside a framebuffer (below 2^15 pixels): columns inside it are
         // inside the guard band; the rows are checked here (v0 is the highest, v2 the lowest).
+        // Small: every edge walk is then set up in `i32` ([`Edge`]), and the edges are narrow
+        // (`2^(6 + BITS) <= 2^(27 - BITS)`).
+        let small = SMALL_PIXELS << BITS;
         let band = i64::from(crate::geom::GUARD_BAND_PIXELS) << BITS;
-        if xmin < clip.x0 * s || xmax > clip.x1 * s || v0.1 < -band || v2.1 > band {
+        if xmin < clip.x0 * s
+            || xmax > clip.x1 * s
+            || v0.1 < -band
+            || v2.1 > band
+            || xmax - xmin > small
+            || v2.1 - v0.1 > small
+        {
             return None;
         }
         let cross = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
@@ -745,7 +756,7 @@ impl<const BITS: u32> Lean<BITS> {
         let e2 = (sign * (v2.0 - v0.0), sign * (v2.1 - v0.1));
         let own = (v0.0 >> BITS, v0.1 >> BITS);
         let own_inside = own.0 >= area.x0 && own.0 < area.x1 && own.1 >= area.y0 && own.1 < area.y1;
-        if cross == 0 || top >= bottom || !own_inside || !narrow_edges::<BITS>(e1, e2) {
+        if cross == 0 || top >= bottom || !own_inside {
             return None;
         }
         Some(Self {
@@ -811,11 +822,18 @@ impl<const BITS: u32> Lean<BITS> {
             shape.plane::<BITS>([f(o0), f(o1), f(o2)], Z_FRAC, zoffset)
         };
         let (top, mid, bottom) = self.rows;
-        let long = edge_walk(v0, v2, s, top);
+        // The walks in `i32`, relative to the corner of the pixel at or left of the leftmost
+        // vertex in the first row: within `SMALL_PIXELS + 1` pixels of every vertex.
+        let ox = v0.0.min(v1.0).min(v2.0) >> BITS;
+        let (x0, y0) = (ox << BITS, top << BITS);
+        let [a, b, c] = self.v.map(|(x, y)| ((x - x0) as i32, (y - y0) as i32));
+        let (si, oxi) = (s as i32, ox as i32);
+        let long = Edge::new(a, c, si, si, oxi);
+        let lower_sample = 2 * (((mid - top) as i32) << BITS) + si;
         let first = if top < mid {
-            edge_walk(v0, v1, s, top)
+            Edge::new(a, b, si, si, oxi)
         } else {
-            edge_walk(v1, v2, s, mid)
+            Edge::new(b, c, si, lower_sample, oxi)
         };
         let short_is_left = self.cross < 0;
         let (mut l, mut r) = if short_is_left {
@@ -836,9 +854,12 @@ impl<const BITS: u32> Lean<BITS> {
                     let y = core::hint::black_box(row) as i32;
                     // Inside the clip area, whose rows both buffers hold: the checks never fail
                     // (the pipeline refuses a depth buffer that does not cover the viewport).
-                    let (a, b) = (off.wrapping_add(x0 as usize), off.wrapping_add(x1 as usize));
+                    let (a, b) = (
+                        off.wrapping_add(x0 as u32 as usize),
+                        off.wrapping_add(x1 as u32 as usize),
+                    );
                     if let (Some(zrow), Some(crow)) = (zbuf.get_mut(a..b), words.get_mut(a..b)) {
-                        let x = x0 as i32;
+                        let x = x0;
                         let mut acc = [0u32; MAX_VARYINGS];
                         for k in 0..n {
                             acc[k] = values[k].at(x, y);
@@ -870,7 +891,7 @@ impl<const BITS: u32> Lean<BITS> {
                 return;
             }
             // The lower short edge from the middle vertex's row on.
-            let lower = edge_walk(v1, v2, s, mid);
+            let lower = Edge::new(b, c, si, lower_sample, oxi);
             if short_is_left {
                 l = lower;
             } else {

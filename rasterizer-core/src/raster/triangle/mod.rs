@@ -12,7 +12,7 @@
 //! outside the guard band ([`crate::geom::GUARD_BAND_PIXELS`]).
 
 pub(crate) mod setup;
-mod small;
+pub(crate) mod small;
 
 use crate::color::Channels;
 use crate::geom::{PixelRect, SubPoint};

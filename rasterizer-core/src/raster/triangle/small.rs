@@ -151,7 +151,7 @@ fn rows<K: SpanSink>(
 /// The column walk of one edge, as `raster/edge.rs`'s `EdgeWalk` (whose notation this follows)
 /// but set up in `i32` and packed as `(col + 1) 2^32 + rem`, `rem` in `[-D, 0)`.
 #[derive(Debug, Clone, Copy)]
-struct Edge {
+pub(crate) struct Edge {
     packed: i64,
     step: i64,
     /// `2^32 + D`: one column back and one `D` off the remainder.
@@ -162,7 +162,7 @@ impl Edge {
     /// The walk of edge `a -> b` (local coordinates) from the row whose doubled sample is `yc2`,
     /// columns offset by `ox`.
     #[inline(always)]
-    fn new(a: (i32, i32), b: (i32, i32), s: i32, yc2: i32, ox: i32) -> Self {
+    pub(crate) fn new(a: (i32, i32), b: (i32, i32), s: i32, yc2: i32, ox: i32) -> Self {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let d = 2 * s * dy;
         let n = (yc2 - 2 * a.1) * dx + (2 * a.0 - s) * dy;
@@ -179,12 +179,12 @@ impl Edge {
     }
 
     #[inline(always)]
-    fn col(&self) -> i32 {
+    pub(crate) fn col(&self) -> i32 {
         (self.packed >> 32) as i32
     }
 
     #[inline(always)]
-    fn step(&mut self) {
+    pub(crate) fn step(&mut self) {
         self.packed = self.packed.wrapping_add(self.step);
         // The remainder's sign bit clear: it reached [0, D), so one column back.
         if self.packed & (1 << 31) == 0 {
