@@ -17,6 +17,13 @@
 //! mix of the three vertices' values; with the half-unit offset and that error bound it never
 //! leaves `0 .. 2^32` for values and depths the vertices hold in `0 ..= 2^(32 - FRAC) - 1`, so the
 //! wrapping arithmetic needs no clamp per pixel.
+//!
+//! With a depth test the triangle goes to the surface whole ([`DepthTriangle`]): a framebuffer
+//! has it write its words directly, any other surface takes its spans one call each. In a
+//! framebuffer, a small triangle inside the clip area's columns ([`Lean`]) runs a loop that keeps
+//! only what a small triangle needs (32-bit walks, one index a row for both buffers, no clamp):
+//! on a small core the set-up and the bookkeeping of rows and spans, not the pixels, are most of
+//! a mesh's time. Every path computes the same planes and walks, so all draw the same pixels.
 
 use crate::depth::DepthRows;
 use crate::depth::{Compare, DepthTest};
