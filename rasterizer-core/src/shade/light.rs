@@ -982,13 +982,15 @@ fn spec_cut(odd: u16, twos: u32) -> u64 {
 /// shift by the length; others take [`rsqrt_fast`] (within `2^-17`).
 #[inline(always)]
 fn inv_len(x: u64) -> i64 {
-    if x.wrapping_sub(1 << 58) < (1 << 61) - (1 << 58) {
-        // y0 in 2.30 within 2^-8 of the root (below 2^31), from x's interval of 2^52.
-        let y = u64::from(INV_LEN_TABLE[(x >> 52) as usize & 511]) << 15;
-        // x y0² in 2.30, about 2^30: (y0² >> 30, below 2^32) times (x >> 30, below 2^31)
-        // stays near 2^60; y0 (3 - t) below 2^63.
-        let t = (((y * y) >> 30) * (x >> 30)) >> 30;
-        ((y * ((3 << 30) - t)) >> 31) as i64
+    // x in [2^58, 2^61): its interval of 2^52 is the table's index, 64 to 511.
+    let i = x >> 52;
+    if i.wrapping_sub(64) < 512 - 64 {
+        // y0 = e 2^15 in 2.30 within 2^-8 of the root (below 2^31), e the table's entry.
+        let e = u64::from(INV_LEN_TABLE[i as usize & 511]);
+        // x y0² in 2.30, about 2^30: y0² >> 30 = e² (below 2^32) times x >> 30 (below 2^31)
+        // stays near 2^60; y0 (3 - t) / 2 = e (3 - t) / 2^16, e (3 - t) below 2^48.
+        let t = ((e * e) * (x >> 30)) >> 30;
+        ((e * ((3 << 30) - t)) >> 16) as i64
     } else {
         inv_len_far(x)
     }
