@@ -837,9 +837,7 @@ impl<const N: usize> DirectionalPlan<N> {
         // keep values from elsewhere from panicking (they give a wrong colour instead).
         let sq = |c: i64| c.wrapping_mul(c) as u64;
         let nn = sq(n[0]).wrapping_add(sq(n[1])).wrapping_add(sq(n[2]));
-        if nn == 0 {
-            return sum;
-        }
+        // 0 for a zero normal: then no light reaches the pixel.
         let rn = inv_len(nn);
         // a·b / 2^30 for 2.30 vectors, below 2^33 in magnitude for components within 2^31.
         let dot = |a: [i64; 3], b: [i64; 3]| {
@@ -863,11 +861,10 @@ impl<const N: usize> DirectionalPlan<N> {
             if self.specular && !view_made {
                 view_made = true;
                 let ww = sq(w[0]).wrapping_add(sq(w[1])).wrapping_add(sq(w[2]));
-                if ww != 0 {
-                    rv = inv_len(ww);
-                    // (n·w / |n|) / |w|, each step below 2^62.
-                    nv = (dot(n, w).wrapping_mul(rn) >> 30).wrapping_mul(rv) >> 30;
-                }
+                // 0 with the eye at the point, and then nv = 0 too.
+                rv = inv_len(ww);
+                // (n·w / |n|) / |w|, each step below 2^62.
+                nv = (dot(n, w).wrapping_mul(rn) >> 30).wrapping_mul(rv) >> 30;
             }
             let specular = if rv != 0 {
                 let a = nl.wrapping_add(nv);
@@ -974,12 +971,12 @@ fn spec_cut(odd: u16, twos: u32) -> u64 {
     (t2 >> 30).saturating_sub((t2 >> 54) + 1)
 }
 
-/// `2^30 / |v|` (1 / |v| in 2.30) for a 2.30 vector `v` with `|v|² = x` (4.60, not zero).
+/// `2^30 / |v|` (1 / |v| in 2.30) for a 2.30 vector `v` with `|v|² = x` (4.60).
 ///
 /// An interpolated unit vector is somewhat shorter than 1: for `1/2 <= |v| < sqrt(2)` the
 /// reciprocal root comes from [`INV_LEN_TABLE`] by the top bits of `x` and one Newton step
 /// (`y' = y (3 - x y²) / 2`), within `2^-17` for `|v| >= 0.7` (`2^-15` down to 1/2), with no
-/// shift by the length; others take [`rsqrt_fast`] (within `2^-17`).
+/// shift by the length; others take [`rsqrt_fast`] (within `2^-17`). 0 for `x = 0`.
 #[inline(always)]
 fn inv_len(x: u64) -> i64 {
     // x in [2^58, 2^61): its interval of 2^52 is the table's index, 64 to 511.
@@ -1001,6 +998,9 @@ fn inv_len(x: u64) -> i64 {
 #[cold]
 #[inline(never)]
 fn inv_len_far(x: u64) -> i64 {
+    if x == 0 {
+        return 0;
+    }
     // 2^30 / sqrt(x / 2^60) = r 2^(60 - k) (k is below 60 only for vectors shorter than 1/2,
     // whose inverse lengths stay below 2^61 in 2.30 down to 2^-30 long).
     let (r, k) = rsqrt_fast(x);
