@@ -829,6 +829,19 @@ impl<const N: usize> DirectionalPlan<N> {
     /// start is known to be zero before its root is taken.
     #[inline(always)]
     pub(crate) fn phong_pixel(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
+        let sum = self.phong_pixel_unclamped(v, power);
+        [
+            sum[0].min(self.full[0]),
+            sum[1].min(self.full[1]),
+            sum[2].min(self.full[2]),
+        ]
+    }
+
+    /// [`DirectionalPlan::phong_pixel`] before the clamp to full intensity, for a caller that
+    /// clamps what it keeps of the sums (below `2^49` per light and term, so the sum of a few
+    /// lights cannot wrap).
+    #[inline(always)]
+    pub(crate) fn phong_pixel_unclamped(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
         let mut sum = self.ambient;
         let n = [v[0], v[1], v[2]].map(i64::from);
         let w = [v[3], v[4], v[5]].map(i64::from);
@@ -895,11 +908,7 @@ impl<const N: usize> DirectionalPlan<N> {
                 }
             }
         }
-        [
-            sum[0].min(self.full[0]),
-            sum[1].min(self.full[1]),
-            sum[2].min(self.full[2]),
-        ]
+        sum
     }
 
     /// The shininess a [`PowerTable`] for this plan's pixels is made for (0: none is used).
