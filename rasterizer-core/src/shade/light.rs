@@ -842,7 +842,7 @@ impl<const N: usize> DirectionalPlan<N> {
     /// lights cannot wrap).
     #[inline(always)]
     pub(crate) fn phong_pixel_unclamped(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
-        let mut sum = self.ambient;
+        let mut sum = [0u64; 3];
         let n = [v[0], v[1], v[2]].map(i64::from);
         let w = [v[3], v[4], v[5]].map(i64::from);
         // Values interpolated from `phong_triangle`'s (components within 2^30) keep every
@@ -908,7 +908,7 @@ impl<const N: usize> DirectionalPlan<N> {
                 }
             }
         }
-        sum
+        [0, 1, 2].map(|c| sum[c] + self.ambient[c])
     }
 
     /// The shininess a [`PowerTable`] for this plan's pixels is made for (0: none is used).
