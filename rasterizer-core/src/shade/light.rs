@@ -1035,7 +1035,7 @@ fn inv_len4(h: i64) -> i64 {
 /// from the eye), where [`inv_len`] takes its table.
 pub(crate) fn phong_triangle(v: &mut [[i32; 6]; 3]) {
     // i32 components: each square at most 2^62, the sum below 2^64.
-    let sq = |c: i32| i64::from(c).unsigned_abs().pow(2);
+    let sq = |c: i32| (i64::from(c) * i64::from(c)) as u64;
     let len = v.map(|x| sq(x[3]) + sq(x[4]) + sq(x[5]));
     let big = len[0].max(len[1]).max(len[2]);
     if big == 0 {
