@@ -489,6 +489,29 @@ mod tests {
         assert!(worst > 0);
     }
 
+    /// `rsqrt_fast` is one Newton step, exactly as its comments define it (`y0` the table's
+    /// entry times 2^15, truncating each product), taken here in `u128`.
+    #[test]
+    fn rsqrt_fast_is_its_newton_step() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for i in 0..300_000u64 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = match i {
+                0..64 => 1 << i,
+                64..128 => u64::MAX >> (i - 64),
+                _ => (x >> (x % 64)).max(1),
+            };
+            let e = v.leading_zeros() & !1;
+            let m = u128::from(v << e);
+            let y0 = u128::from(super::RSQRT9_TABLE[(m >> 55) as usize - 128]) << 15;
+            let t = ((m >> 32) * ((y0 * y0) >> 32)) >> 30;
+            let y1 = (y0 * ((3 << 30) - t)) >> 31;
+            assert_eq!(super::rsqrt_fast(v), (y1 as u64, 62 - e / 2), "{v}");
+        }
+    }
+
     #[test]
     fn rsqrt_is_close() {
         // r ≈ 2^k / sqrt(v) within a few units of r's last bit: r² v within 8 parts in 2^30 of

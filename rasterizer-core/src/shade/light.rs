@@ -1581,6 +1581,42 @@ mod tests {
         }
     }
 
+    /// `inv_len` is one Newton step from its table in the table's range, exactly as its
+    /// comments define it (`y0` the entry times 2^15, truncating each product), taken here in
+    /// `u128`; 0 for 0; and `rsqrt_fast`'s root outside the range.
+    #[test]
+    fn inv_len_is_its_newton_step() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        for i in 0..400_000u64 {
+            let v = match i {
+                0..64 => 1 << i,
+                64..128 => (1 << 58) + (i - 64) - 32,
+                128..192 => (1 << 61) + (i - 128) - 32,
+                _ => {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    if i % 4 == 0 {
+                        x >> (x % 64)
+                    } else {
+                        (1 << 58) + x % ((1 << 61) - (1 << 58))
+                    }
+                }
+            };
+            let want = if (1 << 58..1 << 61).contains(&v) {
+                let y0 = u128::from(INV_LEN_TABLE[(v >> 52) as usize]) << 15;
+                let t = (((y0 * y0) >> 30) * u128::from(v >> 30)) >> 30;
+                ((y0 * ((3 << 30) - t)) >> 31) as i64
+            } else if v == 0 {
+                0
+            } else {
+                let (r, k) = rsqrt_fast(v);
+                shr(r as i64, k as i32 - 60)
+            };
+            assert_eq!(inv_len(v), want, "{v}");
+        }
+    }
+
     /// A [`PowerTable`]'s entries never decrease (its interpolation subtracts neighbours
     /// without a saturating step), and its power stays within its entries' range.
     #[test]
