@@ -249,11 +249,12 @@ pub(crate) fn rsqrt_fast(x: u64) -> (u64, u32) {
     // m = x 2^e in [2^62, 2^64) with e even; X = m / 2^64 in [1/4, 1).
     let e = x.leading_zeros() & !1;
     let m = x << e;
-    // y ≈ 2^30 / sqrt(X) in (2^30, 2^31), from the top nine bits of m (128 ..= 511).
-    let y = u64::from(RSQRT9_TABLE[(m >> 55) as usize - 128]) << 15;
-    // t = X y² in 2.30 (y² >> 32 below 2^30, times X 2^32 below 2^62); y (3 - t) below 2^63.
-    let t = ((m >> 32) * ((y * y) >> 32)) >> 30;
-    let y = (y * ((3 << 30) - t)) >> 31;
+    // y = r 2^15 ≈ 2^30 / sqrt(X) in (2^30, 2^31), r from the top nine bits of m (128 ..= 511).
+    let r = u64::from(RSQRT9_TABLE[(m >> 55) as usize - 128]);
+    // t = X y² in 2.30 (y² >> 32 = r² >> 2 below 2^30, times X 2^32 below 2^62); y (3 - t) / 2
+    // = r (3 - t) / 2^16, r (3 - t) below 2^48.
+    let t = ((m >> 32) * ((r * r) >> 2)) >> 30;
+    let y = (r * ((3 << 30) - t)) >> 16;
     // 1 / sqrt(x) = 2^(e/2) / (sqrt(X) 2^32) = y 2^(e/2 - 62).
     (y, 62 - e / 2)
 }
@@ -486,6 +487,29 @@ mod tests {
         }
         // Below the root somewhere by more than 2^-40: the Newton step is doing the work.
         assert!(worst > 0);
+    }
+
+    /// `rsqrt_fast` is one Newton step, exactly as its comments define it (`y0` the table's
+    /// entry times 2^15, truncating each product), taken here in `u128`.
+    #[test]
+    fn rsqrt_fast_is_its_newton_step() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for i in 0..300_000u64 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = match i {
+                0..64 => 1 << i,
+                64..128 => u64::MAX >> (i - 64),
+                _ => (x >> (x % 64)).max(1),
+            };
+            let e = v.leading_zeros() & !1;
+            let m = u128::from(v << e);
+            let y0 = u128::from(super::RSQRT9_TABLE[(m >> 55) as usize - 128]) << 15;
+            let t = ((m >> 32) * ((y0 * y0) >> 32)) >> 30;
+            let y1 = (y0 * ((3 << 30) - t)) >> 31;
+            assert_eq!(super::rsqrt_fast(v), (y1 as u64, 62 - e / 2), "{v}");
+        }
     }
 
     #[test]

@@ -829,7 +829,20 @@ impl<const N: usize> DirectionalPlan<N> {
     /// start is known to be zero before its root is taken.
     #[inline(always)]
     pub(crate) fn phong_pixel(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
-        let mut sum = self.ambient;
+        let sum = self.phong_pixel_unclamped(v, power);
+        [
+            sum[0].min(self.full[0]),
+            sum[1].min(self.full[1]),
+            sum[2].min(self.full[2]),
+        ]
+    }
+
+    /// [`DirectionalPlan::phong_pixel`] before the clamp to full intensity, for a caller that
+    /// clamps what it keeps of the sums (below `2^49` per light and term, so the sum of a few
+    /// lights cannot wrap).
+    #[inline(always)]
+    pub(crate) fn phong_pixel_unclamped(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
+        let mut sum = [0u64; 3];
         let n = [v[0], v[1], v[2]].map(i64::from);
         let w = [v[3], v[4], v[5]].map(i64::from);
         // Values interpolated from `phong_triangle`'s (components within 2^30) keep every
@@ -837,9 +850,7 @@ impl<const N: usize> DirectionalPlan<N> {
         // keep values from elsewhere from panicking (they give a wrong colour instead).
         let sq = |c: i64| c.wrapping_mul(c) as u64;
         let nn = sq(n[0]).wrapping_add(sq(n[1])).wrapping_add(sq(n[2]));
-        if nn == 0 {
-            return sum;
-        }
+        // 0 for a zero normal: then no light reaches the pixel.
         let rn = inv_len(nn);
         // a·b / 2^30 for 2.30 vectors, below 2^33 in magnitude for components within 2^31.
         let dot = |a: [i64; 3], b: [i64; 3]| {
@@ -863,11 +874,10 @@ impl<const N: usize> DirectionalPlan<N> {
             if self.specular && !view_made {
                 view_made = true;
                 let ww = sq(w[0]).wrapping_add(sq(w[1])).wrapping_add(sq(w[2]));
-                if ww != 0 {
-                    rv = inv_len(ww);
-                    // (n·w / |n|) / |w|, each step below 2^62.
-                    nv = (dot(n, w).wrapping_mul(rn) >> 30).wrapping_mul(rv) >> 30;
-                }
+                // 0 with the eye at the point, and then nv = 0 too.
+                rv = inv_len(ww);
+                // (n·w / |n|) / |w|, each step below 2^62.
+                nv = (dot(n, w).wrapping_mul(rn) >> 30).wrapping_mul(rv) >> 30;
             }
             let specular = if rv != 0 {
                 let a = nl.wrapping_add(nv);
@@ -898,11 +908,7 @@ impl<const N: usize> DirectionalPlan<N> {
                 }
             }
         }
-        [
-            sum[0].min(self.full[0]),
-            sum[1].min(self.full[1]),
-            sum[2].min(self.full[2]),
-        ]
+        [0, 1, 2].map(|c| sum[c] + self.ambient[c])
     }
 
     /// The shininess a [`PowerTable`] for this plan's pixels is made for (0: none is used).
@@ -974,21 +980,23 @@ fn spec_cut(odd: u16, twos: u32) -> u64 {
     (t2 >> 30).saturating_sub((t2 >> 54) + 1)
 }
 
-/// `2^30 / |v|` (1 / |v| in 2.30) for a 2.30 vector `v` with `|v|² = x` (4.60, not zero).
+/// `2^30 / |v|` (1 / |v| in 2.30) for a 2.30 vector `v` with `|v|² = x` (4.60).
 ///
 /// An interpolated unit vector is somewhat shorter than 1: for `1/2 <= |v| < sqrt(2)` the
 /// reciprocal root comes from [`INV_LEN_TABLE`] by the top bits of `x` and one Newton step
 /// (`y' = y (3 - x y²) / 2`), within `2^-17` for `|v| >= 0.7` (`2^-15` down to 1/2), with no
-/// shift by the length; others take [`rsqrt_fast`] (within `2^-17`).
+/// shift by the length; others take [`rsqrt_fast`] (within `2^-17`). 0 for `x = 0`.
 #[inline(always)]
 fn inv_len(x: u64) -> i64 {
-    if x.wrapping_sub(1 << 58) < (1 << 61) - (1 << 58) {
-        // y0 in 2.30 within 2^-8 of the root (below 2^31), from x's interval of 2^52.
-        let y = u64::from(INV_LEN_TABLE[(x >> 52) as usize & 511]) << 15;
-        // x y0² in 2.30, about 2^30: (y0² >> 30, below 2^32) times (x >> 30, below 2^31)
-        // stays near 2^60; y0 (3 - t) below 2^63.
-        let t = (((y * y) >> 30) * (x >> 30)) >> 30;
-        ((y * ((3 << 30) - t)) >> 31) as i64
+    // x in [2^58, 2^61): its interval of 2^52 is the table's index, 64 to 511.
+    let i = x >> 52;
+    if i.wrapping_sub(64) < 512 - 64 {
+        // y0 = e 2^15 in 2.30 within 2^-8 of the root (below 2^31), e the table's entry.
+        let e = u64::from(INV_LEN_TABLE[i as usize & 511]);
+        // x y0² in 2.30, about 2^30: y0² >> 30 = e² (below 2^32) times x >> 30 (below 2^31)
+        // stays near 2^60; y0 (3 - t) / 2 = e (3 - t) / 2^16, e (3 - t) below 2^48.
+        let t = ((e * e) * (x >> 30)) >> 30;
+        ((e * ((3 << 30) - t)) >> 16) as i64
     } else {
         inv_len_far(x)
     }
@@ -999,6 +1007,9 @@ fn inv_len(x: u64) -> i64 {
 #[cold]
 #[inline(never)]
 fn inv_len_far(x: u64) -> i64 {
+    if x == 0 {
+        return 0;
+    }
     // 2^30 / sqrt(x / 2^60) = r 2^(60 - k) (k is below 60 only for vectors shorter than 1/2,
     // whose inverse lengths stay below 2^61 in 2.30 down to 2^-30 long).
     let (r, k) = rsqrt_fast(x);
@@ -1024,7 +1035,7 @@ fn inv_len4(h: i64) -> i64 {
 /// from the eye), where [`inv_len`] takes its table.
 pub(crate) fn phong_triangle(v: &mut [[i32; 6]; 3]) {
     // i32 components: each square at most 2^62, the sum below 2^64.
-    let sq = |c: i32| i64::from(c).unsigned_abs().pow(2);
+    let sq = |c: i32| (i64::from(c) * i64::from(c)) as u64;
     let len = v.map(|x| sq(x[3]) + sq(x[4]) + sq(x[5]));
     let big = len[0].max(len[1]).max(len[2]);
     if big == 0 {
@@ -1567,6 +1578,42 @@ mod tests {
             }
             // The test is tight: 3 % more than its largest a makes a highlight almost always.
             assert!(above > 18_000, "{shininess}: {above}");
+        }
+    }
+
+    /// `inv_len` is one Newton step from its table in the table's range, exactly as its
+    /// comments define it (`y0` the entry times 2^15, truncating each product), taken here in
+    /// `u128`; 0 for 0; and `rsqrt_fast`'s root outside the range.
+    #[test]
+    fn inv_len_is_its_newton_step() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        for i in 0..400_000u64 {
+            let v = match i {
+                0..64 => 1 << i,
+                64..128 => (1 << 58) + (i - 64) - 32,
+                128..192 => (1 << 61) + (i - 128) - 32,
+                _ => {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    if i % 4 == 0 {
+                        x >> (x % 64)
+                    } else {
+                        (1 << 58) + x % ((1 << 61) - (1 << 58))
+                    }
+                }
+            };
+            let want = if (1 << 58..1 << 61).contains(&v) {
+                let y0 = u128::from(INV_LEN_TABLE[(v >> 52) as usize]) << 15;
+                let t = (((y0 * y0) >> 30) * u128::from(v >> 30)) >> 30;
+                ((y0 * ((3 << 30) - t)) >> 31) as i64
+            } else if v == 0 {
+                0
+            } else {
+                let (r, k) = rsqrt_fast(v);
+                shr(r as i64, k as i32 - 60)
+            };
+            assert_eq!(inv_len(v), want, "{v}");
         }
     }
 

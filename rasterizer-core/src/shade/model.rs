@@ -604,8 +604,10 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
     #[inline(always)]
     fn pixel(&self, v: &[i32; 6]) -> C {
         if let Some(plan) = &self.target {
-            let s = plan.phong_pixel(v, &self.power);
-            let ch = |c: usize| (s[c] >> PLAN_BITS) as u8;
+            let s = plan.phong_pixel_unclamped(v, &self.power);
+            // The plan's full intensity is `MAX << PLAN_BITS` plus a bias below `2^PLAN_BITS`,
+            // so clamping after the shift (which keeps the order) clamps to `MAX`: the same.
+            let ch = |c: usize| ((s[c] >> PLAN_BITS) as u32).min(u32::from(C::MAX[c])) as u8;
             return C::from_shade([ch(0), ch(1), ch(2)]);
         }
         from_sums(phong_sums(self, v))
