@@ -142,6 +142,36 @@ pub trait Surface: DrawTarget {
         self.fill_span_in_clip(x, y, len, color)
     }
 
+    /// Fills one span a row of one colour on the rows `rows` (at least one), top to bottom,
+    /// each span mostly a few pixels long (a small triangle's): `first` is the first row's
+    /// columns `x + a .. x + b` (`a` never negative, none when `a >= b`), and `next`, called
+    /// once for each further row, moves on a row and gives its columns. Every span lies inside
+    /// [`Surface::clip_area`]. A target may step its address from row to row; the default
+    /// fills each span through [`Surface::fill_short_span_in_clip`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn fill_short_rows_in_clip<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        color: Self::Color,
+        first: (i32, i32),
+        mut next: F,
+    ) -> Result<(), Self::Error> {
+        let (mut a, mut b) = first;
+        for y in rows.clone() {
+            if y > rows.start {
+                (a, b) = next();
+            }
+            if a < b {
+                self.fill_short_span_in_clip(x + a, y, (b - a) as u32, color)?;
+            }
+        }
+        Ok(())
+    }
+
     /// [`Surface::shade_span`] for a span known to lie inside [`Surface::clip_area`].
     ///
     /// # Panics
@@ -415,6 +445,19 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
         color: Self::Color,
     ) -> Result<(), Self::Error> {
         self.inner.fill_span_in_clip(x, y, len, color)
+    }
+
+    #[inline(always)]
+    fn fill_short_rows_in_clip<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        color: Self::Color,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), Self::Error> {
+        self.inner
+            .fill_short_rows_in_clip(x, rows, color, first, next)
     }
 
     #[inline(always)]

@@ -22,7 +22,7 @@ use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
 use setup::{tall_walks, walk_spans, walk_tall, Sorted, SpanSink, TallWalks};
-use small::Small;
+use small::{RowSink, Small};
 
 /// Fills a triangle in one colour.
 ///
@@ -46,7 +46,7 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
     if let Some(small) = Small::new(&vertices, &clip) {
         return small.walk::<_, BITS>(&mut FlatShort { surface, color });
     }
-    fill_large(surface, &vertices, &clip, color)
+    fill_large(surface, &vertices, color)
 }
 
 /// [`fill_triangle`] for a triangle the `i32` set-up does not take: out of line, so that its
@@ -55,12 +55,13 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
 fn fill_large<S: Surface, const BITS: u32>(
     surface: &mut S,
     vertices: &[SubPoint<BITS>; 3],
-    clip: &PixelRect,
     color: S::Color,
 ) -> Result<(), S::Error> {
     let Some(t) = Sorted::new(vertices) else {
         return Ok(());
     };
+    // Found again rather than passed: the small triangles' path then builds none in memory.
+    let clip = &PixelRect::from_rectangle(&surface.clip_area());
     let s = 1 << BITS;
     // A tall triangle's spans are mostly long, the others' (a short triangle that crosses the
     // clip area's edge, mostly) short: each gets the fill that tests its common case first.
@@ -94,6 +95,21 @@ impl<S: Surface> SpanSink for FlatShort<'_, S> {
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         self.surface
             .fill_short_span_in_clip(x0, row, (x1 - x0) as u32, self.color)
+    }
+}
+
+impl<S: Surface> RowSink for FlatShort<'_, S> {
+    type Error = S::Error;
+    #[inline(always)]
+    fn rows<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), S::Error> {
+        self.surface
+            .fill_short_rows_in_clip(x, rows, self.color, first, next)
     }
 }
 
