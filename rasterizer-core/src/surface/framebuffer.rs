@@ -175,6 +175,35 @@ pub trait Storage: Channels {
             }
         }
     }
+    /// [`Storage::fill_short_rows`] with each span's colours from a shader, as
+    /// [`Surface::shade_short_rows_in_clip`].
+    #[inline(always)]
+    fn shade_short_rows<F, G, P>(
+        buf: &mut [Self::Word],
+        stride: usize,
+        x: usize,
+        (y, rows): (usize, usize),
+        (mut a, mut b): (i32, i32),
+        mut next: F,
+        mut span: G,
+    ) where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self,
+    {
+        for i in 0..rows {
+            if i > 0 {
+                (a, b) = next();
+            }
+            if a < b {
+                let (row, x0) = ((y + i) as i32, (x as i32).wrapping_add(a));
+                let start = (y + i) * stride;
+                let (a, b) = (a as usize, b as usize);
+                Self::shade(&mut buf[start..start + stride], x + a, b - a, span(row, x0));
+            }
+        }
+    }
+
     /// Blends `color` with opacity `alpha` over pixels `x .. x + len` of a row
     /// ([`crate::color::blend`]).
     #[inline]
@@ -459,6 +488,52 @@ impl Storage for Rgb565 {
             (a, b) = next();
         }
     }
+    #[inline(always)]
+    fn shade_short_rows<F, G, P>(
+        buf: &mut [u16],
+        stride: usize,
+        x: usize,
+        (y, rows): (usize, usize),
+        (mut a, mut b): (i32, i32),
+        mut next: F,
+        mut span: G,
+    ) where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self,
+    {
+        // As `fill_short_rows`.
+        let mut at = (y as u32)
+            .wrapping_mul(stride as u32)
+            .wrapping_add(x as u32);
+        let mut row = y as i32;
+        let mut left = rows;
+        // The pixel loop steps by a one the compiler cannot see: it would otherwise vectorise
+        // it, and the vector loop's constants, set up before the rows, cost a short span's
+        // triangle more than the vector loop saves.
+        let one = core::hint::black_box(1usize);
+        loop {
+            if a < b {
+                let start = at.wrapping_add(a as u32) as usize;
+                let len = b.wrapping_sub(a) as u32 as usize;
+                let mut shade = span(row, (x as i32).wrapping_add(a));
+                let span = &mut buf[start..start + len];
+                let mut i = 0;
+                while i < span.len() {
+                    span[i] = RawU16::from(shade()).into_inner();
+                    i += one;
+                }
+            }
+            left -= 1;
+            if left == 0 {
+                break;
+            }
+            at = at.wrapping_add(stride as u32);
+            row = row.wrapping_add(1);
+            (a, b) = next();
+        }
+    }
+
     #[inline(always)]
     fn shade<F: FnMut() -> Self>(row: &mut [u16], x: usize, len: usize, mut shade: F) {
         for w in &mut row[x..x + len] {
@@ -927,6 +1002,33 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     }
 
     #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+        span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> C,
+    {
+        let n = rows.end.saturating_sub(rows.start).max(1) as usize;
+        C::shade_short_rows(
+            self.buf,
+            self.stride,
+            x as usize,
+            (rows.start as usize, n),
+            first,
+            next,
+            span,
+        );
+        Ok(())
+    }
+
+    #[inline(always)]
     fn shade_span_in_clip<F: FnMut() -> C>(
         &mut self,
         x: i32,
@@ -1124,6 +1226,27 @@ impl<C: Storage> Surface for Band<'_, C> {
     ) -> Result<(), Self::Error> {
         let rows = rows.start - self.y0..rows.end - self.y0;
         self.fb.fill_short_rows_in_clip(x, rows, color, first, next)
+    }
+
+    #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+        mut span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> C,
+    {
+        // The shader sees screen rows, the band's buffer its own.
+        let y0 = self.y0;
+        let band = rows.start - y0..rows.end - y0;
+        self.fb
+            .shade_short_rows_in_clip(x, band, first, next, |y, x0| span(y + y0, x0))
     }
 
     #[inline(always)]

@@ -172,6 +172,39 @@ pub trait Surface: DrawTarget {
         Ok(())
     }
 
+    /// [`Surface::fill_short_rows_in_clip`] with each span's colours from a shader: `span` is
+    /// called for each non-empty span with its row and first column and returns what
+    /// [`Surface::shade_span_in_clip`] takes, the colours of its pixels left to right.
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        mut next: F,
+        mut span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self::Color,
+    {
+        let (mut a, mut b) = first;
+        for y in rows.clone() {
+            if y > rows.start {
+                (a, b) = next();
+            }
+            if a < b {
+                let shade = span(y, x + a);
+                self.shade_span_in_clip(x + a, y, (b - a) as u32, shade)?;
+            }
+        }
+        Ok(())
+    }
+
     /// [`Surface::shade_span`] for a span known to lie inside [`Surface::clip_area`].
     ///
     /// # Panics
@@ -458,6 +491,24 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
     ) -> Result<(), Self::Error> {
         self.inner
             .fill_short_rows_in_clip(x, rows, color, first, next)
+    }
+
+    #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+        span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self::Color,
+    {
+        self.inner
+            .shade_short_rows_in_clip(x, rows, first, next, span)
     }
 
     #[inline(always)]

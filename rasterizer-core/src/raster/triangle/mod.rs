@@ -202,6 +202,45 @@ where
     S: Surface,
     S::Color: Channels,
 {
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    // The planes start from v0 of `Sorted`'s order (ties broken by x), so the small set-up
+    // takes that order too.
+    let order = setup::row_order(&vertices);
+    let p = order.map(|i| (vertices[i].x, vertices[i].y));
+    if let Some(small) = Small::sorted::<BITS>(p, &clip) {
+        let v = small.vertices().map(|(x, y)| (i64::from(x), i64::from(y)));
+        let cross = i64::from(small.cross());
+        let t = Sorted { v, order, cross };
+        if cross == 0 {
+            return Ok(());
+        }
+        let s: i64 = 1 << BITS;
+        let c = t.order.map(|i| colors[i].to_channels());
+        let (xs, ys) = (v.map(|p| p.0), v.map(|p| p.1));
+        let extent = |v: [i64; 3]| {
+            let (lo, hi) = (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]));
+            2 * (hi - lo).unsigned_abs() + 2 * s as u64
+        };
+        let (ex, ey) = (extent(xs), extent(ys));
+        if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), cross.signum()) {
+            return small.walk::<_, BITS>(&mut p);
+        }
+    }
+    fill_gouraud_large(surface, vertices, colors)
+}
+
+/// [`fill_triangle_gouraud`] for a triangle the small set-up does not take: out of line, so that
+/// the small triangles' code stays as it is.
+#[inline(never)]
+fn fill_gouraud_large<S, const BITS: u32>(
+    surface: &mut S,
+    vertices: [SubPoint<BITS>; 3],
+    colors: [S::Color; 3],
+) -> Result<(), S::Error>
+where
+    S: Surface,
+    S::Color: Channels,
+{
     let Some(t) = Sorted::new(&vertices) else {
         return Ok(());
     };
@@ -216,15 +255,31 @@ where
         2 * (hi - lo).unsigned_abs() + 2 * s as u64
     };
     let (ex, ey) = (extent(xs), extent(ys));
+    if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), t.cross.signum()) {
+        let clip = PixelRect::from_rectangle(&p.surface.clip_area());
+        return walk_spans(&t, s, &clip, &mut p);
+    }
+    fill_gouraud_exact(surface, &t, &c, s, (ex, ey))
+}
+
+/// [`fill_triangle_gouraud`] for a triangle too large for the planes: each span's start exact.
+#[inline(always)]
+fn fill_gouraud_exact<S: Surface>(
+    surface: &mut S,
+    t: &Sorted,
+    c: &[[u8; 4]; 3],
+    s: i64,
+    (ex, ey): (u64, u64),
+) -> Result<(), S::Error>
+where
+    S::Color: Channels,
+{
+    let [v0, v1, v2] = t.v;
     // Bounds, with M = 2^(21 + BITS) <= 2^29 the guard band in raw units: vertex differences
     // <= 2M = 2^30, so den = |cross| <= 2^60 (the doubled area of a triangle inside a square of
     // side 2M) and 2 den <= 2^61.
     let den = t.cross.unsigned_abs();
     let sign = t.cross.signum();
-    if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), sign) {
-        let clip = PixelRect::from_rectangle(&p.surface.clip_area());
-        return walk_spans(&t, s, &clip, &mut p);
-    }
     let mut g = Gouraud {
         surface,
         s,
@@ -272,7 +327,7 @@ where
         g.base = c[0].map(i64::from);
     }
     let clip = PixelRect::from_rectangle(&g.surface.clip_area());
-    walk_spans(&t, s, &clip, &mut g)
+    walk_spans(t, s, &clip, &mut g)
 }
 
 /// Gouraud spans from colour planes set up once per triangle: each channel's value at a pixel
@@ -299,6 +354,7 @@ impl<'a, S: Surface> Planes<'a, S>
 where
     S::Color: Channels,
 {
+    #[inline(always)]
     fn new(
         surface: &'a mut S,
         t: &Sorted,
@@ -404,6 +460,52 @@ where
             acc[i] = (v >> 16) as i32;
         }
         shade_stepped(self.surface, row, x0, x1, acc, self.step)
+    }
+}
+
+impl<S: Surface> RowSink for Planes<'_, S>
+where
+    S::Color: Channels,
+{
+    type Error = S::Error;
+
+    #[inline(always)]
+    fn rows<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), S::Error> {
+        let (base, gx, gy, step) = (self.base, self.gx, self.gy, self.step);
+        let start = move |i: usize, x: i64, y: i64| {
+            let v = base[i]
+                .wrapping_add(gx[i].wrapping_mul(x))
+                .wrapping_add(gy[i].wrapping_mul(y));
+            (v >> 16) as i32
+        };
+        // The first and third channels share one `i64`, `c0 2^32 + c2`: one add a pixel for
+        // both, exactly, as the third stays in `0 .. 2^32` over a span (in the colour range but
+        // for the stepping error, plus the half), and its step, saturated only where a span
+        // has one pixel, is added after that pixel. It also keeps the compiler from pairing
+        // the channels in a vector register, whose 64-bit products cost more than scalar
+        // ones. A channel the colour lacks is zero and its work is dropped.
+        let pair = |hi: i32, lo: i32| (i64::from(hi) << 32).wrapping_add(i64::from(lo));
+        let step02 = pair(step[0], step[2]);
+        self.surface
+            .shade_short_rows_in_clip(x, rows, first, next, |row, x0| {
+                let (x, y) = (i64::from(x0), i64::from(row));
+                // As `span` above.
+                let mut a02 = pair(start(0, x, y), start(2, x, y));
+                let (mut a1, mut a3) = (start(1, x, y), start(3, x, y));
+                move || {
+                    let acc = [(a02 >> 32) as i32, a1, a02 as i32, a3];
+                    a02 = a02.wrapping_add(step02);
+                    a1 = a1.wrapping_add(step[1]);
+                    a3 = a3.wrapping_add(step[3]);
+                    S::Color::from_fixed16(&acc)
+                }
+            })
     }
 }
 

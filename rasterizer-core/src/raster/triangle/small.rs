@@ -4,6 +4,7 @@
 //! Cortex-M has an instruction for), and its rows and columns need no clamping to the clip area.
 //! It gives exactly the spans of [`super::setup::walk_spans`].
 
+#[cfg(test)]
 use super::setup::SpanSink;
 use crate::geom::{PixelRect, SubPoint, GUARD_BAND_PIXELS};
 use core::num::{NonZeroU16, NonZeroU32};
@@ -42,8 +43,6 @@ impl Small {
     /// it), so the sort needs no tie-break.
     #[inline(always)]
     pub fn new<const BITS: u32>(v: &[SubPoint<BITS>; 3], clip: &PixelRect) -> Option<Self> {
-        #[allow(clippy::let_unit_value)]
-        let () = SubPoint::<BITS>::VALID;
         let [mut a, mut b, mut c] = v.map(|q| (q.x, q.y));
         if b.1 < a.1 {
             core::mem::swap(&mut a, &mut b);
@@ -54,6 +53,15 @@ impl Small {
                 core::mem::swap(&mut a, &mut b);
             }
         }
+        Self::sorted::<BITS>([a, b, c], clip)
+    }
+
+    /// [`Small::new`] for vertices already sorted by y.
+    #[inline(always)]
+    pub fn sorted<const BITS: u32>(p: [(i32, i32); 3], clip: &PixelRect) -> Option<Self> {
+        #[allow(clippy::let_unit_value)]
+        let () = SubPoint::<BITS>::VALID;
+        let [a, b, c] = p;
         let (xmin, xmax) = (a.0.min(b.0).min(c.0), a.0.max(b.0).max(c.0));
         let (x0, x1) = (i64::from(xmin), i64::from(xmax));
         let (y0, y1) = (i64::from(a.1), i64::from(c.1));
@@ -89,6 +97,18 @@ impl Small {
             below: (ya, yb),
             cross: (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1),
         })
+    }
+
+    /// The sorted vertices, in sub-pixel units.
+    #[inline(always)]
+    pub fn vertices(&self) -> [(i32, i32); 3] {
+        self.p
+    }
+
+    /// Twice the signed area, as `Sorted::cross`.
+    #[inline(always)]
+    pub fn cross(&self) -> i32 {
+        self.cross
     }
 
     /// Hands `sink` the rows of the triangle, top to bottom, with their spans: those of
