@@ -215,13 +215,16 @@ where
             return Ok(());
         }
         let s: i64 = 1 << BITS;
-        let c = t.order.map(|i| colors[i].to_channels());
-        let (xs, ys) = (v.map(|p| p.0), v.map(|p| p.1));
-        let extent = |v: [i64; 3]| {
-            let (lo, hi) = (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]));
-            2 * (hi - lo).unsigned_abs() + 2 * s as u64
-        };
-        let (ex, ey) = (extent(xs), extent(ys));
+        // `% 3`: the order is a permutation of 0, 1, 2; the compiler then needs no bounds check.
+        let c = [
+            colors[order[0] % 3],
+            colors[order[1] % 3],
+            colors[order[2] % 3],
+        ]
+        .map(Channels::to_channels);
+        // `fill_gouraud_large`'s extents, from the small set-up's bounds.
+        let (w, h) = small.size();
+        let (ex, ey) = ((2 * w + 2 * s) as u64, (2 * h + 2 * s) as u64);
         if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), cross.signum()) {
             return small.walk::<_, BITS>(&mut p);
         }
@@ -439,6 +442,47 @@ fn step16(v: i64) -> i32 {
     ((v >> 16) + ((v >> 15) & 1)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
+impl<S: Surface> Planes<'_, S>
+where
+    S::Color: Channels,
+{
+    /// The colours of the span from pixel `(x0, row)` on, left to right.
+    ///
+    /// The first and third channels share one `i64`, `c0 2^32 + c2`: one add a pixel for both,
+    /// exactly, as the third stays in `0 .. 2^32` over a span (in the colour range but for the
+    /// stepping error, under half a step, plus the half `from_fixed16` rounds by), and its
+    /// step, saturated only where a span has one pixel, is added after that pixel. It also
+    /// keeps the compiler from pairing the channels in a vector register, whose 64-bit products
+    /// cost more than scalar ones. A channel the colour lacks is zero and its work is dropped.
+    #[inline(always)]
+    fn pixels(
+        (base, gx, gy, step): (&[i64; 4], &[i64; 4], &[i64; 4], [i32; 4]),
+        row: i32,
+        x0: i32,
+    ) -> impl FnMut() -> S::Color {
+        let (x, y) = (i64::from(x0), i64::from(row));
+        // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
+        // inside the triangle it lies within the vertex colours' range (up to 2^-17).
+        let start = |i: usize| {
+            let v = base[i]
+                .wrapping_add(gx[i].wrapping_mul(x))
+                .wrapping_add(gy[i].wrapping_mul(y));
+            (v >> 16) as i32
+        };
+        let pair = |hi: i32, lo: i32| (i64::from(hi) << 32).wrapping_add(i64::from(lo));
+        let step02 = pair(step[0], step[2]);
+        let mut a02 = pair(start(0), start(2));
+        let (mut a1, mut a3) = (start(1), start(3));
+        move || {
+            let acc = [(a02 >> 32) as i32, a1, a02 as i32, a3];
+            a02 = a02.wrapping_add(step02);
+            a1 = a1.wrapping_add(step[1]);
+            a3 = a3.wrapping_add(step[3]);
+            S::Color::from_fixed16(&acc)
+        }
+    }
+}
+
 impl<S: Surface> SpanSink for Planes<'_, S>
 where
     S::Color: Channels,
@@ -447,19 +491,9 @@ where
 
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
-        let (x, y) = (i64::from(x0), i64::from(row));
-        let mut acc = [0i32; 4];
-        // One index runs over several per-channel arrays at once.
-        #[allow(clippy::needless_range_loop)]
-        for i in 0..S::Color::COUNT {
-            // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
-            // inside the triangle it lies within the vertex colours' range (up to 2^-17).
-            let v = self.base[i]
-                .wrapping_add(self.gx[i].wrapping_mul(x))
-                .wrapping_add(self.gy[i].wrapping_mul(y));
-            acc[i] = (v >> 16) as i32;
-        }
-        shade_stepped(self.surface, row, x0, x1, acc, self.step)
+        let shade = Self::pixels((&self.base, &self.gx, &self.gy, self.step), row, x0);
+        self.surface
+            .shade_span_in_clip(x0, row, (x1 - x0) as u32, shade)
     }
 }
 
@@ -478,33 +512,9 @@ where
         next: F,
     ) -> Result<(), S::Error> {
         let (base, gx, gy, step) = (self.base, self.gx, self.gy, self.step);
-        let start = move |i: usize, x: i64, y: i64| {
-            let v = base[i]
-                .wrapping_add(gx[i].wrapping_mul(x))
-                .wrapping_add(gy[i].wrapping_mul(y));
-            (v >> 16) as i32
-        };
-        // The first and third channels share one `i64`, `c0 2^32 + c2`: one add a pixel for
-        // both, exactly, as the third stays in `0 .. 2^32` over a span (in the colour range but
-        // for the stepping error, plus the half), and its step, saturated only where a span
-        // has one pixel, is added after that pixel. It also keeps the compiler from pairing
-        // the channels in a vector register, whose 64-bit products cost more than scalar
-        // ones. A channel the colour lacks is zero and its work is dropped.
-        let pair = |hi: i32, lo: i32| (i64::from(hi) << 32).wrapping_add(i64::from(lo));
-        let step02 = pair(step[0], step[2]);
         self.surface
             .shade_short_rows_in_clip(x, rows, first, next, |row, x0| {
-                let (x, y) = (i64::from(x0), i64::from(row));
-                // As `span` above.
-                let mut a02 = pair(start(0, x, y), start(2, x, y));
-                let (mut a1, mut a3) = (start(1, x, y), start(3, x, y));
-                move || {
-                    let acc = [(a02 >> 32) as i32, a1, a02 as i32, a3];
-                    a02 = a02.wrapping_add(step02);
-                    a1 = a1.wrapping_add(step[1]);
-                    a3 = a3.wrapping_add(step[3]);
-                    S::Color::from_fixed16(&acc)
-                }
+                Self::pixels((&base, &gx, &gy, step), row, x0)
             })
     }
 }

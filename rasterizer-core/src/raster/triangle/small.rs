@@ -31,6 +31,8 @@ pub(crate) struct Small {
     bottom: i32,
     /// How far v0 and v1 lie above the samples of rows `top` and `mid`, doubled: in `[0, 2 s)`.
     below: (i32, i32),
+    /// The width and height, in sub-pixel units.
+    size: (i32, i32),
     /// Twice the signed area, as `Sorted::cross`: negative when the middle vertex lies left of
     /// the long edge.
     cross: i32,
@@ -95,6 +97,7 @@ impl Small {
             mid,
             bottom,
             below: (ya, yb),
+            size: (xmax - xmin, c.1 - a.1),
             cross: (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1),
         })
     }
@@ -103,6 +106,12 @@ impl Small {
     #[inline(always)]
     pub fn vertices(&self) -> [(i32, i32); 3] {
         self.p
+    }
+
+    /// The width and height, in sub-pixel units.
+    #[inline(always)]
+    pub fn size(&self) -> (i64, i64) {
+        (i64::from(self.size.0), i64::from(self.size.1))
     }
 
     /// Twice the signed area, as `Sorted::cross`.
