@@ -260,7 +260,10 @@ where
     let (ex, ey) = (extent(xs), extent(ys));
     if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), t.cross.signum()) {
         let clip = PixelRect::from_rectangle(&p.surface.clip_area());
-        return walk_spans(&t, s, &clip, &mut p);
+        return match setup::rows_in_clip(&t, s, &clip) {
+            Some(rows) => setup::walk_spans_once(&t, s, rows, &clip, &mut p),
+            None => Ok(()),
+        };
     }
     fill_gouraud_exact(surface, &t, &c, s, (ex, ey))
 }
@@ -330,7 +333,12 @@ where
         g.base = c[0].map(i64::from);
     }
     let clip = PixelRect::from_rectangle(&g.surface.clip_area());
-    walk_spans(t, s, &clip, &mut g)
+    // One copy of the row loop, clipped or not, for this large span code: the path of
+    // triangles of thousands of pixels, where a row's few instructions more do not count.
+    match setup::rows_in_clip(t, s, &clip) {
+        Some(rows) => setup::walk_spans_once(t, s, rows, &clip, &mut g),
+        None => Ok(()),
+    }
 }
 
 /// Gouraud spans from colour planes set up once per triangle: each channel's value at a pixel
