@@ -988,7 +988,10 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         first: (i32, i32),
         next: F,
     ) -> Result<(), Self::Error> {
-        let n = rows.end.saturating_sub(rows.start).max(1) as usize;
+        if rows.is_empty() {
+            return Ok(());
+        }
+        let n = rows.end.wrapping_sub(rows.start) as u32 as usize;
         C::fill_short_rows(
             self.buf,
             self.stride,
@@ -1015,7 +1018,10 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         G: FnMut(i32, i32) -> P,
         P: FnMut() -> C,
     {
-        let n = rows.end.saturating_sub(rows.start).max(1) as usize;
+        if rows.is_empty() {
+            return Ok(());
+        }
+        let n = rows.end.wrapping_sub(rows.start) as u32 as usize;
         C::shade_short_rows(
             self.buf,
             self.stride,

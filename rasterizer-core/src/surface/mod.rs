@@ -142,12 +142,12 @@ pub trait Surface: DrawTarget {
         self.fill_span_in_clip(x, y, len, color)
     }
 
-    /// Fills one span a row of one colour on the rows `rows` (at least one), top to bottom,
-    /// each span mostly a few pixels long (a small triangle's): `first` is the first row's
-    /// columns `x + a .. x + b` (`a` never negative, none when `a >= b`), and `next`, called
-    /// once for each further row, moves on a row and gives its columns. Every span lies inside
-    /// [`Surface::clip_area`]. A target may step its address from row to row; the default
-    /// fills each span through [`Surface::fill_short_span_in_clip`].
+    /// Fills one span a row of one colour on the rows `rows`, top to bottom, each span mostly a
+    /// few pixels long (a small triangle's): `first` is the first row's columns `x + a .. x + b`
+    /// (`a` never negative, none when `a >= b`), and `next`, called once for each further row,
+    /// moves on a row and gives its columns. Every span lies inside [`Surface::clip_area`]. A
+    /// target may step its address from row to row, as [`Framebuffer`] does; the default fills
+    /// each span through [`Surface::fill_short_span_in_clip`].
     ///
     /// # Panics
     /// As [`Surface::fill_span_in_clip`].

@@ -6,9 +6,11 @@
 //! therefore never leave a gap between them and never draw a pixel twice, and the coverage matches
 //! OpenGL's (checked against Mesa's llvmpipe in the conformance tests). Either winding is drawn.
 //!
-//! Spans are found by an exact edge walk (`raster/edge.rs`): one division per edge at set-up, then two adds
-//! and a compare per edge per row (one add for a tall flat-filled triangle, whose walk costs two
-//! divisions more an edge). Zero-area triangles draw nothing; so does a triangle with a vertex
+//! Spans are found by an exact edge walk (`raster/edge.rs`): divisions per edge at set-up, then an
+//! add, a test and a conditional subtract per edge per row (one add for a tall flat-filled
+//! triangle, whose walk costs two divisions more an edge). A small triangle inside the clip
+//! area's columns (`small.rs`, most of a 2D scene's) is set up in 32-bit integers and drawn a
+//! run of rows at a time. Zero-area triangles draw nothing; so does a triangle with a vertex
 //! outside the guard band ([`crate::geom::GUARD_BAND_PIXELS`]).
 
 pub(crate) mod setup;
