@@ -204,34 +204,51 @@ where
     S: Surface,
     S::Color: Channels,
 {
+    match fill_gouraud_small(surface, &vertices, &colors) {
+        Some(drawn) => drawn,
+        None => fill_gouraud_large(surface, vertices, colors),
+    }
+}
+
+/// [`fill_triangle_gouraud`] for a small triangle inside the clip area ([`Small`]), when the
+/// planes take it; `None` leaves it to [`fill_gouraud_large`]. Out of line in an unoptimised
+/// build, so that its locals do not sit on the stack under the large triangles' path.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn fill_gouraud_small<S, const BITS: u32>(
+    surface: &mut S,
+    vertices: &[SubPoint<BITS>; 3],
+    colors: &[S::Color; 3],
+) -> Option<Result<(), S::Error>>
+where
+    S: Surface,
+    S::Color: Channels,
+{
     let clip = PixelRect::from_rectangle(&surface.clip_area());
     // The planes start from v0 of `Sorted`'s order (ties broken by x), so the small set-up
     // takes that order too.
-    let order = setup::row_order(&vertices);
+    let order = setup::row_order(vertices);
     let p = order.map(|i| (vertices[i].x, vertices[i].y));
-    if let Some(small) = Small::sorted::<BITS>(p, &clip) {
-        let v = small.vertices().map(|(x, y)| (i64::from(x), i64::from(y)));
-        let cross = i64::from(small.cross());
-        let t = Sorted { v, order, cross };
-        if cross == 0 {
-            return Ok(());
-        }
-        let s: i64 = 1 << BITS;
-        // `% 3`: the order is a permutation of 0, 1, 2; the compiler then needs no bounds check.
-        let c = [
-            colors[order[0] % 3],
-            colors[order[1] % 3],
-            colors[order[2] % 3],
-        ]
-        .map(Channels::to_channels);
-        // `fill_gouraud_large`'s extents, from the small set-up's bounds.
-        let (w, h) = small.size();
-        let (ex, ey) = ((2 * w + 2 * s) as u64, (2 * h + 2 * s) as u64);
-        if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), cross.signum()) {
-            return small.walk::<_, BITS>(&mut p);
-        }
+    let small = Small::sorted::<BITS>(p, &clip)?;
+    let v = small.vertices().map(|(x, y)| (i64::from(x), i64::from(y)));
+    let cross = i64::from(small.cross());
+    let t = Sorted { v, order, cross };
+    if cross == 0 {
+        return Some(Ok(()));
     }
-    fill_gouraud_large(surface, vertices, colors)
+    let s: i64 = 1 << BITS;
+    // `% 3`: the order is a permutation of 0, 1, 2; the compiler then needs no bounds check.
+    let c = [
+        colors[order[0] % 3],
+        colors[order[1] % 3],
+        colors[order[2] % 3],
+    ]
+    .map(Channels::to_channels);
+    // `fill_gouraud_large`'s extents, from the small set-up's bounds.
+    let (w, h) = small.size();
+    let (ex, ey) = ((2 * w + 2 * s) as u64, (2 * h + 2 * s) as u64);
+    let mut planes = Planes::new(surface, &t, s, &c, (ex, ey), cross.signum())?;
+    Some(small.walk::<_, BITS>(&mut planes))
 }
 
 /// [`fill_triangle_gouraud`] for a triangle the small set-up does not take: out of line, so that
