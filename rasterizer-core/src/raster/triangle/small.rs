@@ -127,7 +127,9 @@ impl Small {
     /// [`super::setup::walk_spans`], with no clamping.
     #[inline(always)]
     pub fn walk<K: RowSink, const BITS: u32>(&self, sink: &mut K) -> Result<(), K::Error> {
-        if self.cross == 0 || self.top >= self.bottom {
+        // A triangle with no area but some rows (its vertices on a slanted line) needs no test:
+        // its edges are one line, whose columns are the same on every row, so no span.
+        if self.top >= self.bottom {
             return Ok(());
         }
         let [a, b, c] = self.p;
