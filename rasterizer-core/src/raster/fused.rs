@@ -829,18 +829,23 @@ impl<const BITS: u32> Lean<BITS> {
             shape.plane::<BITS>([f(o0), f(o1), f(o2)], Z_FRAC, zoffset)
         };
         let (top, mid, bottom) = self.rows;
-        // The walks in `i32`, relative to the corner of the pixel at or left of the leftmost
-        // vertex in the first row: within `SMALL_PIXELS + 1` pixels of every vertex.
+        // The walks in `i32`, columns from the leftmost vertex's pixel `ox`: each edge from its
+        // upper end, in doubled units from the centre of column `ox` (at least `-s`), and the
+        // first row's sample below that end (within the triangle's rows, at most `2 (64 + 1) s`
+        // doubled units: the walk's bounds hold, see [`Edge::new`]).
         let ox = v0.0.min(v1.0).min(v2.0) >> BITS;
-        let (x0, y0) = (ox << BITS, top << BITS);
-        let [a, b, c] = self.v.map(|(x, y)| ((x - x0) as i32, (y - y0) as i32));
-        let (si, oxi) = (s as i32, ox as i32);
-        let long = Edge::new(a, c, si, si, oxi);
-        let lower_sample = 2 * (((mid - top) as i32) << BITS) + si;
+        let cx = (2 * ox + 1) << BITS;
+        let end =
+            |p: (i64, i64), row: i64| ((2 * p.0 - cx) as i32, (2 * row * s + s - 2 * p.1) as i32);
+        let edge = |p: (i64, i64), q: (i64, i64), row: i64| {
+            let (x, y) = end(p, row);
+            Edge::new::<BITS>(x, y, (q.0 - p.0) as i32, (q.1 - p.1) as i32)
+        };
+        let long = edge(v0, v2, top);
         let first = if top < mid {
-            Edge::new(a, b, si, si, oxi)
+            edge(v0, v1, top)
         } else {
-            Edge::new(b, c, si, lower_sample, oxi)
+            edge(v1, v2, mid)
         };
         let short_is_left = self.cross < 0;
         let (mut l, mut r) = if short_is_left {
@@ -849,7 +854,9 @@ impl<const BITS: u32> Lean<BITS> {
             (long, first)
         };
         let less = compare == Compare::Less;
-        let mut off = off0;
+        // The walks' columns are from `ox` (not negative: inside the clip area).
+        let mut off = off0.wrapping_add(ox as usize);
+        let oxi = ox as i32;
         let mut row = top;
         let mut end = if top < mid { mid } else { bottom };
         loop {
@@ -866,7 +873,7 @@ impl<const BITS: u32> Lean<BITS> {
                         off.wrapping_add(x1 as u32 as usize),
                     );
                     if let (Some(zrow), Some(crow)) = (zbuf.get_mut(a..b), words.get_mut(a..b)) {
-                        let x = x0;
+                        let x = x0 + oxi;
                         let mut acc = [0u32; MAX_VARYINGS];
                         for k in 0..n {
                             acc[k] = values[k].at(x, y);
@@ -898,7 +905,7 @@ impl<const BITS: u32> Lean<BITS> {
                 return;
             }
             // The lower short edge from the middle vertex's row on.
-            let lower = Edge::new(b, c, si, lower_sample, oxi);
+            let lower = edge(v1, v2, mid);
             if short_is_left {
                 l = lower;
             } else {

@@ -154,6 +154,58 @@ pub trait Storage: Channels {
     ) {
         Self::fill_span(buf, stride, x, y, len, color);
     }
+    /// Fills one span a row on `rows` rows from row `y` down, the spans mostly a few pixels
+    /// long, as [`Surface::fill_short_rows_in_clip`] (`first`, then `next` for each further
+    /// row).
+    #[inline(always)]
+    fn fill_short_rows<F: FnMut() -> (i32, i32)>(
+        buf: &mut [Self::Word],
+        stride: usize,
+        x: usize,
+        (y, rows): (usize, usize),
+        color: Self,
+        (mut a, mut b): (i32, i32),
+        mut next: F,
+    ) {
+        for i in 0..rows {
+            if i > 0 {
+                (a, b) = next();
+            }
+            if a < b {
+                let (a, b) = (a as usize, b as usize);
+                Self::fill_short_span(buf, stride, x + a, y + i, b - a, color);
+            }
+        }
+    }
+    /// [`Storage::fill_short_rows`] with each span's colours from a shader, as
+    /// [`Surface::shade_short_rows_in_clip`].
+    #[inline(always)]
+    fn shade_short_rows<F, G, P>(
+        buf: &mut [Self::Word],
+        stride: usize,
+        x: usize,
+        (y, rows): (usize, usize),
+        (mut a, mut b): (i32, i32),
+        mut next: F,
+        mut span: G,
+    ) where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self,
+    {
+        for i in 0..rows {
+            if i > 0 {
+                (a, b) = next();
+            }
+            if a < b {
+                let (row, x0) = ((y + i) as i32, (x as i32).wrapping_add(a));
+                let start = (y + i) * stride;
+                let (a, b) = (a as usize, b as usize);
+                Self::shade(&mut buf[start..start + stride], x + a, b - a, span(row, x0));
+            }
+        }
+    }
+
     /// Blends `color` with opacity `alpha` over pixels `x .. x + len` of a row
     /// ([`crate::color::blend`]).
     #[inline]
@@ -336,8 +388,24 @@ fn fill_short_words<W: Copy>(s: &mut [W], v: W) {
     // One test for 1 ..= 3 (an empty span wraps round to a large value).
     if s.len().wrapping_sub(1) < 3 {
         fill_one_to_three(s, v);
+    } else if s.len() < 8 {
+        fill_ends::<W, 4>(s, v);
+    } else if s.len() <= 16 {
+        fill_ends::<W, 8>(s, v);
     } else {
         fill_words(s, v);
+    }
+}
+
+/// Fills `N ..= 2 N` words with two groups of `N` that overlap, without the loop the compiler
+/// may make of [`fill_groups`].
+#[inline(always)]
+fn fill_ends<W: Copy, const N: usize>(s: &mut [W], v: W) {
+    if let Some(first) = s.first_chunk_mut::<N>() {
+        first.fill(v);
+    }
+    if let Some(last) = s.last_chunk_mut::<N>() {
+        last.fill(v);
     }
 }
 
@@ -390,6 +458,85 @@ impl Storage for Rgb565 {
             RawU16::from(color).into_inner(),
         );
     }
+    #[inline(always)]
+    fn fill_short_rows<F: FnMut() -> (i32, i32)>(
+        buf: &mut [u16],
+        stride: usize,
+        x: usize,
+        (y, rows): (usize, usize),
+        color: Self,
+        (mut a, mut b): (i32, i32),
+        mut next: F,
+    ) {
+        let v = RawU16::from(color).into_inner();
+        // The offset of column `x` of each row, stepped by the stride: no product a span. A
+        // buffer holds fewer than 2^32 words (`MAX_DIMENSION`), so the offsets are `u32`, and
+        // a span's start and length zero-extended cannot wrap: one range check a span.
+        let mut at = (y as u32)
+            .wrapping_mul(stride as u32)
+            .wrapping_add(x as u32);
+        let mut left = rows;
+        loop {
+            if a < b {
+                // Zero-extended, so that neither sum can wrap.
+                let start = at.wrapping_add(a as u32) as usize;
+                let len = b.wrapping_sub(a) as u32 as usize;
+                fill_short_words(&mut buf[start..start + len], v);
+            }
+            left -= 1;
+            if left == 0 {
+                break;
+            }
+            at = at.wrapping_add(stride as u32);
+            (a, b) = next();
+        }
+    }
+    #[inline(always)]
+    fn shade_short_rows<F, G, P>(
+        buf: &mut [u16],
+        stride: usize,
+        x: usize,
+        (y, rows): (usize, usize),
+        (mut a, mut b): (i32, i32),
+        mut next: F,
+        mut span: G,
+    ) where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self,
+    {
+        // As `fill_short_rows`.
+        let mut at = (y as u32)
+            .wrapping_mul(stride as u32)
+            .wrapping_add(x as u32);
+        let mut row = y as i32;
+        let mut left = rows;
+        // The pixel loop steps by a one the compiler cannot see: it would otherwise vectorise
+        // it, and the vector loop's constants, set up before the rows, cost a short span's
+        // triangle more than the vector loop saves.
+        let one = core::hint::black_box(1usize);
+        loop {
+            if a < b {
+                let start = at.wrapping_add(a as u32) as usize;
+                let len = b.wrapping_sub(a) as u32 as usize;
+                let mut shade = span(row, (x as i32).wrapping_add(a));
+                let span = &mut buf[start..start + len];
+                let mut i = 0;
+                while i < span.len() {
+                    span[i] = RawU16::from(shade()).into_inner();
+                    i += one;
+                }
+            }
+            left -= 1;
+            if left == 0 {
+                break;
+            }
+            at = at.wrapping_add(stride as u32);
+            row = row.wrapping_add(1);
+            (a, b) = next();
+        }
+    }
+
     #[inline(always)]
     fn shade<F: FnMut() -> Self>(row: &mut [u16], x: usize, len: usize, mut shade: F) {
         for w in &mut row[x..x + len] {
@@ -564,8 +711,10 @@ impl Storage for BinaryColor {
 #[derive(Debug)]
 pub struct Framebuffer<'a, C: Storage> {
     buf: &'a mut [C::Word],
-    width: u32,
-    height: u32,
+    /// At most [`MAX_DIMENSION`], so `u16`: a rasterizer inlined with the framebuffer then knows
+    /// that its clip area lies far inside the guard band, and drops those tests.
+    width: u16,
+    height: u16,
     stride: usize,
 }
 
@@ -596,20 +745,21 @@ impl<'a, C: Storage> Framebuffer<'a, C> {
         }
         Ok(Self {
             buf,
-            width,
-            height,
+            // Both checked against MAX_DIMENSION above.
+            width: width as u16,
+            height: height as u16,
             stride: C::row_words(width as usize),
         })
     }
 
     /// Width in pixels.
     pub fn width(&self) -> u32 {
-        self.width
+        u32::from(self.width)
     }
 
     /// Height in pixels.
     pub fn height(&self) -> u32 {
-        self.height
+        u32::from(self.height)
     }
 
     /// The underlying words, rows top to bottom.
@@ -630,7 +780,7 @@ impl<'a, C: Storage> Framebuffer<'a, C> {
 
     #[inline]
     fn index(&self, x: i32, y: i32) -> Option<(usize, usize)> {
-        let inside = (x as u32) < self.width && (y as u32) < self.height;
+        let inside = (x as u32) < u32::from(self.width) && (y as u32) < u32::from(self.height);
         inside.then_some((x as usize, y as usize))
     }
 
@@ -642,7 +792,7 @@ impl<'a, C: Storage> Framebuffer<'a, C> {
 
 impl<C: Storage> OriginDimensions for Framebuffer<'_, C> {
     fn size(&self) -> Size {
-        Size::new(self.width, self.height)
+        Size::new(u32::from(self.width), u32::from(self.height))
     }
 }
 
@@ -708,7 +858,7 @@ impl<C: Storage> DrawTarget for Framebuffer<'_, C> {
     }
 
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
-        let (w, h) = (self.width as usize, self.height as usize);
+        let (w, h) = (usize::from(self.width), usize::from(self.height));
         for y in 0..h {
             C::fill(self.row_mut(y), 0, w, color);
         }
@@ -720,7 +870,9 @@ impl<C: Storage> Framebuffer<'_, C> {
     /// True when the span lies inside the buffer (one unsigned compare each).
     #[inline(always)]
     fn span_inside(&self, x: i32, y: i32, len: u32) -> bool {
-        (y as u32) < self.height && (x as u32) <= self.width && len <= self.width - x as u32
+        (y as u32) < u32::from(self.height)
+            && (x as u32) <= u32::from(self.width)
+            && len <= u32::from(self.width) - x as u32
     }
 
     /// A span that is not wholly inside: clipped. Kept out of line so the fast path stays small.
@@ -832,6 +984,61 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     }
 
     #[inline(always)]
+    fn fill_short_rows_in_clip<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        color: C,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), Self::Error> {
+        if rows.is_empty() {
+            return Ok(());
+        }
+        let n = rows.end.wrapping_sub(rows.start) as u32 as usize;
+        C::fill_short_rows(
+            self.buf,
+            self.stride,
+            x as usize,
+            (rows.start as usize, n),
+            color,
+            first,
+            next,
+        );
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+        span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> C,
+    {
+        if rows.is_empty() {
+            return Ok(());
+        }
+        let n = rows.end.wrapping_sub(rows.start) as u32 as usize;
+        C::shade_short_rows(
+            self.buf,
+            self.stride,
+            x as usize,
+            (rows.start as usize, n),
+            first,
+            next,
+            span,
+        );
+        Ok(())
+    }
+
+    #[inline(always)]
     fn shade_span_in_clip<F: FnMut() -> C>(
         &mut self,
         x: i32,
@@ -879,7 +1086,7 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
         // A line's pixels lie between its first and last, so checking those two is enough.
         let first = (points.x, points.y);
         let last = points.last_pixel();
-        let (w, h) = (self.width, self.height);
+        let (w, h) = (u32::from(self.width), u32::from(self.height));
         let inside = |p: (i32, i32)| (p.0 as u32) < w && (p.1 as u32) < h;
         if points.remaining() == 0 || (inside(first) && last.is_some_and(inside)) {
             C::walk(self.buf, self.stride, points, color);
@@ -954,7 +1161,10 @@ impl<C: Storage> embedded_graphics_core::geometry::Dimensions for Band<'_, C> {
         // Rows past i32::MAX stand for no screen row: the strip stops there.
         let room = i64::from(i32::MAX) - i64::from(self.y0) + 1;
         let rows = i64::from(self.fb.height).min(room) as u32;
-        Rectangle::new(Point::new(0, self.y0), Size::new(self.fb.width, rows))
+        Rectangle::new(
+            Point::new(0, self.y0),
+            Size::new(u32::from(self.fb.width), rows),
+        )
     }
 }
 
@@ -1022,6 +1232,40 @@ impl<C: Storage> Surface for Band<'_, C> {
         color: C,
     ) -> Result<(), Self::Error> {
         self.fb.fill_long_span_in_clip(x, y - self.y0, len, color)
+    }
+
+    #[inline(always)]
+    fn fill_short_rows_in_clip<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        color: C,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), Self::Error> {
+        let rows = rows.start - self.y0..rows.end - self.y0;
+        self.fb.fill_short_rows_in_clip(x, rows, color, first, next)
+    }
+
+    #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+        mut span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> C,
+    {
+        // The shader sees screen rows, the band's buffer its own.
+        let y0 = self.y0;
+        let band = rows.start - y0..rows.end - y0;
+        self.fb
+            .shade_short_rows_in_clip(x, band, first, next, |y, x0| span(y + y0, x0))
     }
 
     #[inline(always)]

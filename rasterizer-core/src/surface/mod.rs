@@ -142,6 +142,69 @@ pub trait Surface: DrawTarget {
         self.fill_span_in_clip(x, y, len, color)
     }
 
+    /// Fills one span a row of one colour on the rows `rows`, top to bottom, each span mostly a
+    /// few pixels long (a small triangle's): `first` is the first row's columns `x + a .. x + b`
+    /// (`a` never negative, none when `a >= b`), and `next`, called once for each further row,
+    /// moves on a row and gives its columns. Every span lies inside [`Surface::clip_area`]. A
+    /// target may step its address from row to row, as [`Framebuffer`] does; the default fills
+    /// each span through [`Surface::fill_short_span_in_clip`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn fill_short_rows_in_clip<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        color: Self::Color,
+        first: (i32, i32),
+        mut next: F,
+    ) -> Result<(), Self::Error> {
+        let (mut a, mut b) = first;
+        for y in rows.clone() {
+            if y > rows.start {
+                (a, b) = next();
+            }
+            if a < b {
+                self.fill_short_span_in_clip(x + a, y, (b - a) as u32, color)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// [`Surface::fill_short_rows_in_clip`] with each span's colours from a shader: `span` is
+    /// called for each non-empty span with its row and first column and returns what
+    /// [`Surface::shade_span_in_clip`] takes, the colours of its pixels left to right.
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`].
+    #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        mut next: F,
+        mut span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self::Color,
+    {
+        let (mut a, mut b) = first;
+        for y in rows.clone() {
+            if y > rows.start {
+                (a, b) = next();
+            }
+            if a < b {
+                let shade = span(y, x + a);
+                self.shade_span_in_clip(x + a, y, (b - a) as u32, shade)?;
+            }
+        }
+        Ok(())
+    }
+
     /// [`Surface::shade_span`] for a span known to lie inside [`Surface::clip_area`].
     ///
     /// # Panics
@@ -441,6 +504,37 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
         color: Self::Color,
     ) -> Result<(), Self::Error> {
         self.inner.fill_span_in_clip(x, y, len, color)
+    }
+
+    #[inline(always)]
+    fn fill_short_rows_in_clip<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        color: Self::Color,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), Self::Error> {
+        self.inner
+            .fill_short_rows_in_clip(x, rows, color, first, next)
+    }
+
+    #[inline(always)]
+    fn shade_short_rows_in_clip<F, G, P>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+        span: G,
+    ) -> Result<(), Self::Error>
+    where
+        F: FnMut() -> (i32, i32),
+        G: FnMut(i32, i32) -> P,
+        P: FnMut() -> Self::Color,
+    {
+        self.inner
+            .shade_short_rows_in_clip(x, rows, first, next, span)
     }
 
     #[inline(always)]

@@ -6,9 +6,11 @@
 //! therefore never leave a gap between them and never draw a pixel twice, and the coverage matches
 //! OpenGL's (checked against Mesa's llvmpipe in the conformance tests). Either winding is drawn.
 //!
-//! Spans are found by an exact edge walk (`raster/edge.rs`): one division per edge at set-up, then two adds
-//! and a compare per edge per row (one add for a tall flat-filled triangle, whose walk costs two
-//! divisions more an edge). Zero-area triangles draw nothing; so does a triangle with a vertex
+//! Spans are found by an exact edge walk (`raster/edge.rs`): divisions per edge at set-up, then an
+//! add, a test and a conditional subtract per edge per row (one add for a tall flat-filled
+//! triangle, whose walk costs two divisions more an edge). A small triangle inside the clip
+//! area's columns (`small.rs`, most of a 2D scene's) is set up in 32-bit integers and drawn a
+//! run of rows at a time. Zero-area triangles draw nothing; so does a triangle with a vertex
 //! outside the guard band ([`crate::geom::GUARD_BAND_PIXELS`]).
 
 pub(crate) mod setup;
@@ -22,7 +24,7 @@ use core::num::NonZeroU64;
 use embedded_graphics_core::geometry::Point;
 use embedded_graphics_core::Pixel;
 use setup::{tall_walks, walk_spans, walk_tall, Sorted, SpanSink, TallWalks};
-use small::Small;
+use small::{RowSink, Small};
 
 /// Fills a triangle in one colour.
 ///
@@ -46,7 +48,7 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
     if let Some(small) = Small::new(&vertices, &clip) {
         return small.walk::<_, BITS>(&mut FlatShort { surface, color });
     }
-    fill_large(surface, &vertices, &clip, color)
+    fill_large(surface, &vertices, color)
 }
 
 /// [`fill_triangle`] for a triangle the `i32` set-up does not take: out of line, so that its
@@ -55,12 +57,13 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
 fn fill_large<S: Surface, const BITS: u32>(
     surface: &mut S,
     vertices: &[SubPoint<BITS>; 3],
-    clip: &PixelRect,
     color: S::Color,
 ) -> Result<(), S::Error> {
     let Some(t) = Sorted::new(vertices) else {
         return Ok(());
     };
+    // Found again rather than passed: the small triangles' path then builds none in memory.
+    let clip = &PixelRect::from_rectangle(&surface.clip_area());
     let s = 1 << BITS;
     // A tall triangle's spans are mostly long, the others' (a short triangle that crosses the
     // clip area's edge, mostly) short: each gets the fill that tests its common case first.
@@ -94,6 +97,21 @@ impl<S: Surface> SpanSink for FlatShort<'_, S> {
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         self.surface
             .fill_short_span_in_clip(x0, row, (x1 - x0) as u32, self.color)
+    }
+}
+
+impl<S: Surface> RowSink for FlatShort<'_, S> {
+    type Error = S::Error;
+    #[inline(always)]
+    fn rows<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), S::Error> {
+        self.surface
+            .fill_short_rows_in_clip(x, rows, self.color, first, next)
     }
 }
 
@@ -186,6 +204,65 @@ where
     S: Surface,
     S::Color: Channels,
 {
+    match fill_gouraud_small(surface, &vertices, &colors) {
+        Some(drawn) => drawn,
+        None => fill_gouraud_large(surface, vertices, colors),
+    }
+}
+
+/// [`fill_triangle_gouraud`] for a small triangle inside the clip area ([`Small`]), when the
+/// planes take it; `None` leaves it to [`fill_gouraud_large`]. Out of line in an unoptimised
+/// build, so that its locals do not sit on the stack under the large triangles' path.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn fill_gouraud_small<S, const BITS: u32>(
+    surface: &mut S,
+    vertices: &[SubPoint<BITS>; 3],
+    colors: &[S::Color; 3],
+) -> Option<Result<(), S::Error>>
+where
+    S: Surface,
+    S::Color: Channels,
+{
+    let clip = PixelRect::from_rectangle(&surface.clip_area());
+    // The planes start from v0 of `Sorted`'s order (ties broken by x), so the small set-up
+    // takes that order too.
+    let order = setup::row_order(vertices);
+    let p = order.map(|i| (vertices[i].x, vertices[i].y));
+    let small = Small::sorted::<BITS>(p, &clip)?;
+    let v = small.vertices().map(|(x, y)| (i64::from(x), i64::from(y)));
+    let cross = i64::from(small.cross());
+    let t = Sorted { v, order, cross };
+    if cross == 0 {
+        return Some(Ok(()));
+    }
+    let s: i64 = 1 << BITS;
+    // `% 3`: the order is a permutation of 0, 1, 2; the compiler then needs no bounds check.
+    let c = [
+        colors[order[0] % 3],
+        colors[order[1] % 3],
+        colors[order[2] % 3],
+    ]
+    .map(Channels::to_channels);
+    // `fill_gouraud_large`'s extents, from the small set-up's bounds.
+    let (w, h) = small.size();
+    let (ex, ey) = ((2 * w + 2 * s) as u64, (2 * h + 2 * s) as u64);
+    let mut planes = Planes::new(surface, &t, s, &c, (ex, ey), cross.signum())?;
+    Some(small.walk::<_, BITS>(&mut planes))
+}
+
+/// [`fill_triangle_gouraud`] for a triangle the small set-up does not take: out of line, so that
+/// the small triangles' code stays as it is.
+#[inline(never)]
+fn fill_gouraud_large<S, const BITS: u32>(
+    surface: &mut S,
+    vertices: [SubPoint<BITS>; 3],
+    colors: [S::Color; 3],
+) -> Result<(), S::Error>
+where
+    S: Surface,
+    S::Color: Channels,
+{
     let Some(t) = Sorted::new(&vertices) else {
         return Ok(());
     };
@@ -200,15 +277,34 @@ where
         2 * (hi - lo).unsigned_abs() + 2 * s as u64
     };
     let (ex, ey) = (extent(xs), extent(ys));
+    if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), t.cross.signum()) {
+        let clip = PixelRect::from_rectangle(&p.surface.clip_area());
+        return match setup::rows_in_clip(&t, s, &clip) {
+            Some(rows) => setup::walk_spans_once(&t, s, rows, &clip, &mut p),
+            None => Ok(()),
+        };
+    }
+    fill_gouraud_exact(surface, &t, &c, s, (ex, ey))
+}
+
+/// [`fill_triangle_gouraud`] for a triangle too large for the planes: each span's start exact.
+#[inline(always)]
+fn fill_gouraud_exact<S: Surface>(
+    surface: &mut S,
+    t: &Sorted,
+    c: &[[u8; 4]; 3],
+    s: i64,
+    (ex, ey): (u64, u64),
+) -> Result<(), S::Error>
+where
+    S::Color: Channels,
+{
+    let [v0, v1, v2] = t.v;
     // Bounds, with M = 2^(21 + BITS) <= 2^29 the guard band in raw units: vertex differences
     // <= 2M = 2^30, so den = |cross| <= 2^60 (the doubled area of a triangle inside a square of
     // side 2M) and 2 den <= 2^61.
     let den = t.cross.unsigned_abs();
     let sign = t.cross.signum();
-    if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), sign) {
-        let clip = PixelRect::from_rectangle(&p.surface.clip_area());
-        return walk_spans(&t, s, &clip, &mut p);
-    }
     let mut g = Gouraud {
         surface,
         s,
@@ -256,7 +352,12 @@ where
         g.base = c[0].map(i64::from);
     }
     let clip = PixelRect::from_rectangle(&g.surface.clip_area());
-    walk_spans(&t, s, &clip, &mut g)
+    // One copy of the row loop, clipped or not, for this large span code: the path of
+    // triangles of thousands of pixels, where a row's few instructions more do not count.
+    match setup::rows_in_clip(t, s, &clip) {
+        Some(rows) => setup::walk_spans_once(t, s, rows, &clip, &mut g),
+        None => Ok(()),
+    }
 }
 
 /// Gouraud spans from colour planes set up once per triangle: each channel's value at a pixel
@@ -283,6 +384,7 @@ impl<'a, S: Surface> Planes<'a, S>
 where
     S::Color: Channels,
 {
+    #[inline(always)]
     fn new(
         surface: &'a mut S,
         t: &Sorted,
@@ -367,6 +469,47 @@ fn step16(v: i64) -> i32 {
     ((v >> 16) + ((v >> 15) & 1)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
+impl<S: Surface> Planes<'_, S>
+where
+    S::Color: Channels,
+{
+    /// The colours of the span from pixel `(x0, row)` on, left to right.
+    ///
+    /// The first and third channels share one `i64`, `c0 2^32 + c2`: one add a pixel for both,
+    /// exactly, as the third stays in `0 .. 2^32` over a span (in the colour range but for the
+    /// stepping error, under half a step, plus the half `from_fixed16` rounds by), and its
+    /// step, saturated only where a span has one pixel, is added after that pixel. It also
+    /// keeps the compiler from pairing the channels in a vector register, whose 64-bit products
+    /// cost more than scalar ones. A channel the colour lacks is zero and its work is dropped.
+    #[inline(always)]
+    fn pixels(
+        (base, gx, gy, step): (&[i64; 4], &[i64; 4], &[i64; 4], [i32; 4]),
+        row: i32,
+        x0: i32,
+    ) -> impl FnMut() -> S::Color {
+        let (x, y) = (i64::from(x0), i64::from(row));
+        // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
+        // inside the triangle it lies within the vertex colours' range (up to 2^-17).
+        let start = |i: usize| {
+            let v = base[i]
+                .wrapping_add(gx[i].wrapping_mul(x))
+                .wrapping_add(gy[i].wrapping_mul(y));
+            (v >> 16) as i32
+        };
+        let pair = |hi: i32, lo: i32| (i64::from(hi) << 32).wrapping_add(i64::from(lo));
+        let step02 = pair(step[0], step[2]);
+        let mut a02 = pair(start(0), start(2));
+        let (mut a1, mut a3) = (start(1), start(3));
+        move || {
+            let acc = [(a02 >> 32) as i32, a1, a02 as i32, a3];
+            a02 = a02.wrapping_add(step02);
+            a1 = a1.wrapping_add(step[1]);
+            a3 = a3.wrapping_add(step[3]);
+            S::Color::from_fixed16(&acc)
+        }
+    }
+}
+
 impl<S: Surface> SpanSink for Planes<'_, S>
 where
     S::Color: Channels,
@@ -375,19 +518,31 @@ where
 
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
-        let (x, y) = (i64::from(x0), i64::from(row));
-        let mut acc = [0i32; 4];
-        // One index runs over several per-channel arrays at once.
-        #[allow(clippy::needless_range_loop)]
-        for i in 0..S::Color::COUNT {
-            // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
-            // inside the triangle it lies within the vertex colours' range (up to 2^-17).
-            let v = self.base[i]
-                .wrapping_add(self.gx[i].wrapping_mul(x))
-                .wrapping_add(self.gy[i].wrapping_mul(y));
-            acc[i] = (v >> 16) as i32;
-        }
-        shade_stepped(self.surface, row, x0, x1, acc, self.step)
+        let shade = Self::pixels((&self.base, &self.gx, &self.gy, self.step), row, x0);
+        self.surface
+            .shade_span_in_clip(x0, row, (x1 - x0) as u32, shade)
+    }
+}
+
+impl<S: Surface> RowSink for Planes<'_, S>
+where
+    S::Color: Channels,
+{
+    type Error = S::Error;
+
+    #[inline(always)]
+    fn rows<F: FnMut() -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: core::ops::Range<i32>,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), S::Error> {
+        let (base, gx, gy, step) = (self.base, self.gx, self.gy, self.step);
+        self.surface
+            .shade_short_rows_in_clip(x, rows, first, next, |row, x0| {
+                Self::pixels((&base, &gx, &gy, step), row, x0)
+            })
     }
 }
 
