@@ -285,15 +285,13 @@ where
         let all = n == mesh.vertex_count();
         self.in_viewport = match (&self.raw, self.map.unclamped) {
             (Some(raw), true) => match mesh.position_slice() {
-                Some(ps) => {
-                    self.begin_raw(raw, scratch.iter_mut().zip(ps.iter().by_ref().copied()))
-                }
+                Some(ps) => self.begin_raw(raw, scratch.iter_mut().zip(ps.iter().by_ref())),
                 None => self.begin_raw(
                     raw,
                     scratch
                         .iter_mut()
                         .enumerate()
-                        .map(|(i, s)| (s, mesh.position(i))),
+                        .map(|(i, s)| (s, Indexed(mesh, i))),
                 ),
             },
             _ => {
@@ -320,9 +318,10 @@ where
     /// each slot of `slots` filled from its position, and whether every vertex lies inside the
     /// viewport.
     #[inline(never)]
-    fn begin_raw<'a, I>(&self, raw: &RawMvp, slots: I) -> bool
+    fn begin_raw<'a, P, I>(&self, raw: &RawMvp, slots: I) -> bool
     where
-        I: Iterator<Item = (&'a mut VertexSlot<Sh::Stored>, Vec3<S>)>,
+        P: PositionOf<S>,
+        I: Iterator<Item = (&'a mut VertexSlot<Sh::Stored>, P)>,
         Sh::Stored: 'a,
     {
         let empty = <Sh::Stored as Packed>::EMPTY;
@@ -334,8 +333,9 @@ where
         let (w, h) = (r.wrapping_sub(l) as u32, bottom.wrapping_sub(top) as u32);
         let (mut ox, mut oy) = (0u32, 0u32);
         let lo = w_min(S::RAW_FRAC);
-        for (s, p) in slots {
+        for (s, at) in slots {
             s.st = empty;
+            let p = at.position();
             let (Some(px), Some(py), Some(pz)) = (p.x.raw_bits(), p.y.raw_bits(), p.z.raw_bits())
             else {
                 (s.x, s.y, s.z) = self.geometry_checked(p);
@@ -346,7 +346,7 @@ where
             let Some((n, wc)) = guard_band(c, lo, W_LOOP) else {
                 // Outside the band, or (rarely) a w too large for the loop's tests.
                 (s.x, s.y, s.z) = if ((c[3] - lo) as u64) < (W_BIG - lo) as u64 {
-                    self.geometry_settled(p)
+                    self.geometry_settled(at.position())
                 } else {
                     (OUTSIDE, 1, 0)
                 };
@@ -360,7 +360,7 @@ where
                     (e[1] as i64 >> 32) as i32,
                     (e[2] >> 32) as u16,
                 ),
-                None => self.geometry_settled(p),
+                None => self.geometry_settled(at.position()),
             };
             (s.x, s.y, s.z) = (x, y, z);
             ox = ox.max(x.wrapping_sub(l) as u32);
@@ -418,6 +418,38 @@ where
     }
 }
 
+/// Where [`Pipeline::begin`]'s loop reads a vertex's position: read again on the loop's rare
+/// paths rather than kept in registers across the projection.
+pub(super) trait PositionOf<S>: Copy {
+    /// The position.
+    fn position(self) -> Vec3<S>;
+}
+
+impl<S: Copy> PositionOf<S> for &Vec3<S> {
+    #[inline(always)]
+    fn position(self) -> Vec3<S> {
+        *self
+    }
+}
+
+/// Vertex `.1` of mesh `.0`.
+pub(super) struct Indexed<'m, M>(&'m M, usize);
+
+impl<M> Clone for Indexed<'_, M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M> Copy for Indexed<'_, M> {}
+
+impl<S, M: MeshSource<S>> PositionOf<S> for Indexed<'_, M> {
+    #[inline(always)]
+    fn position(self) -> Vec3<S> {
+        self.0.position(self.1)
+    }
+}
+
 /// The viewport's mapping for [`project_inside`], fixed per pipeline: in sub-pixel units,
 /// `x_s = floor((x + w) W / 2w + 1/2) + x0` with `x + w = u - 3w` for `u = x + 4w >= 0`, so that
 /// `x_s = floor((u W + h) / 2w) + base` where `h` is `w` when `3 W` is even (the lift `3 W / 2` is
@@ -425,8 +457,9 @@ where
 /// y likewise with `u = 4w - y`, and depth `floor((z + w) 65535 / 2w + 1/2)` ([`DEPTH`]).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct ScreenMap {
-    /// Screen x and y.
-    axes: [Axis; 2],
+    /// Screen x and y, and depth ([`DEPTH`]: a copy here, so that its scale is read rather than
+    /// multiplied by shifts).
+    axes: [Axis; 3],
     /// `base` where it is not in [`Axis::offset`] (clamped viewports), else zero.
     rest: [i64; 2],
     /// Every result `[0, 4 W + 1] + base` lies within `[X_MIN, i32::MAX]`: no clamping.
@@ -476,7 +509,7 @@ impl ScreenMap {
         let g = crate::clip::polygon::GUARD as u32;
         let mut base = [0i64; 2];
         let mut map = Self {
-            axes: [DEPTH; 2],
+            axes: [DEPTH; 3],
             rest: [0; 2],
             unclamped: true,
         };
@@ -599,7 +632,7 @@ fn project_inside(map: &ScreenMap, n: [u64; 3], w: u64, divide: Divide) -> [u64;
     [
         quotient(n[0], &map.axes[0]),
         quotient(n[1], &map.axes[1]),
-        quotient(n[2], &DEPTH),
+        quotient(n[2], &map.axes[2]),
     ]
 }
 
@@ -611,11 +644,11 @@ fn project_estimate(map: &ScreenMap, n: [u64; 3], w: u64, divide: Divide) -> Opt
     let e = [
         estimate(n[0], r, sh, &map.axes[0]),
         estimate(n[1], r, sh, &map.axes[1]),
-        estimate(n[2], r, sh, &DEPTH),
+        estimate(n[2], r, sh, &map.axes[2]),
     ];
     let sure = e[0] as u32 <= map.axes[0].sure
         && e[1] as u32 <= map.axes[1].sure
-        && e[2] as u32 <= DEPTH.sure;
+        && e[2] as u32 <= map.axes[2].sure;
     (divide != Divide::Exact || sure).then_some(e)
 }
 
