@@ -205,7 +205,22 @@ pub(crate) fn reciprocal_seed(m: u32) -> u32 {
 pub(crate) fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
     // m = d 2^lz in [2^31, 2^32): 2^62 / m = 2^(62 - lz) / d = 2^(32 + sh) / d.
     let lz = d.leading_zeros().min(30);
-    let m = d << lz;
+    (reciprocal_normal(d << lz, method), 30 - lz)
+}
+
+/// [`reciprocal_u32`] of `d = 2w` for `w` in `[1, 2^29)`, normalised from `w`'s top bit `sh`
+/// (that of `d` less one): `d` has `30 - sh` leading zeros, so `m = d 2^(30 - sh) =
+/// w 2^(31 - sh)`. Fewer instructions than from `d` on x86-64 (the top bit is the shift).
+#[inline(always)]
+pub(crate) fn reciprocal_double(w: u32, method: Divide) -> (u64, u32) {
+    // `| 1` changes no top bit of w >= 1 and keeps the shifts in range for any w.
+    let sh = 63 - (u64::from(w) | 1).leading_zeros();
+    (reciprocal_normal(w << (31 - sh), method), sh)
+}
+
+/// `r <= 2^62 / m < r (1 + 2^-27)` for `m` in `[2^31, 2^32)` ([`reciprocal_u32`]).
+#[inline(always)]
+fn reciprocal_normal(m: u32, method: Divide) -> u64 {
     // r ≈ 2^62 / m, in [2^30, 2^31].
     let mut r = match method {
         // m >> 16 is in [2^15, 2^16): 2^32 / (m >> 16) ≈ 2^48 / m, within 2^-15.
@@ -220,7 +235,7 @@ pub(crate) fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
         let e = (1i64 << 62) - i64::from(m) * r;
         r += (r * (e >> 24)) >> 38;
     }
-    (r as u64, 30 - lz)
+    r as u64
 }
 
 #[cfg(test)]
@@ -265,6 +280,28 @@ mod tests {
             worst = worst.max(((e - u128::from(r)) << 32) / e);
         }
         worst
+    }
+
+    #[test]
+    fn reciprocal_of_a_double_is_the_reciprocal() {
+        let mut x = 0x2545_f491u32;
+        let random = core::iter::from_fn(move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            Some(x >> (x & 31).min(2))
+        })
+        .take(100_000);
+        let edges = (1..3000u32).chain((0..29).flat_map(|b| [(1 << b) - 1, 1 << b, (1 << b) + 1]));
+        for w in random.chain(edges).filter(|w| (1..1 << 29).contains(w)) {
+            for method in [Divide::Exact, Divide::Reciprocal, Divide::Newton] {
+                assert_eq!(
+                    reciprocal_double(w, method),
+                    reciprocal_u32(2 * w, method),
+                    "{w}"
+                );
+            }
+        }
     }
 
     #[test]
