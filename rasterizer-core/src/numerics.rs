@@ -208,13 +208,13 @@ pub(crate) fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
     (reciprocal_normal(d << lz, method), 30 - lz)
 }
 
-/// [`reciprocal_u32`] of `d = 2w` for `w` in `[1, 2^29)`, normalised from `w`'s top bit `sh`
-/// (that of `d` less one): `d` has `30 - sh` leading zeros, so `m = d 2^(30 - sh) =
-/// w 2^(31 - sh)`. Fewer instructions than from `d` on x86-64 (the top bit is the shift).
+/// [`reciprocal_u32`] of `d = 2w` for `w` in `[1, 2^29)` (the callers test that range first;
+/// `w = 0` would overflow the shift), normalised from `w`'s top bit `sh` (that of `d` less
+/// one): `d` has `30 - sh` leading zeros, so `m = d 2^(30 - sh) = w 2^(31 - sh)`. Fewer
+/// instructions than from `d` on x86-64 (the top bit is the shift).
 #[inline(always)]
 pub(crate) fn reciprocal_double(w: u32, method: Divide) -> (u64, u32) {
-    // `| 1` changes no top bit of w >= 1 and keeps the shifts in range for any w.
-    let sh = 63 - (u64::from(w) | 1).leading_zeros();
+    let sh = 63 - u64::from(w).leading_zeros();
     (reciprocal_normal(w << (31 - sh), method), sh)
 }
 

@@ -102,7 +102,7 @@ where
             // Inside the clipper's guard band, with w and |x|, |y| below 2^29.
             let c = raw_clip(raw, [px, py, pz], S::RAW_FRAC);
             let small = |v: i64| v.unsigned_abs() < W_BIG as u64;
-            let inside = guard_band(c, w_min(S::RAW_FRAC), W_BIG);
+            let inside = guard_band(c, w_low(S::RAW_FRAC), W_BIG);
             let Some((n, w)) = inside.filter(|_| small(c[0]) && small(c[1])) else {
                 // The outcode itself is only needed by the clipper, which computes its own.
                 return (OUTSIDE, 1, 0);
@@ -320,7 +320,7 @@ where
         // Written on the rare paths only, through memory (`begin_rare` takes its address), so
         // that it takes no register across the loop.
         let mut all_in_view = true;
-        let lo = w_min(S::RAW_FRAC);
+        let lo = w_low(S::RAW_FRAC);
         for (s, at) in slots {
             s.st = empty;
             let p = at.position();
@@ -579,9 +579,22 @@ const fn w_min(frac: u32) -> i64 {
     }
 }
 
-/// A raw fixed-point vertex `p` (`frac` fractional bits) through the raw MVP: `[x, y, z, w]`,
-/// with the same sums and rounding as `Mat4::transform_point` (the rounding half and the
-/// translation are in `bias`), without its overflow checks.
+/// The raw fast path's smallest `w`: the clipper's ([`w_min`]), and at least 1 (the projection
+/// divides by `2w`; only formats of fewer than 7 fractional bits round the clipper's to 0, and
+/// their `w = 0` takes the checked path, as the clipper's own projection does).
+const fn w_low(frac: u32) -> i64 {
+    let min = w_min(frac);
+    if min < 1 {
+        1
+    } else {
+        min
+    }
+}
+
+/// A raw fixed-point vertex `p` (`frac` fractional bits) through the raw MVP: `[x, -y, z, w]`
+/// (`y` negated: the projection takes `w - y`), with the same sums and rounding as
+/// `Mat4::transform_point` (the rounding half and the translation are in `bias`), without its
+/// overflow checks.
 #[inline(always)]
 fn raw_clip(raw: &RawMvp, p: [i64; 3], frac: u32) -> [i64; 4] {
     [
@@ -592,7 +605,9 @@ fn raw_clip(raw: &RawMvp, p: [i64; 3], frac: u32) -> [i64; 4] {
     ]
 }
 
-/// Row `r` of [`raw_clip`].
+/// Row `r` of [`raw_clip`]: `floor(sum / 2^frac)` of the row's sum and bias, which for row 1
+/// (negated, its bias `2^frac - 1 - b` for `y`'s `b`) is `floor((2^frac - 1 - Y) / 2^frac) =
+/// -floor(Y / 2^frac)`.
 #[inline(always)]
 fn raw_row(raw: &RawMvp, [px, py, pz]: [i64; 3], r: usize, frac: u32) -> i64 {
     let m = &raw.m[r];
@@ -607,9 +622,9 @@ const W_BIG: i64 = 1 << 29;
 /// `w` in `[lo, hi)` (`hi <= 2^29`) and inside the clipper's guard band (`|z| <= w`,
 /// `|x|, |y| <= GUARD w`), else `None`; each test is one unsigned compare.
 #[inline(always)]
-fn guard_band([x, y, z, w]: [i64; 4], lo: i64, hi: i64) -> Option<([u64; 3], u64)> {
+fn guard_band([x, ny, z, w]: [i64; 4], lo: i64, hi: i64) -> Option<([u64; 3], u64)> {
     let g = i64::from(crate::clip::polygon::GUARD);
-    let n = [x + g * w, g * w - y, z + w];
+    let n = [x + g * w, g * w + ny, z + w];
     let inside = ((w - lo) as u64) < (hi - lo) as u64
         && n[2] as u64 <= (2 * w) as u64
         && n[0] as u64 <= (2 * g * w) as u64
@@ -623,8 +638,8 @@ fn guard_band([x, y, z, w]: [i64; 4], lo: i64, hi: i64) -> Option<([u64; 3], u64
 /// below `2^29`, and projects into the viewport: `floor((x + w) W / 2w + 1/2)` lies in
 /// `[0, W]`.
 #[inline(always)]
-fn view_volume([x, y, z, w]: [i64; 4]) -> Option<([u64; 3], u64)> {
-    let n = [x + w, w - y, z + w];
+fn view_volume([x, ny, z, w]: [i64; 4]) -> Option<([u64; 3], u64)> {
+    let n = [x + w, w + ny, z + w];
     let d = (2 * w) as u64;
     let inside = n[2] as u64 <= d && n[0] as u64 <= d && n[1] as u64 <= d;
     inside.then_some((n.map(|v| v as u64), w as u64))
@@ -698,9 +713,10 @@ fn estimate(u: u64, r: u64, sh: u32, a: &Axis) -> u64 {
 /// both paths agree on every vertex they share.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct RawMvp {
-    /// The linear part, row by row.
+    /// The linear part, row by row, row 1 negated ([`raw_row`]).
     m: [[i32; 3]; 4],
-    /// Per row, the translation shifted to the products' fractional bits plus the rounding half.
+    /// Per row, the translation shifted to the products' fractional bits plus the rounding half
+    /// (row 1 as [`raw_row`] says).
     bias: [i64; 4],
 }
 
@@ -717,6 +733,9 @@ impl RawMvp {
             m[r] = [raw[0] as i32, raw[1] as i32, raw[2] as i32];
             bias[r] = (raw[3] << S::RAW_FRAC) + half;
         }
+        // Row 1 gives -y ([`raw_row`]).
+        m[1] = m[1].map(|v| -v);
+        bias[1] = (1 << S::RAW_FRAC) - 1 - bias[1];
         Some(Self { m, bias })
     }
 }
