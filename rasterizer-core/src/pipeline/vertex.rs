@@ -14,7 +14,7 @@ use crate::depth::DepthTest;
 use crate::geom::SubPoint;
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
 use crate::mesh::MeshSource;
-use crate::numerics::{reciprocal_double, reciprocal_u32, Divide, Numerics};
+use crate::numerics::{reciprocal_double, Divide, Numerics};
 use crate::shade::{Packed, Shading, VertexIn};
 use crate::transform::Viewport;
 use crate::wide::div_floor_i64;
@@ -287,20 +287,14 @@ where
                 ),
             },
             _ => {
-                // The vertices' bounds on screen (a vertex outside the guard band has x =
-                // OUTSIDE, far left of any viewport).
-                let (mut x0, mut y0, mut x1, mut y1) = (i32::MAX, i32::MAX, i32::MIN, i32::MIN);
+                // A format or matrix without the raw fast path, or a viewport that needs
+                // clamping: each vertex through the general path, out of line.
+                let mut all_in_view = true;
                 for (i, s) in scratch.iter_mut().enumerate() {
-                    (s.x, s.y, s.z) = self.geometry(mesh.position(i));
                     s.st = empty;
-                    (x0, x1) = (x0.min(s.x), x1.max(s.x));
-                    (y0, y1) = (y0.min(s.y), y1.max(s.y));
+                    self.begin_rare(s, Indexed(mesh, i), &mut all_in_view);
                 }
-                let [l, top, r, bottom] = self.edges;
-                i64::from(x0) >= l
-                    && i64::from(x1) <= r
-                    && i64::from(y0) >= top
-                    && i64::from(y1) <= bottom
+                all_in_view
             }
         } && all;
         scratch
@@ -326,7 +320,7 @@ where
             let p = at.position();
             let (Some(px), Some(py), Some(pz)) = (p.x.raw_bits(), p.y.raw_bits(), p.z.raw_bits())
             else {
-                self.begin_rare(s, p, &mut all_in_view);
+                self.begin_rare(s, at, &mut all_in_view);
                 continue;
             };
             let row = |r: usize| raw_row(raw, [px, py, pz], r, S::RAW_FRAC);
@@ -341,7 +335,8 @@ where
             if let Some((n, wc)) = view_volume(c) {
                 // In the view volume, so in the viewport. No clamping: the estimates hold the
                 // corner (`Axis::offset`).
-                if let Some(e) = project_estimate(&self.map.view, n, wc, N::DIVIDE) {
+                let e = project_estimate(&self.map.view, n, wc, N::DIVIDE);
+                if let Some(e) = e {
                     s.x = (e[0] as i64 >> 32) as i32;
                     s.y = (e[1] as i64 >> 32) as i32;
                     s.z = (e[2] >> 32) as u16;
@@ -354,17 +349,23 @@ where
             }
             // Rarely: an estimate to settle, or a vertex in the guard band but outside the view
             // volume.
-            self.begin_rare(s, at.position(), &mut all_in_view);
+            self.begin_rare(s, at, &mut all_in_view);
         }
         all_in_view
     }
 
-    /// [`Pipeline::begin_raw`]'s rare vertices, through [`Pipeline::geometry`]: `all_in_view`
-    /// is cleared unless the vertex lies in the viewport.
+    /// A vertex of [`Pipeline::begin`] through [`Pipeline::geometry`] (every vertex without the
+    /// raw fast path, the rare ones with it): `all_in_view` is cleared unless it lies in the
+    /// viewport (a vertex outside the guard band has x = OUTSIDE, left of any viewport).
     #[inline(never)]
     #[cold]
-    fn begin_rare(&self, s: &mut VertexSlot<Sh::Stored>, p: Vec3<S>, all_in_view: &mut bool) {
-        let v = self.geometry(p);
+    fn begin_rare<P: PositionOf<S>>(
+        &self,
+        s: &mut VertexSlot<Sh::Stored>,
+        at: P,
+        all_in_view: &mut bool,
+    ) {
+        let v = self.geometry(at.position());
         (s.x, s.y, s.z) = v;
         let [l, top, r, bottom] = self.edges;
         let (x, y) = (i64::from(v.0), i64::from(v.1));
@@ -491,7 +492,7 @@ struct Axis {
 
 /// What [`project_inside`]'s estimates of `T = u 2^32 / 2w` may fall short by, in units of
 /// `2^-32`, for `u <= 8w` (so `T <= 2^34`): the reciprocal's relative shortfall below `2^-27`
-/// ([`reciprocal_u32`]) gives less than `2^34 2^-27`, and the floor one more.
+/// ([`reciprocal_double`]) gives less than `2^34 2^-27`, and the floor one more.
 const SHORT_XY: u64 = (1 << (34 - 27)) + 1;
 /// [`SHORT_XY`] for depth, whose `u = z + w <= 2w` (so `T <= 2^32`).
 const SHORT_Z: u64 = (1 << (32 - 27)) + 1;
@@ -651,7 +652,7 @@ fn view_volume([x, ny, z, w]: [i64; 4]) -> Option<([u64; 3], u64)> {
 /// quotient in 32.32 with [`Axis::offset`] added ([`ScreenMap::screen`] takes the screen
 /// position and depth from them).
 ///
-/// The reciprocal `r <= 2^(32 + sh) / 2w` is at most `2^-27` below it ([`reciprocal_u32`]), so
+/// The reciprocal `r <= 2^(32 + sh) / 2w` is at most `2^-27` below it ([`reciprocal_double`]), so
 /// each quotient `floor((u scale + h) / 2w)` (`u <= 8w < 2^32`, `scale < 2^23`) is estimated as
 /// `floor((floor(u r / 2^sh) scale + h 2^32 / 2w) / 2^32)` from below by less than
 /// `short scale / 2^32` ([`SHORT_XY`], [`SHORT_Z`]; below `1/4`): the estimate is the quotient
@@ -662,7 +663,7 @@ fn view_volume([x, ny, z, w]: [i64; 4]) -> Option<([u64; 3], u64)> {
 #[inline(always)]
 fn project_inside(map: &ScreenMap, n: [u64; 3], w: u64, divide: Divide) -> [u64; 3] {
     let d = (2 * w) as u32;
-    let (r, sh) = reciprocal_u32(d, divide);
+    let (r, sh) = reciprocal_double(w as u32, divide);
     let quotient = |u: u64, a: &Axis| {
         let e = estimate(u, r, sh, a);
         if divide != Divide::Exact || e as u32 <= a.sure {
