@@ -207,18 +207,25 @@ pub(crate) fn reciprocal_seed(m: u32) -> u32 {
 ///
 /// `sh` is `w`'s top bit (that of `d` less one), so `d` has `30 - sh` leading zeros and is
 /// normalised to `m = d 2^(30 - sh) = w 2^(31 - sh)` in `[2^31, 2^32)`:
-/// `2^62 / m = 2^(32 + sh) / d`. (The top bit is the shift, which takes fewer instructions than
-/// counting `d`'s leading zeros.)
+/// `2^62 / m = 2^(32 + sh) / d`. (On x86-64 the top bit is the shift, which takes fewer
+/// instructions than counting `d`'s leading zeros.)
 #[inline(always)]
 pub(crate) fn reciprocal_double(w: u32, method: Divide) -> (u64, u32) {
-    let sh = 63 - u64::from(w).leading_zeros();
-    (reciprocal_normal(w << (31 - sh), method), sh)
+    #[cfg(target_pointer_width = "64")]
+    {
+        let sh = 63 - u64::from(w).leading_zeros();
+        (reciprocal_normal(w << (31 - sh), method), sh)
+    }
+    // A 32-bit core counts the leading zeros in one instruction either way, and the bound on
+    // them (`min(30)`) tells the compiler that the 64-bit products' shifts are below 32.
+    #[cfg(not(target_pointer_width = "64"))]
+    reciprocal_u32(2 * w, method)
 }
 
 /// [`reciprocal_double`] of any `d` in `[2, 2^30)`, odd ones too, normalised by its leading
-/// zeros: the reference the tests hold it to.
-#[cfg(test)]
-fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
+/// zeros (bounded by 30, which tells the compiler that `sh` is below 32): the clipper's path
+/// and 32-bit cores take it.
+pub(crate) fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
     // m = d 2^lz in [2^31, 2^32): 2^62 / m = 2^(62 - lz) / d = 2^(32 + sh) / d.
     let lz = d.leading_zeros().min(30);
     (reciprocal_normal(d << lz, method), 30 - lz)
@@ -237,11 +244,16 @@ fn reciprocal_normal(m: u32, method: Divide) -> u64 {
     let steps = if method == Divide::Newton { 2 } else { 1 };
     for _ in 0..steps {
         // e = 2^62 - m r (|e| < 2^56 from a table seed, 2^48 from the division's), then
-        // r += r e / 2^62 in two shifts so that the product stays below 2^63. e is taken as
-        // -4 m r wrapped to i64, which is 4e (|4e| < 2^63), shifted by 26 instead of 24: no
-        // 64-bit constant to hold.
-        let e = (i64::from(m) * r).wrapping_neg().wrapping_shl(2);
-        r += (r * (e >> 26)) >> 38;
+        // r += r e / 2^62 in two shifts so that the product stays below 2^63.
+        let e = if method == Divide::Newton {
+            // -4 m r wrapped to i64 is 4e (|4e| < 2^63): the same bits with no 64-bit constant
+            // to hold across the two steps (on x86-64; a 32-bit core spends two instructions
+            // more on it, so the one-step methods keep the subtraction).
+            (i64::from(m) * r).wrapping_neg().wrapping_shl(2) >> 2
+        } else {
+            (1i64 << 62) - i64::from(m) * r
+        };
+        r += (r * (e >> 24)) >> 38;
     }
     r as u64
 }

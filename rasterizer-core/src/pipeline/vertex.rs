@@ -14,7 +14,7 @@ use crate::depth::DepthTest;
 use crate::geom::SubPoint;
 use crate::math::{Mat4, Scalar, Vec3, Vec4};
 use crate::mesh::MeshSource;
-use crate::numerics::{reciprocal_double, Divide, Numerics};
+use crate::numerics::{reciprocal_double, reciprocal_u32, Divide, Numerics};
 use crate::shade::{Packed, Shading, VertexIn};
 use crate::transform::Viewport;
 use crate::wide::div_floor_i64;
@@ -663,10 +663,12 @@ fn view_volume([x, ny, z, w]: [i64; 4]) -> Option<([u64; 3], u64)> {
 #[inline(always)]
 fn project_inside(map: &ScreenMap, n: [u64; 3], w: u64, divide: Divide) -> [u64; 3] {
     let d = (2 * w) as u32;
-    let (r, sh) = reciprocal_double(w as u32, divide);
+    let (r, sh) = reciprocal_u32(d, divide);
     let quotient = |u: u64, a: &Axis| {
         let e = estimate(u, r, sh, a);
-        if divide != Divide::Exact || e as u32 <= a.sure {
+        // Every estimate settled, without the test that proves most exact: this serves the
+        // rare paths, where fewer instructions of code count more than a few more executed.
+        if divide != Divide::Exact {
             return e;
         }
         let q = ((e >> 32) as u32).wrapping_sub((a.offset >> 32) as u32);
