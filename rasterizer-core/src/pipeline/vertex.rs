@@ -91,9 +91,10 @@ where
         }
     }
 
-    /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`. One copy,
-    /// called from the loop of [`Pipeline::begin`] and for vertices beyond the scratch (inlining
-    /// it into the loop saves a call per vertex but costs a second copy in flash).
+    /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`: the
+    /// definition [`Pipeline::begin_raw`]'s faster loop matches. One copy, for the loop's rare
+    /// vertices, for the frames without the raw fast path ([`Pipeline::begin_rare`]) and for
+    /// vertices beyond the scratch.
     #[inline]
     pub(super) fn geometry(&self, p: Vec3<S>) -> Projected {
         if let (Some(raw), Some(px), Some(py), Some(pz)) =
@@ -258,7 +259,8 @@ where
     /// Starts a frame: the shader learns the space it lights in, and the scratch's slots for the
     /// mesh's vertices are filled with their geometry and marked unshaded. Returns the scratch cut
     /// to the mesh's vertices, so that a corner's bounds check also validates its index
-    /// ([`Pipeline::fetch`]).
+    /// ([`Pipeline::fetch`]). Out of line: the draw loops around it compile the same whatever
+    /// the vertex loop holds.
     #[inline(never)]
     pub(crate) fn begin<'s, M: MeshSource<S>>(
         &mut self,
@@ -302,7 +304,9 @@ where
 
     /// [`Pipeline::begin`]'s loop for a raw MVP and a viewport whose results need no clamping:
     /// each slot of `slots` filled from its position, and whether every vertex lies inside the
-    /// viewport.
+    /// viewport. The same slots as [`Pipeline::geometry`] gives, by a shorter way for the common
+    /// vertex: one in the view volume (so in the viewport, and no bounds to track), whose
+    /// estimates prove themselves exact. Everything else takes [`Pipeline::begin_rare`].
     #[inline(never)]
     fn begin_raw<'a, P, I>(&self, raw: &RawMvp, slots: I) -> bool
     where
