@@ -214,7 +214,10 @@ pub(crate) fn reciprocal_double(w: u32, method: Divide) -> (u64, u32) {
     #[cfg(target_pointer_width = "64")]
     {
         let sh = 63 - u64::from(w).leading_zeros();
-        (reciprocal_normal(w << (31 - sh), method), sh)
+        // w 2^(31 - sh) as (w 2^31) / 2^sh (exact: w < 2^(sh + 1)), so that both shifts are
+        // by sh.
+        let m = ((u64::from(w) << 31) >> sh) as u32;
+        (reciprocal_normal(m, method), sh)
     }
     // A 32-bit core counts the leading zeros in one instruction either way, and the bound on
     // them (`min(30)`) tells the compiler that the 64-bit products' shifts are below 32.
