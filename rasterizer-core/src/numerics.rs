@@ -216,8 +216,7 @@ pub(crate) fn reciprocal_double(w: u32, method: Divide) -> (u64, u32) {
         let sh = 63 - u64::from(w).leading_zeros();
         // w 2^(31 - sh) as (w 2^31) / 2^sh (exact: w < 2^(sh + 1)), so that both shifts are
         // by sh.
-        let m = ((u64::from(w) << 31) >> sh) as u32;
-        (reciprocal_normal(m, method), sh)
+        (reciprocal_normal((u64::from(w) << 31) >> sh, method), sh)
     }
     // A 32-bit core counts the leading zeros in one instruction either way, and the bound on
     // them (`min(30)`) tells the compiler that the 64-bit products' shifts are below 32.
@@ -231,17 +230,18 @@ pub(crate) fn reciprocal_double(w: u32, method: Divide) -> (u64, u32) {
 pub(crate) fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
     // m = d 2^lz in [2^31, 2^32): 2^62 / m = 2^(62 - lz) / d = 2^(32 + sh) / d.
     let lz = d.leading_zeros().min(30);
-    (reciprocal_normal(d << lz, method), 30 - lz)
+    (reciprocal_normal(u64::from(d << lz), method), 30 - lz)
 }
 
-/// `r <= 2^62 / m < r (1 + 2^-27)` for `m` in `[2^31, 2^32)` ([`reciprocal_double`]).
+/// `r <= 2^62 / m < r (1 + 2^-27)` for `m` in `[2^31, 2^32)` ([`reciprocal_double`]), taken as a
+/// `u64` (its callers' shifts leave it one).
 #[inline(always)]
-fn reciprocal_normal(m: u32, method: Divide) -> u64 {
+fn reciprocal_normal(m: u64, method: Divide) -> u64 {
     // r ≈ 2^62 / m, in [2^30, 2^31].
     let mut r = match method {
         // m >> 16 is in [2^15, 2^16): 2^32 / (m >> 16) ≈ 2^48 / m, within 2^-15.
         // (Bit 15 is set whenever d > 0: the divisor is never zero.)
-        Divide::Exact | Divide::Reciprocal => i64::from(reciprocal_seed(m)) << 14,
+        Divide::Exact | Divide::Reciprocal => i64::from(reciprocal_seed(m as u32)) << 14,
         Divide::Newton => i64::from(RECIPROCAL_TABLE[((m >> 25) & 63) as usize]),
     };
     let steps = if method == Divide::Newton { 2 } else { 1 };
@@ -252,9 +252,9 @@ fn reciprocal_normal(m: u32, method: Divide) -> u64 {
             // -4 m r wrapped to i64 is 4e (|4e| < 2^63): the same bits with no 64-bit constant
             // to hold across the two steps (on x86-64; a 32-bit core spends two instructions
             // more on it, so the one-step methods keep the subtraction).
-            (i64::from(m) * r).wrapping_neg().wrapping_shl(2) >> 2
+            (m as i64 * r).wrapping_neg().wrapping_shl(2) >> 2
         } else {
-            (1i64 << 62) - i64::from(m) * r
+            (1i64 << 62) - m as i64 * r
         };
         r += (r * (e >> 24)) >> 38;
     }
@@ -313,7 +313,7 @@ mod tests {
             Divide::Newton => i64::from(RECIPROCAL_TABLE[((m >> 25) & 63) as usize]),
         };
         for _ in 0..if method == Divide::Newton { 2 } else { 1 } {
-            let e = (1i64 << 62) - i64::from(m) * r;
+            let e = (1i64 << 62) - m as i64 * r;
             r += (r * (e >> 24)) >> 38;
         }
         r as u64
@@ -337,7 +337,7 @@ mod tests {
         for m in random.chain(edges).chain([u32::MAX, 1 << 31]) {
             for method in [Divide::Exact, Divide::Reciprocal, Divide::Newton] {
                 assert_eq!(
-                    reciprocal_normal(m, method),
+                    reciprocal_normal(u64::from(m), method),
                     plain_reciprocal(m, method),
                     "{m}"
                 );
