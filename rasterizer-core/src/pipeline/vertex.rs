@@ -336,24 +336,27 @@ where
                 continue;
             }
             let c = [row(0), row(1), row(2), w];
-            if let Some((n, wc)) = view_volume(c) {
-                // In the view volume, so in the viewport. No clamping: the estimates hold the
-                // corner (`Axis::offset`).
-                let e = project_estimate(&self.map.view, n, wc, N::DIVIDE);
-                if let Some(e) = e {
-                    s.x = (e[0] as i64 >> 32) as i32;
-                    s.y = (e[1] as i64 >> 32) as i32;
-                    s.z = (e[2] >> 32) as u16;
+            // In the view volume, so in the viewport, with estimates that prove themselves
+            // exact: the common vertex, whose stores end the loop's body.
+            let e = match view_volume(c) {
+                Some((n, wc)) => project_estimate(&self.map.view, n, wc, N::DIVIDE),
+                None if guard_band(c, lo, W_BIG).is_none() => {
+                    (s.x, s.y, s.z) = (OUTSIDE, 1, 0);
+                    all_in_view = false;
                     continue;
                 }
-            } else if guard_band(c, lo, W_BIG).is_none() {
-                (s.x, s.y, s.z) = (OUTSIDE, 1, 0);
-                all_in_view = false;
+                None => None,
+            };
+            let Some(e) = e else {
+                // Rarely: an estimate to settle, or a vertex in the guard band but outside the
+                // view volume.
+                self.begin_rare(s, at, &mut all_in_view);
                 continue;
-            }
-            // Rarely: an estimate to settle, or a vertex in the guard band but outside the view
-            // volume.
-            self.begin_rare(s, at, &mut all_in_view);
+            };
+            // No clamping: the estimates hold the corner (`Axis::offset`).
+            s.x = (e[0] as i64 >> 32) as i32;
+            s.y = (e[1] as i64 >> 32) as i32;
+            s.z = (e[2] >> 32) as u16;
         }
         all_in_view
     }
