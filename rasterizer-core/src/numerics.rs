@@ -20,8 +20,10 @@
 pub enum Divide {
     /// The default: exactly rounded results (the only error is the final rounding), the same as
     /// one correctly rounded division per coordinate. The reciprocal comes from one 32-bit
-    /// division (a single instruction on a Cortex-M3/M4) and one Newton-Raphson step; each
-    /// coordinate's estimate is then settled with its remainder (a 32-bit multiply and compare).
+    /// division (a single instruction on a Cortex-M3/M4) and one Newton-Raphson step; an
+    /// estimate whose fraction lies so close below a whole number that it may be one short is
+    /// then settled with its remainder (rarely: most estimates prove themselves exact with one
+    /// compare).
     Exact,
     /// The reciprocal of [`Divide::Exact`] without the settling: at most one unit below the
     /// exactly rounded result (never above), and cheaper than it.
@@ -194,33 +196,69 @@ pub(crate) fn reciprocal_seed(m: u32) -> u32 {
     u32::MAX / (m >> 16 | 1 << 15)
 }
 
-/// The reciprocal `r` and shift `sh` with `r <= 2^(32 + sh) / d < r (1 + 2^-27)` for `d` in
-/// `[2, 2^30)`: `r <= 2^31`, `sh` in `0..=28`. No 64-bit division: the seed of
-/// [`Divide::Exact`] and [`Divide::Reciprocal`] is one 32-bit division (a single instruction on a
-/// Cortex-M3/M4) of 16 correct bits, refined by one Newton-Raphson step; [`Divide::Newton`]'s is
-/// a 64-entry table of 7 bits, refined by two. A Newton step never overshoots the reciprocal
-/// (`r' = r (2 - m r)` is `(1 - e^2) / m` for `r = (1 - e) / m`), and its roundings are down, so
-/// `r` is never above it.
+/// The reciprocal `r` and shift `sh` of `d = 2w` with `r <= 2^(32 + sh) / d < r (1 + 2^-27)` for
+/// `w` in `[1, 2^29)` (the callers test that range first; `w = 0` would overflow the shift):
+/// `r <= 2^31`, `sh` in `0..=28`. No 64-bit division: the seed of [`Divide::Exact`] and
+/// [`Divide::Reciprocal`] is one 32-bit division (a single instruction on a Cortex-M3/M4) of 16
+/// correct bits, refined by one Newton-Raphson step; [`Divide::Newton`]'s is a 64-entry table
+/// of 7 bits, refined by two. A Newton step never overshoots the reciprocal (`r' = r (2 - m r)`
+/// is `(1 - e^2) / m` for `r = (1 - e) / m`), and its roundings are down, so `r` is never above
+/// it.
+///
+/// `sh` is `w`'s top bit (that of `d` less one), so `d` has `30 - sh` leading zeros and is
+/// normalised to `m = d 2^(30 - sh) = w 2^(31 - sh)` in `[2^31, 2^32)`:
+/// `2^62 / m = 2^(32 + sh) / d`. (On x86-64 the top bit is the shift, which takes fewer
+/// instructions than counting `d`'s leading zeros.)
 #[inline(always)]
+pub(crate) fn reciprocal_double(w: u32, method: Divide) -> (u64, u32) {
+    #[cfg(target_pointer_width = "64")]
+    {
+        let sh = 63 - u64::from(w).leading_zeros();
+        // w 2^(31 - sh) as (w 2^31) / 2^sh (exact: w < 2^(sh + 1)), so that both shifts are
+        // by sh.
+        (reciprocal_normal((u64::from(w) << 31) >> sh, method), sh)
+    }
+    // A 32-bit core counts the leading zeros in one instruction either way, and the bound on
+    // them (`min(30)`) tells the compiler that the 64-bit products' shifts are below 32.
+    #[cfg(not(target_pointer_width = "64"))]
+    reciprocal_u32(2 * w, method)
+}
+
+/// [`reciprocal_double`] of any `d` in `[2, 2^30)`, odd ones too, normalised by its leading
+/// zeros (bounded by 30, which tells the compiler that `sh` is below 32): the clipper's path
+/// and 32-bit cores take it.
 pub(crate) fn reciprocal_u32(d: u32, method: Divide) -> (u64, u32) {
     // m = d 2^lz in [2^31, 2^32): 2^62 / m = 2^(62 - lz) / d = 2^(32 + sh) / d.
     let lz = d.leading_zeros().min(30);
-    let m = d << lz;
+    (reciprocal_normal(u64::from(d << lz), method), 30 - lz)
+}
+
+/// `r <= 2^62 / m < r (1 + 2^-27)` for `m` in `[2^31, 2^32)` ([`reciprocal_double`]), taken as a
+/// `u64` (its callers' shifts leave it one).
+#[inline(always)]
+fn reciprocal_normal(m: u64, method: Divide) -> u64 {
     // r ≈ 2^62 / m, in [2^30, 2^31].
     let mut r = match method {
         // m >> 16 is in [2^15, 2^16): 2^32 / (m >> 16) ≈ 2^48 / m, within 2^-15.
         // (Bit 15 is set whenever d > 0: the divisor is never zero.)
-        Divide::Exact | Divide::Reciprocal => i64::from(reciprocal_seed(m)) << 14,
+        Divide::Exact | Divide::Reciprocal => i64::from(reciprocal_seed(m as u32)) << 14,
         Divide::Newton => i64::from(RECIPROCAL_TABLE[((m >> 25) & 63) as usize]),
     };
     let steps = if method == Divide::Newton { 2 } else { 1 };
     for _ in 0..steps {
         // e = 2^62 - m r (|e| < 2^56 from a table seed, 2^48 from the division's), then
         // r += r e / 2^62 in two shifts so that the product stays below 2^63.
-        let e = (1i64 << 62) - i64::from(m) * r;
+        let e = if method == Divide::Newton {
+            // -4 m r wrapped to i64 is 4e (|4e| < 2^63): the same bits with no 64-bit constant
+            // to hold across the two steps (on x86-64; a 32-bit core spends two instructions
+            // more on it, so the one-step methods keep the subtraction).
+            (m as i64 * r).wrapping_neg().wrapping_shl(2) >> 2
+        } else {
+            (1i64 << 62) - m as i64 * r
+        };
         r += (r * (e >> 24)) >> 38;
     }
-    (r as u64, 30 - lz)
+    r as u64
 }
 
 #[cfg(test)]
@@ -265,6 +303,68 @@ mod tests {
             worst = worst.max(((e - u128::from(r)) << 32) / e);
         }
         worst
+    }
+
+    /// The Newton-Raphson step as first written, `e = 2^62 - m r`, `r += r (e >> 24) >> 38`: the
+    /// wrapped form of `reciprocal_normal` must give the same bits.
+    fn plain_reciprocal(m: u32, method: Divide) -> u64 {
+        let mut r = match method {
+            Divide::Exact | Divide::Reciprocal => i64::from(reciprocal_seed(m)) << 14,
+            Divide::Newton => i64::from(RECIPROCAL_TABLE[((m >> 25) & 63) as usize]),
+        };
+        for _ in 0..if method == Divide::Newton { 2 } else { 1 } {
+            let e = (1i64 << 62) - m as i64 * r;
+            r += (r * (e >> 24)) >> 38;
+        }
+        r as u64
+    }
+
+    #[test]
+    fn newton_step_is_the_plain_one() {
+        let mut x = 0x0bad_cafeu32;
+        let random = core::iter::from_fn(move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            Some(x | 1 << 31)
+        })
+        .take(200_000);
+        // Each table interval's ends and middle, where the table's seed is furthest off.
+        let edges = (0..64u32).flat_map(|i| {
+            let lo = (64 + i) << 25;
+            [lo, lo + 1, lo + (1 << 24), lo + ((1 << 25) - 1)]
+        });
+        for m in random.chain(edges).chain([u32::MAX, 1 << 31]) {
+            for method in [Divide::Exact, Divide::Reciprocal, Divide::Newton] {
+                assert_eq!(
+                    reciprocal_normal(u64::from(m), method),
+                    plain_reciprocal(m, method),
+                    "{m}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn reciprocal_of_a_double_is_the_reciprocal() {
+        let mut x = 0x2545_f491u32;
+        let random = core::iter::from_fn(move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            Some(x >> (x & 31).min(2))
+        })
+        .take(100_000);
+        let edges = (1..3000u32).chain((0..29).flat_map(|b| [(1 << b) - 1, 1 << b, (1 << b) + 1]));
+        for w in random.chain(edges).filter(|w| (1..1 << 29).contains(w)) {
+            for method in [Divide::Exact, Divide::Reciprocal, Divide::Newton] {
+                assert_eq!(
+                    reciprocal_double(w, method),
+                    reciprocal_u32(2 * w, method),
+                    "{w}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -118,6 +118,12 @@ pub trait MeshSource<S> {
     fn triangle(&self, t: usize) -> [usize; 3];
     /// Vertex `i`'s position (`i < vertex_count()`).
     fn position(&self, i: usize) -> Vec3<S>;
+    /// All positions as one slice, when the mesh keeps them so (`vertex_count()` long): a loop
+    /// over every vertex then reads them without an index check each.
+    #[inline(always)]
+    fn position_slice(&self) -> Option<&[Vec3<S>]> {
+        None
+    }
     /// True when the mesh has normals.
     fn has_normals(&self) -> bool;
     /// Vertex `i`'s normal, if the mesh has normals.
@@ -163,6 +169,10 @@ impl<S: Scalar, I: VertexIndex> MeshSource<S> for Mesh<'_, S, I> {
     #[inline(always)]
     fn position(&self, i: usize) -> Vec3<S> {
         self.positions.get(i).copied().unwrap_or_default()
+    }
+    #[inline(always)]
+    fn position_slice(&self) -> Option<&[Vec3<S>]> {
+        Some(self.positions)
     }
     #[inline(always)]
     fn has_normals(&self) -> bool {
