@@ -582,21 +582,9 @@ fn by_words_general<C, D, V, P, const BITS: u32>(
     let Some((zbuf, zwidth, zorigin)) = depth_entries(t.zrows, &clip) else {
         return;
     };
-    let mut sink = WordSpans::<C, D, V, P> {
-        words,
-        stride,
-        y0,
-        zbuf,
-        zwidth,
-        zorigin,
-        pixel: t.pixel,
-        values,
-        z,
-        compare: t.compare,
-        _v: core::marker::PhantomData,
-    };
-    // `walk_spans_once` with its walks set up out of line: these triangles are few, and their
-    // code is better small.
+    // `walk_spans_once` with its walks set up out of line, each pixel's values from the planes
+    // at its own position (the same values as stepped along the span, wrapping): these
+    // triangles are few, and their code is better small.
     let s = 1i64 << BITS;
     let [v0, v1, v2] = sorted.v;
     let mut long = edge_walk(v0, v2, s, top);
@@ -606,6 +594,7 @@ fn by_words_general<C, D, V, P, const BITS: u32>(
         edge_walk(v1, v2, s, mid)
     };
     let short_is_left = sorted.cross < 0;
+    let (pixel, compare) = (&t.pixel, t.compare);
     for row in top..bottom {
         if row == mid && top < mid {
             short = edge_walk(v1, v2, s, mid);
@@ -616,8 +605,35 @@ fn by_words_general<C, D, V, P, const BITS: u32>(
             (long.col(), short.col())
         };
         let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
-        if x0 < x1 {
-            let Ok(()) = sink.span(row as i32, x0 as i32, x1 as i32);
+        // In range (the buffers cover the clip area): the checks never fail.
+        let y = row as i32;
+        let zstart = y.wrapping_sub(zorigin) as u32 as usize * zwidth;
+        let fstart = y.wrapping_sub(y0) as u32 as usize * stride;
+        if let (true, Some(zrow), Some(crow)) =
+            (x0 < x1, zbuf.get_mut(zstart..), words.get_mut(fstart..))
+        {
+            for x in x0 as i32..x1 as i32 {
+                let Some(stored) = zrow.get_mut(x as usize) else {
+                    break;
+                };
+                let nz = (z.at(x, y) >> Z_FRAC) as u16;
+                if !compare.pass(nz, *stored) {
+                    continue;
+                }
+                if D::WRITE {
+                    *stored = nz;
+                }
+                let mut acc = [0u32; MAX_VARYINGS];
+                for k in 0..V::LEN.min(MAX_VARYINGS) {
+                    acc[k] = values[k].at(x, y);
+                }
+                let color = if P::AT {
+                    pixel.color_at(&acc, x, y)
+                } else {
+                    pixel.color(&acc)
+                };
+                C::set(crow, x as usize, color);
+            }
         }
         short.step();
         long.step();
@@ -639,70 +655,6 @@ fn plane_out_of_line<const BITS: u32>(
     offset: u32,
 ) -> Plane32 {
     shape.plane::<BITS>(f, frac, offset)
-}
-
-/// The span sink of [`by_words_general`]: [`Fused`] writing straight into a framebuffer's words,
-/// with the general depth test only (its triangles are few).
-struct WordSpans<'a, C: Storage, D, V, P> {
-    words: &'a mut [C::Word],
-    stride: usize,
-    y0: i32,
-    zbuf: &'a mut [u16],
-    zwidth: usize,
-    zorigin: i32,
-    pixel: P,
-    values: [Plane32; MAX_VARYINGS],
-    z: Plane32,
-    compare: Compare,
-    _v: core::marker::PhantomData<(D, V)>,
-}
-
-impl<C, D, V, P> SpanSink for WordSpans<'_, C, D, V, P>
-where
-    C: Storage,
-    D: DepthTest,
-    V: Varyings,
-    P: FusedColor<C>,
-{
-    type Error = core::convert::Infallible;
-
-    #[inline(always)]
-    fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), Self::Error> {
-        let len = (x1 - x0) as usize;
-        // In range (the buffers cover the clip area): the checks never fail.
-        let zstart = row.wrapping_sub(self.zorigin) as u32 as usize * self.zwidth + x0 as usize;
-        let fstart = row.wrapping_sub(self.y0) as u32 as usize * self.stride;
-        let (Some(zrow), Some(crow)) = (
-            self.zbuf.get_mut(zstart..zstart + len),
-            self.words.get_mut(fstart..),
-        ) else {
-            return Ok(());
-        };
-        let (x, pixel) = (x0 as usize, &self.pixel);
-        let mut acc = [0u32; MAX_VARYINGS];
-        let mut step = [0u32; MAX_VARYINGS];
-        for k in 0..V::LEN.min(MAX_VARYINGS) {
-            acc[k] = self.values[k].at(x0, row);
-            step[k] = self.values[k].gx;
-        }
-        let (z, dz, compare) = (self.z.at(x0, row), self.z.gx, self.compare);
-        depth_pixels!(
-            false,
-            P,
-            V,
-            D,
-            acc,
-            step,
-            z,
-            dz,
-            compare,
-            pixel,
-            x0,
-            row,
-            |pixels| C::shade_depth(crow, x, zrow, pixels)
-        );
-        Ok(())
-    }
 }
 
 /// A triangle the lean path of [`DepthTriangle::by_words`] takes: its columns inside the clip
