@@ -244,7 +244,10 @@ where
             normal_matrix: &self.normal_matrix,
             model_space: self.model_space,
         };
-        let p = [0, 1, 2].map(|k| space.position(mesh, idx[k]));
+        let mut p = [Vec3::default(); 3];
+        for (p, &i) in p.iter_mut().zip(&idx) {
+            *p = space.position(mesh, i);
+        }
         let normal = Vec3::face_normal(p[0], p[1], p[2]);
         // A mirroring model matrix turns the cross product of world-space edges inwards.
         let normal = if self.flip_faces { -normal } else { normal };
@@ -666,8 +669,9 @@ fn view_volume([x, ny, z, w]: [i64; 4]) -> Option<([u64; 3], u64)> {
 /// or one less, and one less only when its fraction lies within that shortfall of one
 /// ([`Axis::sure`]). [`Divide::Exact`] settles those few with the remainder, in wrapping
 /// 32-bit arithmetic (the remainder lies in `[0, 4w)`, below `2^31`); the divider-free methods
-/// keep the estimate.
-#[inline(always)]
+/// keep the estimate. Out of line: [`Pipeline::geometry`] and [`Pipeline::project`] share one
+/// copy (the common vertex takes [`project_estimate`]).
+#[inline(never)]
 fn project_inside(map: &ScreenMap, n: [u64; 3], w: u64, divide: Divide) -> [u64; 3] {
     let d = (2 * w) as u32;
     let (r, sh) = reciprocal_u32(d, divide);

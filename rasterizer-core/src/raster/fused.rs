@@ -137,7 +137,12 @@ impl Shape {
                 gy: gy as u32,
             };
         }
-        let (fa, gx, gy) = plane_wide::<BITS>(f[0], a, b, frac, self.cross, self.offset2);
+        // The anchor is the top vertex's own pixel when its centre lies within half a pixel of
+        // it: `offset2` in `(-s, s]` each way.
+        let s = 1i64 << BITS;
+        let near = |o: i64| -s < o && o <= s;
+        let own = near(self.offset2.0) && near(self.offset2.1);
+        let (fa, gx, gy) = plane_wide::<BITS>(f[0], a, b, frac, self.cross, self.offset2, own);
         let (ax, ay) = (self.anchor.0 as u32, self.anchor.1 as u32);
         let (gx, gy) = (gx as u32, gy as u32);
         Plane32 {
@@ -151,9 +156,11 @@ impl Shape {
     }
 }
 
-/// [`Shape::plane`] for large triangles, steep planes or a far anchor: the anchor's value exactly
-/// rounded, in `i128`. Only the low 32 bits of each result matter. It takes the two fields it
-/// needs by value, so that the shape need not be stored in memory for it.
+/// [`Shape::plane`] for large triangles, steep planes or a far anchor, in `i128`: the gradients
+/// exactly rounded, and the anchor's value exactly rounded for a far anchor, or from the rounded
+/// gradients for the top vertex's own pixel (`own`), as the narrow set-up finds it, so that a
+/// triangle gets the same planes on either path. Only the low 32 bits of each result matter. It
+/// takes the fields it needs by value, so that the shape need not be stored in memory for it.
 #[inline(never)]
 #[cold]
 fn plane_wide<const BITS: u32>(
@@ -163,12 +170,26 @@ fn plane_wide<const BITS: u32>(
     frac: u32,
     cross: i64,
     offset2: (i64, i64),
+    own: bool,
 ) -> (i64, i64, i64) {
-    let n = (crate::wide::mul_i128(a, offset2.0) + crate::wide::mul_i128(b, offset2.1)) << frac;
-    let (a, b, d) = (i128::from(a), i128::from(b), i128::from(cross));
-    let gx = round_div_wide(a << (BITS + frac), d);
-    let gy = round_div_wide(b << (BITS + frac), d);
-    let fa = (i128::from(f0) << frac) + round_div_wide(n, 2 * d);
+    let (wa, wb, d) = (i128::from(a), i128::from(b), i128::from(cross));
+    let gx = round_div_wide(wa << (BITS + frac), d);
+    let gy = round_div_wide(wb << (BITS + frac), d);
+    let moved = if own {
+        // As the narrow set-up: only the low 32 + BITS + 1 bits of the sum matter, so the
+        // products may wrap.
+        let (gx, gy) = (gx as i64, gy as i64);
+        i128::from(
+            gx.wrapping_mul(offset2.0)
+                .wrapping_add(gy.wrapping_mul(offset2.1))
+                .wrapping_add(1 << BITS)
+                >> (BITS + 1),
+        )
+    } else {
+        let n = (crate::wide::mul_i128(a, offset2.0) + crate::wide::mul_i128(b, offset2.1)) << frac;
+        round_div_wide(n, 2 * d)
+    };
+    let fa = (i128::from(f0) << frac) + moved;
     // Truncating keeps the low bits, all the wrapping arithmetic needs.
     (fa as i64, gx as i64, gy as i64)
 }
@@ -509,7 +530,7 @@ where
     fn by_spans<S: Surface<Color = C> + ?Sized>(self, surface: &mut S) -> Result<(), S::Error> {
         let clip = self.clip;
         let Some((t, Some(rows), values, z)) =
-            planes::<D, V, BITS, false>(self.vertices, self.area, &clip, P::PRECISION, true)
+            planes::<D, V, BITS>(self.vertices, self.area, &clip, P::PRECISION, true)
         else {
             return Ok(());
         };
@@ -538,32 +559,33 @@ where
     {
         // The lean path needs the depth entries laid out as the words (one index a pixel for
         // both): so they are for a depth buffer the size of the framebuffer or band.
+        let Some(lean) = Lean::new(self.vertices, &self.clip) else {
+            return;
+        };
         let same_layout =
             C::WORD_PER_PIXEL && self.zrows.width as usize == stride && self.zrows.origin_y == y0;
-        if same_layout {
-            if let Some(lean) = Lean::new(self.vertices, self.area, &self.clip) {
-                let off0 = (lean.rows.0 as i32).wrapping_sub(y0) as u32 as usize * stride;
-                return lean.draw::<C, D, V, P>(
-                    self.vertices,
-                    words,
-                    self.zrows.depths,
-                    stride,
-                    off0,
-                    &self.pixel,
-                    self.compare,
-                );
-            }
+        if same_layout && self.compare == Compare::Less && lean.is_lean(self.area, &self.clip) {
+            let off0 = (lean.rows.0 as i32).wrapping_sub(y0) as u32 as usize * stride;
+            return lean.draw::<C, D, V, P>(
+                self.vertices,
+                words,
+                self.zrows.depths,
+                stride,
+                off0,
+                &self.pixel,
+            );
         }
-        by_words_general::<C, D, V, P, BITS>(self, words, stride, y0);
+        by_words_general::<C, D, V, P, BITS>(self, lean, words, stride, y0);
     }
 }
 
 /// [`DepthTriangle::by_words`] for the triangles the lean path does not take (columns to clamp,
-/// wide planes, an anchor moved into the viewport, another layout), span by span: out of line,
-/// so that the lean path keeps its registers.
+/// large triangles, an anchor moved into the viewport, a depth test other than `Less`, another
+/// layout), span by span: out of line, so that the lean path keeps its registers.
 #[inline(never)]
 fn by_words_general<C, D, V, P, const BITS: u32>(
     t: FusedTriangle<'_, D, V, P, BITS>,
+    lean: Lean<BITS>,
     words: &mut [C::Word],
     stride: usize,
     y0: i32,
@@ -574,17 +596,23 @@ fn by_words_general<C, D, V, P, const BITS: u32>(
     P: FusedColor<C>,
 {
     let clip = t.clip;
-    let Some((sorted, Some((top, mid, bottom)), values, z)) =
-        planes::<D, V, BITS, true>(t.vertices, t.area, &clip, P::PRECISION, true)
-    else {
-        return;
+    let (top, mid, bottom) = lean.rows;
+    let sorted = Sorted {
+        v: lean.v,
+        order: lean.order,
+        cross: lean.cross,
     };
-    let Some((zbuf, zwidth, zorigin)) = depth_entries(t.zrows, &clip) else {
+    let (values, z) = planes_of::<D, V, BITS, true>(&sorted, t.vertices, t.area, P::PRECISION);
+    // Rows outside the depth entries find no slice below; columns beyond them would take
+    // another row's, so such a buffer draws nothing (the pipeline refuses a depth buffer that
+    // does not cover the viewport, so none does).
+    let (zbuf, zwidth, zorigin) = (t.zrows.depths, t.zrows.width as usize, t.zrows.origin_y);
+    if clip.x1 > zwidth as i64 {
         return;
-    };
-    // `walk_spans_once` with its walks set up out of line, each pixel's values from the planes
-    // at its own position (the same values as stepped along the span, wrapping): these
-    // triangles are few, and their code is better small.
+    }
+    // `walk_spans_once` with its walks set up out of line, the planes set up wide and each
+    // pixel's values from the planes at its own position (the same values as the lean path's,
+    // to the bit): these triangles are few, and their code is better small.
     let s = 1i64 << BITS;
     let [v0, v1, v2] = sorted.v;
     let mut long = edge_walk(v0, v2, s, top);
@@ -646,22 +674,11 @@ fn edge_walk(a: (i64, i64), b: (i64, i64), s: i64, row: i64) -> EdgeWalk {
     EdgeWalk::new(a, b, s, row)
 }
 
-/// [`Shape::plane`] out of line, for [`planes`] when its caller is rare.
-#[inline(never)]
-fn plane_out_of_line<const BITS: u32>(
-    shape: &Shape,
-    f: [i64; 3],
-    frac: u32,
-    offset: u32,
-) -> Plane32 {
-    shape.plane::<BITS>(f, frac, offset)
-}
-
 /// A triangle the lean path of [`DepthTriangle::by_words`] takes: its columns inside the clip
 /// area (no span needs clamping), at most [`SMALL_PIXELS`] pixels each way (its edge walks set
 /// up in `i32`, [`Edge`], and its edges narrow) and its top vertex's pixel inside the viewport
-/// ([`Shape::plane`]'s narrow set-up), on a framebuffer of one word a pixel whose rows the depth
-/// buffer shares. Its planes and walks come from the same formulas as the general path's, so its
+/// ([`Shape::plane`]'s narrow set-up), with the usual depth test ([`Compare::Less`]), on a
+/// framebuffer of one word a pixel whose rows the depth buffer shares. Its planes and walks come from the same formulas as the general path's, so its
 /// pixels are the same to the bit.
 struct Lean<const BITS: u32> {
     /// The sorted vertices and their permutation.
@@ -677,60 +694,64 @@ struct Lean<const BITS: u32> {
 }
 
 impl<const BITS: u32> Lean<BITS> {
-    /// The triangle, when the lean path takes it (`None` leaves it to the general path, which
-    /// also settles flat and rowless triangles).
+    /// The sorted triangle and its rows inside `clip`, or `None` when nothing is drawn: a
+    /// vertex outside the guard band (as [`Sorted::new`] drops it), zero area, or no row of
+    /// pixel centres.
     #[inline(always)]
-    fn new<V>(
-        vertices: &[FusedVertex<V, BITS>; 3],
-        area: &PixelRect,
-        clip: &PixelRect,
-    ) -> Option<Self> {
+    fn new<V>(vertices: &[FusedVertex<V, BITS>; 3], clip: &PixelRect) -> Option<Self> {
         let s = 1i64 << BITS;
         let p = [vertices[0].0, vertices[1].0, vertices[2].0];
         let order = row_order(&p);
         let v = order.map(|i| (i64::from(p[i].x), i64::from(p[i].y)));
         let [v0, v1, v2] = v;
         let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
-        // The clip area lies inside a framebuffer (below 2^15 pixels): columns inside it are
-        // inside the guard band; the rows are checked here (v0 is the highest, v2 the lowest).
-        // Small: every edge walk is then set up in `i32` ([`Edge`]), and the edges are narrow
-        // (`2^(6 + BITS) <= 2^(27 - BITS)`).
-        let small = SMALL_PIXELS << BITS;
+        // v0 is the highest vertex, v2 the lowest.
         let band = i64::from(crate::geom::GUARD_BAND_PIXELS) << BITS;
-        if xmin < clip.x0 * s
-            || xmax > clip.x1 * s
-            || v0.1 < -band
-            || v2.1 > band
-            || xmax - xmin > small
-            || v2.1 - v0.1 > small
-        {
+        if xmin < -band || xmax > band || v0.1 < -band || v2.1 > band {
             return None;
         }
         let cross = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
         let top = row_at_or_below(v0.1, s).max(clip.y0);
         let mid = row_at_or_below(v1.1, s).clamp(top, clip.y1.max(top));
         let bottom = row_at_or_below(v2.1, s).min(clip.y1);
-        let sign = cross.signum();
-        let e1 = (sign * (v1.0 - v0.0), sign * (v1.1 - v0.1));
-        let e2 = (sign * (v2.0 - v0.0), sign * (v2.1 - v0.1));
-        let own = (v0.0 >> BITS, v0.1 >> BITS);
-        let own_inside = own.0 >= area.x0 && own.0 < area.x1 && own.1 >= area.y0 && own.1 < area.y1;
-        if cross == 0 || top >= bottom || !own_inside {
+        if cross == 0 || top >= bottom {
             return None;
         }
+        let sign = cross.signum();
         Some(Self {
             v,
             order,
             cross,
-            e1,
-            e2,
+            e1: (sign * (v1.0 - v0.0), sign * (v1.1 - v0.1)),
+            e2: (sign * (v2.0 - v0.0), sign * (v2.1 - v0.1)),
             rows: (top, mid, bottom),
         })
     }
 
+    /// Whether the lean path takes the triangle (else the general path does): its columns
+    /// inside `clip` (the clip area lies inside a framebuffer, below 2^15 pixels), at most
+    /// [`SMALL_PIXELS`] pixels each way (every edge walk is then set up in `i32`, [`Edge`], and
+    /// the edges are narrow: `2^(6 + BITS) <= 2^(27 - BITS)`), and its top vertex's pixel in
+    /// `area`.
+    #[inline(always)]
+    fn is_lean(&self, area: &PixelRect, clip: &PixelRect) -> bool {
+        let s = 1i64 << BITS;
+        let [v0, v1, v2] = self.v;
+        let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+        let small = SMALL_PIXELS << BITS;
+        let own = (v0.0 >> BITS, v0.1 >> BITS);
+        xmin >= clip.x0 * s
+            && xmax <= clip.x1 * s
+            && xmax - xmin <= small
+            && v2.1 - v0.1 <= small
+            && own.0 >= area.x0
+            && own.0 < area.x1
+            && own.1 >= area.y0
+            && own.1 < area.y1
+    }
+
     /// Draws the triangle: its planes, then its rows; `off0` is the index of its first row's
     /// first word, in `words` and in `zbuf` alike.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn draw<C, D, V, P>(
         self,
@@ -740,7 +761,6 @@ impl<const BITS: u32> Lean<BITS> {
         stride: usize,
         off0: usize,
         pixel: &P,
-        compare: Compare,
     ) where
         C: Storage,
         D: DepthTest,
@@ -766,20 +786,30 @@ impl<const BITS: u32> Lean<BITS> {
         let Precision { frac, offset } = P::PRECISION;
         let [o0, o1, o2] = self.order;
         let n = V::LEN.min(MAX_VARYINGS);
+        // As in `planes`; depth's plane last, in the same loop (one copy of the plane's code
+        // in a build for size).
+        let near = vertices.iter().any(|v| v.1 == 0);
+        let zoffset = if near { 1 << (Z_FRAC - 1) } else { 0 };
+        let mut planes = [Plane32::default(); MAX_VARYINGS + 1];
+        for (k, p) in planes.iter_mut().enumerate().take(n + 1) {
+            let f = |o: usize| match vertices[o].2.as_slice().get(k) {
+                Some(&v) if k < n => i64::from(v),
+                _ => i64::from(vertices[o].1),
+            };
+            let (frac, offset) = if k < n {
+                (frac, offset)
+            } else {
+                (Z_FRAC, zoffset)
+            };
+            *p = shape.plane::<BITS>([f(o0), f(o1), f(o2)], frac, offset);
+        }
         let mut values = [Plane32::default(); MAX_VARYINGS];
         let mut step = [0u32; MAX_VARYINGS];
         for k in 0..n {
-            let f = |o: usize| i64::from(vertices[o].2.as_slice()[k]);
-            values[k] = shape.plane::<BITS>([f(o0), f(o1), f(o2)], frac, offset);
-            step[k] = values[k].gx;
+            values[k] = planes[k];
+            step[k] = planes[k].gx;
         }
-        let z = {
-            let f = |o: usize| i64::from(vertices[o].1);
-            // As in `planes`.
-            let near = vertices.iter().any(|v| v.1 == 0);
-            let zoffset = if near { 1 << (Z_FRAC - 1) } else { 0 };
-            shape.plane::<BITS>([f(o0), f(o1), f(o2)], Z_FRAC, zoffset)
-        };
+        let z = planes[n];
         let (top, mid, bottom) = self.rows;
         // The walks in `i32`, columns from the leftmost vertex's pixel `ox`: each edge from its
         // upper end, in doubled units from the centre of column `ox` (at least `-s`), and the
@@ -793,25 +823,27 @@ impl<const BITS: u32> Lean<BITS> {
             let (x, y) = end(p, row);
             Edge::new::<BITS>(x, y, (q.0 - p.0) as i32, (q.1 - p.1) as i32)
         };
-        let long = edge(v0, v2, top);
-        let first = if top < mid {
-            edge(v0, v1, top)
-        } else {
-            edge(v1, v2, mid)
-        };
+        let mut long = edge(v0, v2, top);
         let short_is_left = self.cross < 0;
-        let (mut l, mut r) = if short_is_left {
-            (first, long)
-        } else {
-            (long, first)
-        };
-        let less = compare == Compare::Less;
         // The walks' columns are from `ox` (not negative: inside the clip area).
         let mut off = off0.wrapping_add(ox as usize);
         let oxi = ox as i32;
         let mut row = top;
-        let mut end = if top < mid { mid } else { bottom };
+        // The upper half (when it has rows), then the lower one: one edge set-up in the code
+        // for both short edges.
+        let mut upper = top < mid;
         loop {
+            let (p, q, from, end) = if upper {
+                (v0, v1, top, mid)
+            } else {
+                (v1, v2, mid, bottom)
+            };
+            let short = edge(p, q, from);
+            let (mut l, mut r) = if short_is_left {
+                (short, long)
+            } else {
+                (long, short)
+            };
             while row < end {
                 let (x0, x1) = (l.col(), r.col());
                 if x0 < x1 {
@@ -832,7 +864,7 @@ impl<const BITS: u32> Lean<BITS> {
                         }
                         let (zx, dz) = (z.at(x, y), z.gx);
                         depth_pixels!(
-                            less,
+                            true,
                             P,
                             V,
                             D,
@@ -840,7 +872,7 @@ impl<const BITS: u32> Lean<BITS> {
                             step,
                             zx,
                             dz,
-                            compare,
+                            Compare::Less,
                             pixel,
                             x,
                             y,
@@ -853,17 +885,11 @@ impl<const BITS: u32> Lean<BITS> {
                 r.step();
                 row += 1;
             }
-            if end == bottom {
+            if !upper || end == bottom {
                 return;
             }
-            // The lower short edge from the middle vertex's row on.
-            let lower = edge(v1, v2, mid);
-            if short_is_left {
-                l = lower;
-            } else {
-                r = lower;
-            }
-            end = bottom;
+            long = if short_is_left { r } else { l };
+            upper = false;
         }
     }
 }
@@ -881,7 +907,7 @@ type Planes = (
 /// `None` when nothing is drawn (with `skip_empty`, also for a triangle with no row of pixel
 /// centres in `clip`).
 #[inline(always)]
-fn planes<D, V, const BITS: u32, const OUT_OF_LINE: bool>(
+fn planes<D, V, const BITS: u32>(
     vertices: &[FusedVertex<V, BITS>; 3],
     area: &PixelRect,
     clip: &PixelRect,
@@ -892,12 +918,7 @@ where
     D: DepthTest,
     V: Varyings,
 {
-    let Precision {
-        frac: vfrac,
-        offset: voffset,
-    } = precision;
     let t = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0])?;
-    let [v0, v1, v2] = t.v;
     let s = 1i64 << BITS;
     // A triangle with no row of centres skips the set-up of its planes. (Testing its columns
     // and its few centres too, as the other fills do, cost more than it saved here: the pipeline
@@ -906,6 +927,30 @@ where
     if skip_empty && rows.is_none() {
         return None;
     }
+    let (values, z) = planes_of::<D, V, BITS, false>(&t, vertices, area, precision);
+    Some((t, rows, values, z))
+}
+
+/// The planes of a sorted triangle of [`fill_fused`] at `precision` (depth's too when `D` is
+/// enabled), anchored in `area`. With `WIDE`, every plane takes the wide set-up (the same
+/// planes, [`Shape::plane`]): one short copy of the code, for a caller whose triangles are rare.
+#[inline(always)]
+fn planes_of<D, V, const BITS: u32, const WIDE: bool>(
+    t: &Sorted,
+    vertices: &[FusedVertex<V, BITS>; 3],
+    area: &PixelRect,
+    precision: Precision,
+) -> ([Plane32; MAX_VARYINGS], Plane32)
+where
+    D: DepthTest,
+    V: Varyings,
+{
+    let Precision {
+        frac: vfrac,
+        offset: voffset,
+    } = precision;
+    let [v0, v1, v2] = t.v;
+    let s = 1i64 << BITS;
     let sign = t.cross.signum();
     let e1 = (sign * (v1.0 - v0.0), sign * (v1.1 - v0.1));
     let e2 = (sign * (v2.0 - v0.0), sign * (v2.1 - v0.1));
@@ -915,7 +960,7 @@ where
         own.1.max(area.y0).min(area.y1 - 1),
     );
     let cross = t.cross.abs();
-    let narrow = narrow_edges::<BITS>(e1, e2) && anchor == own;
+    let narrow = !WIDE && narrow_edges::<BITS>(e1, e2) && anchor == own;
     // `cross` is never zero (`Sorted` drops flat triangles); the wide set-up needs no reciprocal.
     let divisor = NonZeroU64::new(cross.unsigned_abs()).filter(|_| narrow);
     let shape = Shape {
@@ -931,13 +976,7 @@ where
     let [o0, o1, o2] = t.order;
     let n = V::LEN.min(MAX_VARYINGS);
     let mut values = [Plane32::default(); MAX_VARYINGS];
-    let plane = |f: [i64; 3], frac: u32, offset: u32| {
-        if OUT_OF_LINE {
-            plane_out_of_line::<BITS>(&shape, f, frac, offset)
-        } else {
-            shape.plane::<BITS>(f, frac, offset)
-        }
-    };
+    let plane = |f: [i64; 3], frac: u32, offset: u32| shape.plane::<BITS>(f, frac, offset);
     for (k, p) in values.iter_mut().enumerate().take(n) {
         let f = |o: usize| i64::from(vertices[o].2.as_slice()[k]);
         *p = plane([f(o0), f(o1), f(o2)], vfrac, voffset);
@@ -952,7 +991,7 @@ where
     } else {
         Plane32::default()
     };
-    Some((t, rows, values, z))
+    (values, z)
 }
 
 /// The depth entries of the whole clip area (entries, entries a row, the first one's screen
@@ -996,7 +1035,7 @@ where
 {
     let clip = PixelRect::from_rectangle(&surface.clip_area());
     let (t, rows, values, z) =
-        planes::<D, V, BITS, false>(vertices, area, &clip, P::PRECISION, skip_empty)?;
+        planes::<D, V, BITS>(vertices, area, &clip, P::PRECISION, skip_empty)?;
     let compare = depth.comparison();
     let (zbuf, zwidth, zorigin) = if D::ENABLED {
         depth_entries(depth.depth_rows()?, &clip)?

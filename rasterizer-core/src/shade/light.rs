@@ -386,11 +386,15 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         }
         // M^-1 (p - t) = M^T (p - t) / s^2; a direction needs only M^T, as it is normalised.
         let t = Vec3::new(m[0][3], m[1][3], m[2][3]);
+        let c = [c0, c1, c2];
         let transpose = |d: Vec3<S>| Vec3::new(c0.dot(d), c1.dot(d), c2.dot(d));
-        let back = |p: Vec3<S>| {
-            let d = transpose(p - t);
+        // Out of line: per frame, called for the eye and for each point light.
+        #[inline(never)]
+        fn back<S: Scalar>(p: Vec3<S>, t: Vec3<S>, c: &[Vec3<S>; 3], s2: S) -> Vec3<S> {
+            let d = p - t;
+            let d = Vec3::new(c[0].dot(d), c[1].dot(d), c[2].dot(d));
             Vec3::new(d.x / s2, d.y / s2, d.z / s2)
-        };
+        }
         // Built afresh rather than cloned: `prepare` recomputes the terms.
         let mut lights = Vec::new();
         for light in &self.lights {
@@ -400,7 +404,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
                     color,
                 },
                 Light::Point { position, color } => Light::Point {
-                    position: back(position),
+                    position: back(position, t, &c, s2),
                     color,
                 },
             };
@@ -412,7 +416,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             material: self.material,
             ambient: self.ambient,
             specular: self.specular,
-            eye: back(self.eye),
+            eye: back(self.eye, t, &c, s2),
             terms: Vec::new(),
             ambient_sum: [0; 3],
             spec_cut: self.spec_cut,
