@@ -1320,6 +1320,18 @@ mod tests {
                 .wrapping_sub((gx as u32).wrapping_mul(anchor.0 as u32))
                 .wrapping_sub((gy as u32).wrapping_mul(anchor.1 as u32));
             assert_eq!(p.k, k, "{v0:?} {e1:?} {e2:?} {f:?}");
+            // The wide set-up of the same shape (the general path's) gives the same plane, so
+            // that a triangle drawn by either path has the same pixels.
+            let wide = Shape {
+                narrow: false,
+                ..shape
+            };
+            let q = wide.plane::<BITS>(f, frac, offset);
+            assert_eq!(
+                (q.k, q.gx, q.gy),
+                (p.k, p.gx, p.gy),
+                "{v0:?} {e1:?} {e2:?} {f:?}"
+            );
         }
         // Both kinds are drawn often.
         assert!(
