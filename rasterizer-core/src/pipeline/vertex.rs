@@ -404,7 +404,11 @@ where
         ) {
             let g = i64::from(crate::clip::polygon::GUARD);
             let n = [x + g * w, g * w - y, z + w];
-            if (1..1 << 29).contains(&w)
+            // The exact method's estimates give what the divisions below give (the clipper's
+            // few vertices take those, so that the vertex loop holds the only copy of the
+            // estimates); the divider-free methods keep theirs.
+            if !matches!(N::DIVIDE, Divide::Exact)
+                && (1..1 << 29).contains(&w)
                 && n[0] as u64 <= (2 * g * w) as u64
                 && n[1] as u64 <= (2 * g * w) as u64
                 && n[2] as u64 <= (2 * w) as u64
@@ -669,9 +673,8 @@ fn view_volume([x, ny, z, w]: [i64; 4]) -> Option<([u64; 3], u64)> {
 /// or one less, and one less only when its fraction lies within that shortfall of one
 /// ([`Axis::sure`]). [`Divide::Exact`] settles those few with the remainder, in wrapping
 /// 32-bit arithmetic (the remainder lies in `[0, 4w)`, below `2^31`); the divider-free methods
-/// keep the estimate. Out of line: [`Pipeline::geometry`] and [`Pipeline::project`] share one
-/// copy (the common vertex takes [`project_estimate`]).
-#[inline(never)]
+/// keep the estimate.
+#[inline(always)]
 fn project_inside(map: &ScreenMap, n: [u64; 3], w: u64, divide: Divide) -> [u64; 3] {
     let d = (2 * w) as u32;
     let (r, sh) = reciprocal_u32(d, divide);

@@ -786,30 +786,20 @@ impl<const BITS: u32> Lean<BITS> {
         let Precision { frac, offset } = P::PRECISION;
         let [o0, o1, o2] = self.order;
         let n = V::LEN.min(MAX_VARYINGS);
-        // As in `planes`; depth's plane last, in the same loop (one copy of the plane's code
-        // in a build for size).
-        let near = vertices.iter().any(|v| v.1 == 0);
-        let zoffset = if near { 1 << (Z_FRAC - 1) } else { 0 };
-        let mut planes = [Plane32::default(); MAX_VARYINGS + 1];
-        for (k, p) in planes.iter_mut().enumerate().take(n + 1) {
-            let f = |o: usize| match vertices[o].2.as_slice().get(k) {
-                Some(&v) if k < n => i64::from(v),
-                _ => i64::from(vertices[o].1),
-            };
-            let (frac, offset) = if k < n {
-                (frac, offset)
-            } else {
-                (Z_FRAC, zoffset)
-            };
-            *p = shape.plane::<BITS>([f(o0), f(o1), f(o2)], frac, offset);
-        }
         let mut values = [Plane32::default(); MAX_VARYINGS];
         let mut step = [0u32; MAX_VARYINGS];
         for k in 0..n {
-            values[k] = planes[k];
-            step[k] = planes[k].gx;
+            let f = |o: usize| i64::from(vertices[o].2.as_slice()[k]);
+            values[k] = shape.plane::<BITS>([f(o0), f(o1), f(o2)], frac, offset);
+            step[k] = values[k].gx;
         }
-        let z = planes[n];
+        let z = {
+            let f = |o: usize| i64::from(vertices[o].1);
+            // As in `planes`.
+            let near = vertices.iter().any(|v| v.1 == 0);
+            let zoffset = if near { 1 << (Z_FRAC - 1) } else { 0 };
+            shape.plane::<BITS>([f(o0), f(o1), f(o2)], Z_FRAC, zoffset)
+        };
         let (top, mid, bottom) = self.rows;
         // The walks in `i32`, columns from the leftmost vertex's pixel `ox`: each edge from its
         // upper end, in doubled units from the centre of column `ox` (at least `-s`), and the
@@ -1320,6 +1310,18 @@ mod tests {
                 .wrapping_sub((gx as u32).wrapping_mul(anchor.0 as u32))
                 .wrapping_sub((gy as u32).wrapping_mul(anchor.1 as u32));
             assert_eq!(p.k, k, "{v0:?} {e1:?} {e2:?} {f:?}");
+            // The wide set-up of the same shape (the general path's) gives the same plane, so
+            // that a triangle drawn by either path has the same pixels.
+            let wide = Shape {
+                narrow: false,
+                ..shape
+            };
+            let q = wide.plane::<BITS>(f, frac, offset);
+            assert_eq!(
+                (q.k, q.gx, q.gy),
+                (p.k, p.gx, p.gy),
+                "{v0:?} {e1:?} {e2:?} {f:?}"
+            );
         }
         // Both kinds are drawn often.
         assert!(

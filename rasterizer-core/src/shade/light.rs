@@ -387,12 +387,14 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         // M^-1 (p - t) = M^T (p - t) / s^2; a direction needs only M^T, as it is normalised.
         let t = Vec3::new(m[0][3], m[1][3], m[2][3]);
         let c = [c0, c1, c2];
-        let transpose = |d: Vec3<S>| Vec3::new(c0.dot(d), c1.dot(d), c2.dot(d));
-        // Out of line: per frame, called for the eye and for each point light.
+        // Out of line: per frame, for each light and the eye.
+        #[inline(never)]
+        fn transpose<S: Scalar>(c: &[Vec3<S>; 3], d: Vec3<S>) -> Vec3<S> {
+            Vec3::new(c[0].dot(d), c[1].dot(d), c[2].dot(d))
+        }
         #[inline(never)]
         fn back<S: Scalar>(p: Vec3<S>, t: Vec3<S>, c: &[Vec3<S>; 3], s2: S) -> Vec3<S> {
-            let d = p - t;
-            let d = Vec3::new(c[0].dot(d), c[1].dot(d), c[2].dot(d));
+            let d = transpose(c, p - t);
             Vec3::new(d.x / s2, d.y / s2, d.z / s2)
         }
         // Built afresh rather than cloned: `prepare` recomputes the terms.
@@ -400,7 +402,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         for light in &self.lights {
             let moved = match *light {
                 Light::Directional { direction, color } => Light::Directional {
-                    direction: transpose(direction).normalize()?,
+                    direction: transpose(&c, direction).normalize()?,
                     color,
                 },
                 Light::Point { position, color } => Light::Point {
