@@ -29,8 +29,9 @@ use crate::depth::DepthRows;
 use crate::depth::{Compare, DepthTest};
 use crate::geom::{PixelRect, SubPoint};
 use crate::geom::{Varyings, MAX_VARYINGS};
-use crate::raster::edge::EdgeWalk;
+use crate::raster::edge::{row_at_or_below, EdgeWalk};
 use crate::raster::silhouette::{in_aa_range, walk_silhouette, FringeSink};
+use crate::raster::triangle::setup::row_order;
 use crate::raster::triangle::setup::{
     may_cover_a_centre, rows_in_clip, walk_spans_once, Sorted, SpanSink,
 };
@@ -677,9 +678,8 @@ fn edge_walk(a: (i64, i64), b: (i64, i64), s: i64, row: i64) -> EdgeWalk {
 /// area (no span needs clamping), at most [`SMALL_PIXELS`] pixels each way (its edge walks set
 /// up in `i32`, [`Edge`], and its edges narrow) and its top vertex's pixel inside the viewport
 /// ([`Shape::plane`]'s narrow set-up), with the usual depth test ([`Compare::Less`]), on a
-/// framebuffer of one word a pixel whose rows the depth buffer shares. Its planes and walks come
-/// from the same formulas as the general path's, so its pixels are the same to the bit. The
-/// general path takes its sort and rows too ([`Lean::new`]).
+/// framebuffer of one word a pixel whose rows the depth buffer shares. Its planes and walks come from the same formulas as the general path's, so its
+/// pixels are the same to the bit.
 struct Lean<const BITS: u32> {
     /// The sorted vertices and their permutation.
     v: [(i64, i64); 3],
@@ -694,22 +694,37 @@ struct Lean<const BITS: u32> {
 }
 
 impl<const BITS: u32> Lean<BITS> {
-    /// The sorted triangle ([`Sorted::new`]) and its rows inside `clip` ([`rows_in_clip`]), or
-    /// `None` when nothing is drawn: a vertex outside the guard band, zero area, or no row of
+    /// The sorted triangle and its rows inside `clip`, or `None` when nothing is drawn: a
+    /// vertex outside the guard band (as [`Sorted::new`] drops it), zero area, or no row of
     /// pixel centres.
     #[inline(always)]
     fn new<V>(vertices: &[FusedVertex<V, BITS>; 3], clip: &PixelRect) -> Option<Self> {
-        let t = Sorted::new(&[vertices[0].0, vertices[1].0, vertices[2].0])?;
-        let rows = rows_in_clip(&t, 1 << BITS, clip)?;
-        let [v0, v1, v2] = t.v;
-        let sign = t.cross.signum();
+        let s = 1i64 << BITS;
+        let p = [vertices[0].0, vertices[1].0, vertices[2].0];
+        let order = row_order(&p);
+        let v = order.map(|i| (i64::from(p[i].x), i64::from(p[i].y)));
+        let [v0, v1, v2] = v;
+        let (xmin, xmax) = (v0.0.min(v1.0).min(v2.0), v0.0.max(v1.0).max(v2.0));
+        // v0 is the highest vertex, v2 the lowest.
+        let band = i64::from(crate::geom::GUARD_BAND_PIXELS) << BITS;
+        if xmin < -band || xmax > band || v0.1 < -band || v2.1 > band {
+            return None;
+        }
+        let cross = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
+        let top = row_at_or_below(v0.1, s).max(clip.y0);
+        let mid = row_at_or_below(v1.1, s).clamp(top, clip.y1.max(top));
+        let bottom = row_at_or_below(v2.1, s).min(clip.y1);
+        if cross == 0 || top >= bottom {
+            return None;
+        }
+        let sign = cross.signum();
         Some(Self {
-            v: t.v,
-            order: t.order,
-            cross: t.cross,
+            v,
+            order,
+            cross,
             e1: (sign * (v1.0 - v0.0), sign * (v1.1 - v0.1)),
             e2: (sign * (v2.0 - v0.0), sign * (v2.1 - v0.1)),
-            rows,
+            rows: (top, mid, bottom),
         })
     }
 

@@ -21,18 +21,11 @@ impl Sorted {
     pub fn new<const BITS: u32>(v: &[SubPoint<BITS>; 3]) -> Option<Self> {
         #[allow(clippy::let_unit_value)]
         let () = SubPoint::<BITS>::VALID;
-        let order = row_order(v);
-        let p = order.map(|i| (i64::from(v[i].x), i64::from(v[i].y)));
-        // Every vertex inside the guard band (`SubPoint::in_guard_band`), tested on the
-        // extremes: sorted, p[0] is the highest and p[2] the lowest.
-        let limit = i64::from(crate::geom::GUARD_BAND_PIXELS) << BITS;
-        let (xmin, xmax) = (
-            p[0].0.min(p[1].0).min(p[2].0),
-            p[0].0.max(p[1].0).max(p[2].0),
-        );
-        if xmin < -limit || xmax > limit || p[0].1 < -limit || p[2].1 > limit {
+        if !v.iter().all(|p| p.in_guard_band()) {
             return None;
         }
+        let order = row_order(v);
+        let p = order.map(|i| (i64::from(v[i].x), i64::from(v[i].y)));
         // Bound: |each product| <= (2M)^2 = 2^60 inside the guard band.
         let cross = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1);
         (cross != 0).then_some(Self { v: p, order, cross })
