@@ -131,7 +131,7 @@ where
         self.slots = p.begin(self.mesh, self.scratch).len();
         let mut pixels = PixelRect::EMPTY;
         self.count = p
-            .bin::<_, false>(
+            .bin::<_, false, true>(
                 self.mesh,
                 &mut self.scratch[..self.slots],
                 (layout.height(), layout.rows()),

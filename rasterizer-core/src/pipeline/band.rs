@@ -205,60 +205,55 @@ where
     Sh: Shading<S>,
     N: Numerics,
 {
-    /// The sub-pixel extent (left, top, right, bottom) of triangle `t` once it is clipped, or
-    /// `None` when it draws nothing (counted in `stats`). Geometry only: no shading.
-    fn triangle_extent<M: MeshSource<S>>(
+    /// The sub-pixel extent (left, top, right, bottom) of triangle `idx` once it is clipped (a
+    /// corner outside the guard band, the rare path), or `None` when it draws nothing (counted
+    /// in `stats`). Geometry only: no shading.
+    #[inline(never)]
+    fn clipped_extent<M: MeshSource<S>>(
         &self,
         mesh: &M,
-        t: usize,
-        scratch: &mut [VertexSlot<Sh::Stored>],
+        idx: [usize; 3],
         stats: &mut RenderStats,
     ) -> Option<[i32; 4]> {
-        let extent = |ps: &mut dyn Iterator<Item = SubPoint<BITS>>| {
-            ps.fold([i32::MAX, i32::MAX, i32::MIN, i32::MIN], |e, p| {
-                [e[0].min(p.x), e[1].min(p.y), e[2].max(p.x), e[3].max(p.y)]
-            })
+        let Front::Clip { clip, codes, .. } = self.front_clip(mesh, idx, stats) else {
+            return None;
         };
-        let e = match self.front(mesh, t, scratch, stats, false) {
-            Front::Skip => return None,
-            Front::Inside { v, .. } => extent(&mut v.iter().map(|(p, _)| *p)),
-            Front::Clip { clip, codes, .. } => {
-                stats.clipped += 1;
-                let tri = clip.map(|pos| ClipVertex {
-                    pos,
-                    var: [0i32; 0],
-                });
-                let poly = clip_triangle(&tri, codes);
-                if poly.len() < 3 {
-                    stats.outside += 1;
-                    return None;
-                }
-                let mut ps: heapless::Vec<_, { crate::clip::polygon::MAX_CLIPPED }> =
-                    heapless::Vec::new();
-                for v in &poly {
-                    let _ = ps.push(self.project(&v.pos).0);
-                }
-                let area = super::front::polygon_area(ps.iter().copied());
-                if area == 0 || !self.keeps(area) {
-                    stats.culled += 1;
-                    return None;
-                }
-                extent(&mut ps.iter().copied())
-            }
-        };
+        stats.clipped += 1;
+        let tri = clip.map(|pos| ClipVertex {
+            pos,
+            var: [0i32; 0],
+        });
+        let poly = clip_triangle(&tri, codes);
+        if poly.len() < 3 {
+            stats.outside += 1;
+            return None;
+        }
+        let mut ps: heapless::Vec<_, { crate::clip::polygon::MAX_CLIPPED }> = heapless::Vec::new();
+        for v in &poly {
+            let _ = ps.push(self.project(&v.pos).0);
+        }
+        let area = super::front::polygon_area(ps.iter().copied());
+        if area == 0 || !self.keeps(area) {
+            stats.culled += 1;
+            return None;
+        }
         stats.drawn += 1;
-        Some(e)
+        Some(ps.iter().fold(
+            [i32::MAX, i32::MAX, i32::MIN, i32::MIN],
+            |e, p: &SubPoint<BITS>| [e[0].min(p.x), e[1].min(p.y), e[2].max(p.x), e[3].max(p.y)],
+        ))
     }
 
     /// Bins the frame's triangles for bands of `rows` rows on a screen of `height` rows (see
     /// [`BinEntry`]), after [`Pipeline::begin`]: writes the entries to `bins` and returns how
-    /// many there are, and widens `pixels` to hold every pixel the triangles can touch. With
-    /// `MARGIN` (anti-aliased silhouettes) each triangle reaches a pixel further each way, as a
-    /// pixel it only partly covers can.
+    /// many there are, and with `WIDEN` widens `pixels` to hold every pixel the triangles can
+    /// touch (a banded draw that does not need them skips the columns). With `MARGIN`
+    /// (anti-aliased silhouettes) each triangle reaches a pixel further each way, as a pixel it
+    /// only partly covers can.
     ///
     /// # Errors
     /// [`BandError::TooFewBins`] when `bins` cannot hold them all.
-    pub(crate) fn bin<M: MeshSource<S>, const MARGIN: bool>(
+    pub(crate) fn bin<M: MeshSource<S>, const MARGIN: bool, const WIDEN: bool>(
         &self,
         mesh: &M,
         scratch: &mut [VertexSlot<Sh::Stored>],
@@ -286,8 +281,28 @@ where
             }
         };
         for t in 0..mesh.triangle_count() {
-            let Some(extent) = self.triangle_extent(mesh, t, scratch, stats) else {
+            let idx = mesh.triangle(t);
+            let Some(v) = self.fetch(mesh, idx, scratch) else {
+                stats.invalid += 1;
                 continue;
+            };
+            let extent = if super::front::outside(&v) {
+                match self.clipped_extent(mesh, idx, stats) {
+                    Some(e) => e,
+                    None => continue,
+                }
+            } else {
+                if !self.visible(&v, stats, false) {
+                    continue;
+                }
+                stats.drawn += 1;
+                let (xs, ys) = ([v[0].0, v[1].0, v[2].0], [v[0].1, v[1].1, v[2].1]);
+                [
+                    xs[0].min(xs[1]).min(xs[2]),
+                    ys[0].min(ys[1]).min(ys[2]),
+                    xs[0].max(xs[1]).max(xs[2]),
+                    ys[0].max(ys[1]).max(ys[2]),
+                ]
             };
             let [left, top, right, bottom] = if MARGIN {
                 let m = 1 << BITS;
@@ -307,12 +322,14 @@ where
             if top >= bottom {
                 continue;
             }
-            *pixels = pixels.union(&PixelRect {
-                x0: i64::from(left) >> BITS,
-                y0: top,
-                x1: (i64::from(right) >> BITS) + 1,
-                y1: bottom,
-            });
+            if WIDEN {
+                *pixels = pixels.union(&PixelRect {
+                    x0: i64::from(left) >> BITS,
+                    y0: top,
+                    x1: (i64::from(right) >> BITS) + 1,
+                    y1: bottom,
+                });
+            }
             while t - prev > usize::from(u8::MAX) {
                 push(BinEntry::FILLER);
                 prev += usize::from(u8::MAX);
@@ -365,11 +382,22 @@ where
         }
         *cursor = (lo, lo_t);
         let mut t = lo_t;
+        // `first <= unit <= last` as two compares of the packed byte (a filler, first after
+        // last, fails one of them).
+        let below = (u16::from(unit) + 1) << 4;
         for e in bins.get(lo..).unwrap_or_default() {
             t += usize::from(e.step);
-            if e.first() <= unit && unit <= e.last() {
-                let front = self.front_again(mesh, t, scratch);
-                self.draw_front(src, target, mesh, front, scratch, stats)?;
+            if u16::from(e.bands) < below && e.last() >= unit {
+                // The front end's tests passed when the triangle was binned.
+                let idx = mesh.triangle(t);
+                let Some(v) = self.fetch(mesh, idx, scratch) else {
+                    continue;
+                };
+                if super::front::outside(&v) {
+                    self.draw_outside(src, target, mesh, idx, scratch, stats)?;
+                } else {
+                    self.draw_visible(src, target, mesh, idx, v, scratch, stats)?;
+                }
             }
         }
         Ok(())
@@ -433,8 +461,14 @@ where
             ..RenderStats::default()
         };
         let mut pixels = PixelRect::EMPTY;
-        let count =
-            self.bin::<M, false>(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
+        let count = self.bin::<M, false, false>(
+            mesh,
+            scratch,
+            (height, rows),
+            bins,
+            &mut stats,
+            &mut pixels,
+        )?;
         let bins = &bins[..count];
         let bands = height.div_ceil(rows);
         let group = bands.div_ceil(16);

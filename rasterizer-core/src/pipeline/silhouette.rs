@@ -283,8 +283,14 @@ where
             ..RenderStats::default()
         };
         let mut pixels = PixelRect::EMPTY;
-        let count =
-            self.bin::<M, true>(mesh, scratch, (height, rows), bins, &mut stats, &mut pixels)?;
+        let count = self.bin::<M, true, false>(
+            mesh,
+            scratch,
+            (height, rows),
+            bins,
+            &mut stats,
+            &mut pixels,
+        )?;
         let bins = &bins[..count];
         let bands = height.div_ceil(rows);
         let group = bands.div_ceil(16);
