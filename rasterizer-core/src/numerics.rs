@@ -141,9 +141,10 @@ pub trait Numerics {
     const FRAC: u32 = 16;
     /// How spans start.
     const SPANS: SpanStart = SpanStart::Wrapping;
-    /// Whether the shader's values are interpolated perspective-correctly (two 32-bit divisions
-    /// per pixel drawn; with [`SpanStart::Wrapping`] through the fused span loop, otherwise
-    /// through the general span engine); otherwise they are affine in screen space. Depth is
+    /// Whether the shader's values are interpolated perspective-correctly (with
+    /// [`SpanStart::Wrapping`] through the fused span loop: one 32-bit division per pixel drawn
+    /// for a colour shader's triangle, two for others; otherwise through the general span
+    /// engine); otherwise they are affine in screen space. Depth is
     /// affine in screen space either way, and exact.
     const PERSPECTIVE: bool = false;
     /// How the interpolated colour is brought down to the target's channel depth: rounded to the

@@ -818,9 +818,9 @@ fn words(s: &mut String, sweep: &Sweep, on_front: &[usize], counted: bool) {
     );
     knob_line(
         s,
-        "Perspective-correct interpolation (through the fused wrapping loop: 1/w and two \
-         barycentrics over w as planes, two 32-bit divisions per pixel that passes the depth \
-         test)",
+        "Perspective-correct interpolation (through the fused wrapping loop: for a colour \
+         shader's triangle its values over w and 1/w as planes, one 32-bit division per pixel \
+         that passes the depth test; otherwise 1/w and two barycentrics over w, two divisions)",
         &["perspective"],
     );
     knob_line(

@@ -2,7 +2,7 @@
 //! when it faces away or lies outside the view, clip what crosses the guard band, and hand what is
 //! left to the rasterizer.
 
-use super::perspective::PerspectiveColor;
+use super::perspective::{DirectColor, PerspectiveColor};
 use super::vertex::{Projected, OUTSIDE};
 use super::{DepthFrom, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::{clip_triangle, outcode, trivially_outside, ClipVertex, Outcode};
@@ -551,7 +551,11 @@ where
                 v.var = values;
             }
         }
+        let depth = src.pick(&mut self.depth);
+        if let Some((fv, color)) = DirectColor::<S, Sh, N>::new(&self.shading, &sv) {
+            return fill_fused::<_, _, _, _, BITS>(target, depth, &fv, &self.area, color);
+        }
         let (fv, color) = PerspectiveColor::<S, Sh, N>::new(&self.shading, &sv);
-        fill_fused::<_, _, _, _, BITS>(target, src.pick(&mut self.depth), &fv, &self.area, color)
+        fill_fused::<_, _, _, _, BITS>(target, depth, &fv, &self.area, color)
     }
 }

@@ -10,6 +10,12 @@
 //! divides with 15 significant bits of its interpolated `1 / w`, so its barycentrics are within `2^-13` of
 //! the exact ones, where the general span engine's are exact to 16 bits (a colour channel's
 //! value moves by at most a thirtieth of a step; `docs/ACCURACY.md` measures the picture).
+//!
+//! A triangle of three values each in `0 .. 2^16 - 2^8` (every colour shader's channels) whose
+//! `1 / w` lie within a factor of `2^7` of each other takes the direct planes instead
+//! ([`DirectColor`]): each value times `1 / w`, and `1 / w`, so that a pixel divides once, by
+//! a reciprocal of 15 significant bits, and multiplies each value back (no mix of the
+//! vertices' values): its values are within `2^-13.6` of the exact ones, relative.
 
 use super::Shading;
 use crate::geom::{Varyings, MAX_VARYINGS};
@@ -17,6 +23,7 @@ use crate::math::Scalar;
 use crate::numerics::{Dither, Numerics};
 use crate::raster::fused::{FusedColor, FusedVertex, Precision};
 use crate::raster::interp::ScreenVertex;
+use core::num::NonZeroU32;
 
 /// Bits of the largest `1 / w` of a triangle once the three are scaled together: the planes
 /// (16 fractional bits) then stay below `2^30`, so a value the planes' rounding takes a unit
@@ -106,6 +113,118 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> PerspectiveColor<'a, S, Sh, N> {
     }
 }
 
+/// Bits of the largest `1 / w` of a triangle on the direct planes ([`DirectColor`]).
+const DIRECT_Q_BITS: u32 = 15;
+/// The least `1 / w` of a triangle on the direct planes, once scaled: within `2^7` of the
+/// largest, so that every plane stays far from zero (the planes' rounding cannot take it
+/// below) and the quotients keep their precision.
+const DIRECT_Q_MIN: u32 = 1 << (DIRECT_Q_BITS - 8);
+/// The values a triangle on the direct planes may have: below `2^16` with room above for the
+/// quotients' error, so that `value 2^16` cannot wrap.
+const DIRECT_VALUE_MAX: i32 = (1 << 16) - (1 << 8);
+/// Fractional bits of the `1 / w` plane of the direct planes: the largest vertex's is below
+/// `2^31`, and a plane of integers steps finely enough.
+const DIRECT_Q_FRAC: u32 = 16;
+
+/// The colour of a pixel from the direct planes: the values times `1 / w` (`acc[0..3]`), and
+/// `1 / w` (`acc[3]`, with [`DIRECT_Q_FRAC`] fractional bits), all as integers.
+pub(super) struct DirectColor<'a, S: Scalar, Sh: Shading<S>, N> {
+    shading: &'a Sh,
+    _n: core::marker::PhantomData<(S, N)>,
+}
+
+impl<'a, S: Scalar, Sh: Shading<S>, N> DirectColor<'a, S, Sh, N> {
+    /// The direct planes' vertices of triangle `sv` (its values already adapted by
+    /// [`Shading::triangle`]), or `None` when the triangle does not qualify: not three values,
+    /// a value outside `0 ..= DIRECT_VALUE_MAX`, or its `1 / w` too far apart.
+    #[inline(always)]
+    pub(super) fn new<const BITS: u32>(
+        shading: &'a Sh,
+        sv: &[ScreenVertex<Sh::Varyings, BITS>; 3],
+    ) -> Option<([FusedVertex<[i32; 4], BITS>; 3], Self)> {
+        if Sh::Varyings::LEN != 3 {
+            return None;
+        }
+        // As in `PerspectiveColor::new`, scaled so the largest has DIRECT_Q_BITS bits.
+        let q = sv.map(|v| v.q.clamp(1, i64::from(i32::MAX)) as u32);
+        let top = 32 - (q[0] | q[1] | q[2]).leading_zeros();
+        let q = q.map(|q| {
+            if top > DIRECT_Q_BITS {
+                q >> (top - DIRECT_Q_BITS)
+            } else {
+                q << (DIRECT_Q_BITS - top)
+            }
+        });
+        if q[0].min(q[1]).min(q[2]) < DIRECT_Q_MIN {
+            return None;
+        }
+        let mut planes = [[0i32; 4]; 3];
+        for (k, plane) in planes.iter_mut().enumerate() {
+            let v = sv[k].var.as_slice();
+            for c in 0..3 {
+                if !(0..=DIRECT_VALUE_MAX).contains(&v[c]) {
+                    return None;
+                }
+                // Below 2^16 times below 2^15: an i32.
+                plane[c] = v[c] * q[k] as i32;
+            }
+            plane[3] = (q[k] << DIRECT_Q_FRAC) as i32;
+        }
+        let fv = [0, 1, 2].map(|k| (sv[k].p, sv[k].z, planes[k]));
+        let color = Self {
+            shading,
+            _n: core::marker::PhantomData,
+        };
+        Some((fv, color))
+    }
+
+    /// The shader's accumulators at a pixel whose direct planes are `acc[0..4]`.
+    #[inline(always)]
+    fn values(&self, acc: &[u32; MAX_VARYINGS]) -> [u32; MAX_VARYINGS] {
+        let mut out = [0u32; MAX_VARYINGS];
+        let [a0, a1, a2] = direct_values([acc[0], acc[1], acc[2]], acc[3], Sh::FUSED_FRAC.min(16));
+        out[0] = a0.wrapping_add(Sh::FUSED_OFFSET);
+        out[1] = a1.wrapping_add(Sh::FUSED_OFFSET);
+        out[2] = a2.wrapping_add(Sh::FUSED_OFFSET);
+        out
+    }
+}
+
+/// `value 2^frac` of each of `p` (a value times `1 / w`) from `q` (`1 / w` with
+/// [`DIRECT_Q_FRAC`] fractional bits): one 32-bit division for a reciprocal of `q` cut to
+/// [`D_BITS`] significant bits, then a 32 x 32 -> 64-bit product each. The cut divisor lifts
+/// the result by up to `2^-14` of it, the truncated reciprocal and shift lower it by up to
+/// `2^-16` and a unit: it lies within `2^-13.6` of the exact quotient, plus a unit.
+#[inline(always)]
+fn direct_values(p: [u32; 3], q: u32, frac: u32) -> [u32; 3] {
+    // Inside the triangle q is at least DIRECT_Q_MIN 2^16 up to the planes' rounding; the
+    // clamp only keeps a value from elsewhere from dividing by zero.
+    let q = (q as i32).max(1) as u32;
+    let shift = (32 - q.leading_zeros()).saturating_sub(D_BITS);
+    let d = NonZeroU32::new(q >> shift).unwrap_or(NonZeroU32::MIN);
+    // 2^31 / d >= 2^16 for d below 2^15: 1 / q = r 2^-(31 + shift), within 2^-14 + 2^-16.
+    let r = u64::from((1u32 << 31) / d);
+    // value 2^frac = p 2^DIRECT_Q_FRAC / q 2^frac = p r 2^(DIRECT_Q_FRAC + frac - 31 - shift):
+    // q >= 2^23 in the triangle, so shift >= 9 and the right shift below is at least
+    // 24 - frac >= 8. p < 2^32 and r <= 2^31: the product fits a u64.
+    let down = (31 + shift).saturating_sub(DIRECT_Q_FRAC + frac);
+    p.map(|p| ((u64::from(p) * r) >> down) as u32)
+}
+
+impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for DirectColor<'_, S, Sh, N> {
+    const PRECISION: Precision = Precision { frac: 0, offset: 0 };
+    const AT: bool = !matches!(N::DITHER, Dither::None);
+    #[inline(always)]
+    fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
+        self.shading.pixel_fused(&self.values(acc))
+    }
+    #[inline(always)]
+    fn color_at(&self, acc: &[u32; MAX_VARYINGS], x: i32, y: i32) -> Sh::Color {
+        self.shading
+            .pixel_fused_dithered(&self.values(acc), N::DITHER.threshold(x, y))
+    }
+}
+
 /// The barycentrics `(b1 / q, b2 / q)` in `L_BITS` fixed point, from the planes' values at a
 /// pixel (each `value 2^16`, below `2^30`; the planes' rounding may take a zero a unit below,
 /// which wraps). Each division is of 32-bit operands: `q` is cut to `D_BITS` significant bits
@@ -142,7 +261,41 @@ impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color>
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
+
+    #[test]
+    fn direct_values_are_within_their_bound() {
+        // Against the exact quotient p 2^(16 + frac) / q over random planes as a triangle's
+        // pixels see them (q from DIRECT_Q_MIN 2^16 up to 2^31, values up to DIRECT_VALUE_MAX):
+        // within 2^-14 + 2^-16 = 5 2^-16 of it plus a unit, as the theory says (measured: at
+        // most 6.0e-5 of it beyond the unit, 3.95 2^-16).
+        let mut x = 0x1357_9bdfu32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        // The worst excess over a unit, in 2^-16 of the exact value: (excess, exact).
+        let mut worst = (0u64, 1u64);
+        for i in 0..200_000u32 {
+            let frac = [16, 11, 8, 0][(i % 4) as usize];
+            let q = (next() >> 1).max(DIRECT_Q_MIN << DIRECT_Q_FRAC);
+            let value = u64::from(next() % (DIRECT_VALUE_MAX as u32 + 1));
+            // p = value q / 2^16 (a value times 1 / w), as the planes interpolate it.
+            let p = ((value * u64::from(q)) >> DIRECT_Q_FRAC) as u32;
+            let [got, _, _] = direct_values([p, 0, 0], q, frac);
+            let exact = (u128::from(p) << (DIRECT_Q_FRAC + frac)) / u128::from(q);
+            let exact = u64::try_from(exact).unwrap();
+            let excess = exact.abs_diff(u64::from(got)).saturating_sub(1) << 16;
+            let exact = exact.max(1);
+            if u128::from(excess) * u128::from(worst.1) > u128::from(worst.0) * u128::from(exact) {
+                worst = (excess, exact);
+            }
+        }
+        assert!(worst.0 <= 5 * worst.1, "{worst:?}");
+    }
 
     #[test]
     fn barycentrics_are_within_their_bound() {

@@ -4,7 +4,7 @@
 
 use super::band::{unit_bins, unit_ends, unit_triangles};
 use super::front::{outside, ShaderColor};
-use super::perspective::PerspectiveColor;
+use super::perspective::{DirectColor, PerspectiveColor};
 use super::vertex::Projected;
 use super::{
     AntialiasError, BandError, Banding, BinEntry, DepthFrom, DrawError, Front, MeshSource, Own,
@@ -146,8 +146,13 @@ where
                 var: var[k],
                 q: self.q_of(mesh.position(idx[k])),
             });
-            let (fv, color) = PerspectiveColor::<S, Sh, N>::new(&self.shading, &sv);
             let depth = src.pick(&mut self.depth);
+            if let Some((fv, color)) = DirectColor::<S, Sh, N>::new(&self.shading, &sv) {
+                return fill_fused_silhouette::<_, _, _, _, BITS>(
+                    target, depth, &fv, &area, color, mask, fringe,
+                );
+            }
+            let (fv, color) = PerspectiveColor::<S, Sh, N>::new(&self.shading, &sv);
             return fill_fused_silhouette::<_, _, _, _, BITS>(
                 target, depth, &fv, &area, color, mask, fringe,
             );
