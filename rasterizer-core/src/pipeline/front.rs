@@ -330,12 +330,19 @@ where
             return self.raster_fused(src, target, &fv);
         }
         let var = self.face_values(mesh, idx, scratch);
-        let sv = [0, 1, 2].map(|k| ScreenVertex {
+        // Written out rather than mapped over an index: the map's closure stays out of line.
+        let q = [
+            self.q_of(mesh.position(idx[0])),
+            self.q_of(mesh.position(idx[1])),
+            self.q_of(mesh.position(idx[2])),
+        ];
+        let vertex = |k: usize| ScreenVertex {
             p: p[k],
             z: v[k].2,
             var: var[k],
-            q: self.q_of(mesh.position(idx[k])),
-        });
+            q: q[k],
+        };
+        let sv = [vertex(0), vertex(1), vertex(2)];
         self.raster(src, target, &sv)
     }
 
