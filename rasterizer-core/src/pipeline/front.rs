@@ -330,20 +330,33 @@ where
             return self.raster_fused(src, target, &fv);
         }
         let var = self.face_values(mesh, idx, scratch);
-        // Written out rather than mapped over an index: the map's closure stays out of line.
+        let sv = self.screen_vertices(mesh, idx, &v, var);
+        self.raster(src, target, &sv)
+    }
+
+    /// A triangle's screen vertices for the span engines that take them: its corners, depths
+    /// and values, and each corner's `1 / w` from its mesh position. Written out rather than
+    /// mapped over an index, whose closure the compiler kept out of line.
+    #[inline(always)]
+    pub(super) fn screen_vertices<M: MeshSource<S>>(
+        &self,
+        mesh: &M,
+        idx: [usize; 3],
+        v: &[Projected; 3],
+        var: [Sh::Varyings; 3],
+    ) -> [ScreenVertex<Sh::Varyings, BITS>; 3] {
         let q = [
             self.q_of(mesh.position(idx[0])),
             self.q_of(mesh.position(idx[1])),
             self.q_of(mesh.position(idx[2])),
         ];
         let vertex = |k: usize| ScreenVertex {
-            p: p[k],
+            p: SubPoint::raw(v[k].0, v[k].1),
             z: v[k].2,
             var: var[k],
             q: q[k],
         };
-        let sv = [vertex(0), vertex(1), vertex(2)];
-        self.raster(src, target, &sv)
+        [vertex(0), vertex(1), vertex(2)]
     }
 
     /// Draws a triangle with a corner outside the guard band (the front end's rare path): clipped,

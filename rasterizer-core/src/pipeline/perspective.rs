@@ -61,18 +61,8 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> PerspectiveColor<'a, S, Sh, N> {
         shading: &'a Sh,
         sv: &[ScreenVertex<Sh::Varyings, BITS>; 3],
     ) -> ([FusedVertex<[i32; 3], BITS>; 3], Self) {
-        // Each q is 2^20 / w, clamped to 1 ..= 2^31 - 1 by the projection: scaled together by a
-        // shift so the largest has Q_BITS bits (only their ratios matter); none becomes 0.
-        let q = sv.map(|v| v.q.clamp(1, i64::from(i32::MAX)) as u32);
-        let top = 32 - (q[0] | q[1] | q[2]).leading_zeros();
-        let q = q.map(|q| {
-            let q = if top > Q_BITS {
-                q >> (top - Q_BITS)
-            } else {
-                q << (Q_BITS - top)
-            };
-            q.max(1) as i32
-        });
+        // None becomes 0.
+        let q = scaled_q(sv, Q_BITS).map(|q| q.max(1) as i32);
         let planes = [[0, 0, q[0]], [q[1], 0, q[1]], [0, q[2], q[2]]];
         let fv = [0, 1, 2].map(|k| (sv[k].p, sv[k].z, planes[k]));
         let n = Sh::Varyings::LEN.min(MAX_VARYINGS);
@@ -115,6 +105,22 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> PerspectiveColor<'a, S, Sh, N> {
     }
 }
 
+/// A triangle's three `1 / w` scaled together by a shift so that the largest has `bits` bits
+/// (only their ratios matter). Each q is `2^20 / w`, clamped to `1 ..= 2^31 - 1` by the
+/// projection.
+#[inline(always)]
+fn scaled_q<V, const BITS: u32>(sv: &[ScreenVertex<V, BITS>; 3], bits: u32) -> [u32; 3] {
+    let q = [0, 1, 2].map(|k| sv[k].q.clamp(1, i64::from(i32::MAX)) as u32);
+    let top = 32 - (q[0] | q[1] | q[2]).leading_zeros();
+    q.map(|q| {
+        if top > bits {
+            q >> (top - bits)
+        } else {
+            q << (bits - top)
+        }
+    })
+}
+
 /// Bits of the largest `1 / w` of a triangle on the direct planes ([`DirectColor`]).
 const DIRECT_Q_BITS: u32 = 15;
 /// The least `1 / w` of a triangle on the direct planes, once scaled: at least half the
@@ -152,16 +158,7 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> DirectColor<'a, S, Sh, N> {
         if Sh::Varyings::LEN != 3 {
             return None;
         }
-        // As in `PerspectiveColor::new`, scaled so the largest has DIRECT_Q_BITS bits.
-        let q = sv.map(|v| v.q.clamp(1, i64::from(i32::MAX)) as u32);
-        let top = 32 - (q[0] | q[1] | q[2]).leading_zeros();
-        let q = q.map(|q| {
-            if top > DIRECT_Q_BITS {
-                q >> (top - DIRECT_Q_BITS)
-            } else {
-                q << (DIRECT_Q_BITS - top)
-            }
-        });
+        let q = scaled_q(sv, DIRECT_Q_BITS);
         if q[0].min(q[1]).min(q[2]) < DIRECT_Q_MIN {
             return None;
         }
@@ -270,19 +267,23 @@ mod tests {
     extern crate std;
     use super::*;
 
+    /// A xorshift32 stream from `seed` (not zero).
+    fn xorshift(mut x: u32) -> impl FnMut() -> u32 {
+        move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        }
+    }
+
     #[test]
     fn direct_values_are_within_their_bound() {
         // Against the exact quotient p 2^(16 + frac) / q over random planes as a triangle's
         // pixels see them (q from DIRECT_Q_MIN 2^16 up to 2^31, values up to DIRECT_VALUE_MAX):
         // within 2^-13 + 2^-16 = 9 2^-16 of it plus a unit, as the theory says (measured: 7.95 2^-16
         // beyond the unit).
-        let mut x = 0x1357_9bdfu32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x
-        };
+        let mut next = xorshift(0x1357_9bdf);
         // The worst excess over a unit, in 2^-16 of the exact value: (excess, exact).
         let mut worst = (0u64, 1u64);
         for i in 0..200_000u32 {
@@ -318,13 +319,7 @@ mod tests {
         // Against the exact quotient over random planes, in units of 2^-32: both operands are
         // cut to 15 significant bits, so the error stays below 2^-13 (measured: at most 7.5e-5,
         // 2^-13.7).
-        let mut x = 0x2468_ace1u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x
-        };
+        let mut next = xorshift(0x2468_ace1);
         let mut worst = 0u64;
         for _ in 0..200_000 {
             let q = (next() >> (2 + next() % 16)).max(1 << 16);

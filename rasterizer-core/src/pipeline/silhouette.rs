@@ -18,7 +18,6 @@ use crate::math::Scalar;
 use crate::mesh::NO_NEIGHBOUR;
 use crate::numerics::Numerics;
 use crate::raster::fused::fill_fused_silhouette;
-use crate::raster::interp::ScreenVertex;
 use crate::shade::Shading;
 use crate::surface::{Band, Framebuffer, Storage};
 use crate::surface::{ClipTo, Surface};
@@ -140,12 +139,7 @@ where
         }
         let area = self.area;
         if Self::FUSED_PERSPECTIVE {
-            let sv = [0, 1, 2].map(|k| ScreenVertex {
-                p: p[k],
-                z: v[k].2,
-                var: var[k],
-                q: self.q_of(mesh.position(idx[k])),
-            });
+            let sv = self.screen_vertices(mesh, idx, &v, var);
             let depth = src.pick(&mut self.depth);
             if let Some((fv, color)) = DirectColor::<S, Sh, N>::new(&self.shading, &sv) {
                 return fill_fused_silhouette::<_, _, _, _, BITS>(
