@@ -14,6 +14,7 @@ use crate::mesh::MeshSource;
 use crate::numerics::{Dither, Numerics, SpanStart};
 use crate::raster::fused::{fill_fused, misses_every_pixel, FusedColor, FusedVertex, Precision};
 use crate::raster::interp::{fill_triangle_interp_with, ScreenVertex};
+use crate::raster::triangle::setup::centre_count;
 use crate::shade::Shading;
 use crate::surface::Surface;
 
@@ -301,21 +302,23 @@ where
         stats.drawn += 1;
         let p = v.map(|(x, y, _)| SubPoint::raw(x, y));
         if Self::FUSED {
-            // A triangle whose bounds hold four pixel centres at most and that covers none of
+            // A triangle whose bounds hold at most four pixel centres and that covers none of
             // them (most of a dense mesh's far triangles) stops here, before its vertices are
             // shaded. The fill repeats the test for those that pass.
-            let extent = |c: [i32; 3]| {
-                let (lo, hi) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
-                i64::from(hi) - i64::from(lo) + (1 << BITS)
-            };
-            let (w, h) = (
-                extent([v[0].0, v[1].0, v[2].0]),
-                extent([v[0].1, v[1].1, v[2].1]),
+            let bounds = |c: [i32; 3]| (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
+            let (x, y) = (
+                bounds([v[0].0, v[1].0, v[2].0]),
+                bounds([v[0].1, v[1].1, v[2].1]),
             );
-            // Each at most four pixels first, so that the product cannot overflow.
-            let few = w <= 4 << BITS && h <= 4 << BITS && w * h <= 4 << (2 * BITS);
-            if few && misses_every_pixel(target, &p) {
-                return Ok(());
+            // Less than eight pixels each way first, a test large triangles leave at once (in
+            // `i32`: corners inside the guard band are less than 2^31 apart).
+            if (x.1.wrapping_sub(x.0) | y.1.wrapping_sub(y.0)) < 8 << BITS {
+                let s = 1i64 << BITS;
+                let count = |(lo, hi): (i32, i32)| centre_count(i64::from(lo), i64::from(hi), s);
+                let (nx, ny) = (count(x), count(y));
+                if nx <= 0 || ny <= 0 || (nx * ny <= 4 && misses_every_pixel(target, &p)) {
+                    return Ok(());
+                }
             }
             let fv = if Sh::NEEDS_WORLD && !mesh.has_normals() {
                 let var = self.face_normal_values(mesh, idx);

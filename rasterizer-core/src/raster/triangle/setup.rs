@@ -52,6 +52,15 @@ pub(crate) fn row_order<const BITS: u32>(v: &[SubPoint<BITS>; 3]) -> [usize; 3] 
     order
 }
 
+/// How many pixel centres `k s + s/2` lie within `lo ..= hi` (sub-pixel units, `s` the unit):
+/// zero or less when none does.
+#[inline(always)]
+pub(crate) fn centre_count(lo: i64, hi: i64, s: i64) -> i64 {
+    // The last is `floor((2 hi - s) / 2 s)`, the first `floor((2 lo - s - 1) / 2 s) + 1`.
+    let shift = (2 * s).trailing_zeros();
+    ((2 * hi - s) >> shift) - ((2 * lo - s - 1) >> shift)
+}
+
 /// The pixels whose centres `c s + s / 2` lie within `lo ..= hi` (sub-pixel units), inside
 /// `clip_lo .. clip_hi`: the columns (or rows) of centres a triangle's bounds reach.
 #[inline(always)]
@@ -515,6 +524,10 @@ pub(crate) mod tests {
                         .collect();
                     let got: std::vec::Vec<i64> = centres(lo, hi, s, -10, 10).collect();
                     assert_eq!(got, want, "{lo} ..= {hi}, {bits} bits");
+                    // Exactly the centres within the bounds, at 0 bits too (in doubled units,
+                    // where a centre is an integer).
+                    let all = (-10..10).filter(|c| (2 * lo..=2 * hi).contains(&(2 * c * s + s)));
+                    assert_eq!(centre_count(lo, hi, s), all.count() as i64, "{lo} ..= {hi}");
                 }
             }
         }
