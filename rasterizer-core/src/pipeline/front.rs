@@ -348,11 +348,23 @@ where
         v: &[Projected; 3],
         var: [Sh::Varyings; 3],
     ) -> [ScreenVertex<Sh::Varyings, BITS>; 3] {
-        let q = [
-            self.q_of(mesh.position(idx[0])),
-            self.q_of(mesh.position(idx[1])),
-            self.q_of(mesh.position(idx[2])),
-        ];
+        let q = if Self::FUSED_PERSPECTIVE {
+            // The fused loop reads only the ratios of a triangle's three `1 / w`
+            // (`perspective::scaled_q`): `1 / w_k` is proportional to the product of the other
+            // two `w`, which takes no division (each below 2^31, the product below 2^62).
+            let w = [
+                self.w_of(mesh.position(idx[0])),
+                self.w_of(mesh.position(idx[1])),
+                self.w_of(mesh.position(idx[2])),
+            ];
+            [w[1] * w[2], w[0] * w[2], w[0] * w[1]]
+        } else {
+            [
+                self.q_of(mesh.position(idx[0])),
+                self.q_of(mesh.position(idx[1])),
+                self.q_of(mesh.position(idx[2])),
+            ]
+        };
         let vertex = |k: usize| ScreenVertex {
             p: SubPoint::raw(v[k].0, v[k].1),
             z: v[k].2,

@@ -91,6 +91,14 @@ where
         }
     }
 
+    /// The `w` of a mesh position in 16.16 bits, at least one unit: the `w` row of
+    /// [`Mat4::transform_point`], as [`Pipeline::q_of`] takes it.
+    #[inline(always)]
+    pub(super) fn w_of(&self, p: Vec3<S>) -> i64 {
+        let w = S::dot4(self.mvp.m[3], p.to_point4().to_array());
+        i64::from(w.to_fx16_bits().max(1))
+    }
+
     /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`: the
     /// definition [`Pipeline::begin_raw`]'s faster loop matches. One copy, for the loop's rare
     /// vertices, for the frames without the raw fast path ([`Pipeline::begin_rare`]) and for

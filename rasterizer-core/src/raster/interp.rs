@@ -25,6 +25,8 @@ pub struct ScreenVertex<V, const BITS: u32> {
     /// The values to interpolate.
     pub var: V,
     /// `2^20 / w`, clamped to `1 ..= Q_MAX`: read only by perspective-correct interpolation.
+    /// (The pipeline's fused perspective path, which reads only the ratios of a triangle's
+    /// three, passes another common multiple of `1 / w` in its own triangles.)
     pub q: i64,
 }
 
