@@ -79,24 +79,27 @@ where
         }
     }
 
-    /// [`Pipeline::q`] of a mesh position: only the `w` row of [`Mat4::transform_point`] (the
-    /// same sum, rounded the same way), a quarter of the transform.
+    /// The clip-space `w` of a mesh position: only the `w` row of [`Mat4::transform_point`]
+    /// (the same sum, rounded the same way), a quarter of the transform.
+    #[inline(always)]
+    fn clip_w(&self, p: Vec3<S>) -> S {
+        S::dot4(self.mvp.m[3], p.to_point4().to_array())
+    }
+
+    /// [`Pipeline::q`] of a mesh position, from its [`Pipeline::clip_w`].
     #[inline(always)]
     pub(super) fn q_of(&self, p: Vec3<S>) -> i64 {
         if N::PERSPECTIVE {
-            let w = S::dot4(self.mvp.m[3], p.to_point4().to_array());
-            S::scaled_ratio(S::ONE, w, 1 << 20, 1)
+            S::scaled_ratio(S::ONE, self.clip_w(p), 1 << 20, 1)
         } else {
             0
         }
     }
 
-    /// The `w` of a mesh position in 16.16 bits, at least one unit: the `w` row of
-    /// [`Mat4::transform_point`], as [`Pipeline::q_of`] takes it.
+    /// The [`Pipeline::clip_w`] of a mesh position in 16.16 bits, at least one unit.
     #[inline(always)]
     pub(super) fn w_of(&self, p: Vec3<S>) -> i64 {
-        let w = S::dot4(self.mvp.m[3], p.to_point4().to_array());
-        i64::from(w.to_fx16_bits().max(1))
+        i64::from(self.clip_w(p).to_fx16_bits().max(1))
     }
 
     /// A vertex's screen position and depth, or [`OUTSIDE`] with its outcode in `y`: the

@@ -53,7 +53,8 @@ pub(crate) fn row_order<const BITS: u32>(v: &[SubPoint<BITS>; 3]) -> [usize; 3] 
 }
 
 /// How many pixel centres `k s + s/2` lie within `lo ..= hi` (sub-pixel units, `s` the unit):
-/// zero or less when none does.
+/// zero or less when none does. Exact at 0 sub-pixel bits too, where [`centres`] (which
+/// compares whole units) reaches one more, conservatively.
 #[inline(always)]
 pub(crate) fn centre_count(lo: i64, hi: i64, s: i64) -> i64 {
     // The last is `floor((2 hi - s) / 2 s)`, the first `floor((2 lo - s - 1) / 2 s) + 1`.
