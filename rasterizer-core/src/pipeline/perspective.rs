@@ -64,7 +64,12 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> PerspectiveColor<'a, S, Sh, N> {
         // None becomes 0.
         let q = scaled_q(sv, Q_BITS).map(|q| q.max(1) as i32);
         let planes = [[0, 0, q[0]], [q[1], 0, q[1]], [0, q[2], q[2]]];
-        let fv = [0, 1, 2].map(|k| (sv[k].p, sv[k].z, planes[k]));
+        // Written out, as in `DirectColor::new`.
+        let fv = [
+            (sv[0].p, sv[0].z, planes[0]),
+            (sv[1].p, sv[1].z, planes[1]),
+            (sv[2].p, sv[2].z, planes[2]),
+        ];
         let n = Sh::Varyings::LEN.min(MAX_VARYINGS);
         let (mut base, mut d1, mut d2) =
             ([0i64; MAX_VARYINGS], [0; MAX_VARYINGS], [0; MAX_VARYINGS]);
@@ -175,7 +180,13 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> DirectColor<'a, S, Sh, N> {
             }
             plane[3] = (q[k] << DIRECT_Q_FRAC) as i32;
         }
-        let fv = [0, 1, 2].map(|k| (sv[k].p, sv[k].z, planes[k]));
+        // Written out: mapped over an index, the closure stayed out of line with its bounds
+        // checks.
+        let fv = [
+            (sv[0].p, sv[0].z, planes[0]),
+            (sv[1].p, sv[1].z, planes[1]),
+            (sv[2].p, sv[2].z, planes[2]),
+        ];
         let color = Self {
             shading,
             _n: core::marker::PhantomData,
