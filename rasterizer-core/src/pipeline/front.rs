@@ -316,7 +316,7 @@ where
                 let s = 1i64 << BITS;
                 let count = |(lo, hi): (i32, i32)| centre_count(i64::from(lo), i64::from(hi), s);
                 let (nx, ny) = (count(x), count(y));
-                if nx <= 0 || ny <= 0 || (nx * ny <= 4 && misses_every_pixel(target, &p, (x, y))) {
+                if nx <= 0 || ny <= 0 || (nx * ny <= 4 && misses_every_pixel(target, &p)) {
                     return Ok(());
                 }
             }

@@ -33,7 +33,7 @@ use crate::raster::edge::{row_at_or_below, EdgeWalk};
 use crate::raster::silhouette::{in_aa_range, walk_silhouette, FringeSink};
 use crate::raster::triangle::setup::row_order;
 use crate::raster::triangle::setup::{
-    may_cover_a_centre_within, rows_in_clip, walk_spans_once, Sorted, SpanSink,
+    may_cover_a_centre, rows_in_clip, walk_spans_once, Sorted, SpanSink,
 };
 use crate::raster::triangle::small::{Edge, SMALL_PIXELS};
 use crate::surface::{BlendError, DepthSpan, Surface};
@@ -448,21 +448,17 @@ const Z_FRAC: u32 = 16;
 /// values.
 pub(crate) type FusedVertex<V, const BITS: u32> = (SubPoint<BITS>, u16, V);
 
-/// Whether the screen triangle `p` (inside the guard band, its bounds `(x, y)` holding at most
-/// four pixel centres) surely covers no pixel centre of `surface`'s clip area: for a caller that
-/// can then skip the values of the triangle's vertices as well as the fill
-/// ([`may_cover_a_centre_within`](crate::raster::triangle::setup::may_cover_a_centre_within),
-/// conservative: the fill decides the rest exactly). The bounds are the caller's, who has just
-/// counted their centres. Out of line, so that the loops of its callers compile as without it.
+/// Whether the screen triangle `p` (inside the guard band, its bounds holding at most four pixel
+/// centres) surely covers no pixel centre of `surface`'s clip area: for a caller that can then
+/// skip the values of the triangle's vertices as well as the fill ([`may_cover_a_centre`],
+/// conservative: the fill decides the rest exactly). Out of line, so that the loops of its
+/// callers compile as without it.
 #[inline(never)]
 pub(crate) fn misses_every_pixel<S: Surface, const BITS: u32>(
     surface: &S,
     p: &[SubPoint<BITS>; 3],
-    (x, y): ((i32, i32), (i32, i32)),
 ) -> bool {
-    let wide = |(lo, hi): (i32, i32)| (i64::from(lo), i64::from(hi));
-    let clip = PixelRect::from_rectangle(&surface.clip_area());
-    !may_cover_a_centre_within(p, (wide(x), wide(y)), &clip)
+    !may_cover_a_centre(p, &PixelRect::from_rectangle(&surface.clip_area()))
 }
 
 /// Fills a triangle with a depth test and interpolated values through the fused span loop.

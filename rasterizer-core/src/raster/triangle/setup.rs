@@ -362,41 +362,28 @@ pub(crate) fn covers_a_centre(
     false
 }
 
-/// [`may_cover_a_centre_within`] with the bounds taken from the vertices: what the tests call.
-#[cfg(test)]
+/// Whether the triangle `p` (vertices inside the guard band, in any order) may cover a pixel
+/// centre of `clip`, for a triangle whose bounds hold at most four centres: `false` only when
+/// [`walk_spans`] would give it no span there. Conservative and cheap, with no sort and no edge
+/// walk: each centre of the bounds inside `clip` is tested against the three edges, a centre
+/// on an edge counting as covered (the walk's top-left rule takes some of those and not
+/// others). A flat triangle covers nothing.
+#[inline(always)]
 pub(crate) fn may_cover_a_centre<const BITS: u32>(
     p: &[SubPoint<BITS>; 3],
     clip: &PixelRect,
 ) -> bool {
-    let [a, b, c] = p.map(|q| (i64::from(q.x), i64::from(q.y)));
-    let x = (a.0.min(b.0).min(c.0), a.0.max(b.0).max(c.0));
-    let y = (a.1.min(b.1).min(c.1), a.1.max(b.1).max(c.1));
-    may_cover_a_centre_within(p, (x, y), clip)
-}
-
-/// Whether the triangle `p` (vertices inside the guard band, in any order; `(x, y)` its bounds,
-/// each the least and the greatest coordinate of the three vertices, as the caller has them)
-/// may cover a pixel centre of `clip`, for a triangle whose bounds hold at most four centres:
-/// `false` only when [`walk_spans`] would give it no span there. Conservative and cheap, with
-/// no sort and no edge walk: each centre of the bounds inside `clip` is tested against the
-/// three edges, a centre on an edge counting as covered (the walk's top-left rule takes some of
-/// those and not others). A flat triangle covers nothing; one 8 pixels or more across gets no
-/// quick answer (`true`).
-#[inline(always)]
-pub(crate) fn may_cover_a_centre_within<const BITS: u32>(
-    p: &[SubPoint<BITS>; 3],
-    (x, y): ((i64, i64), (i64, i64)),
-    clip: &PixelRect,
-) -> bool {
     let s = 1i64 << BITS;
+    let [a, b, c] = p.map(|q| (i64::from(q.x), i64::from(q.y)));
+    let (xmin, xmax) = (a.0.min(b.0).min(c.0), a.0.max(b.0).max(c.0));
+    let (ymin, ymax) = (a.1.min(b.1).min(c.1), a.1.max(b.1).max(c.1));
     // A larger triangle gets no quick answer (the fill decides): below 8 pixels a side (both
     // extents below 2^(BITS + 3), so their bits too), what follows fits `i32`.
-    if ((x.1 - x.0) | (y.1 - y.0)) >= 8 << BITS {
+    if ((xmax - xmin) | (ymax - ymin)) >= 8 << BITS {
         return true;
     }
-    let [a, b, c] = p.map(|q| (i64::from(q.x), i64::from(q.y)));
-    let cols = centres(x.0, x.1, s, clip.x0, clip.x1);
-    let rows = centres(y.0, y.1, s, clip.y0, clip.y1);
+    let cols = centres(xmin, xmax, s, clip.x0, clip.x1);
+    let rows = centres(ymin, ymax, s, clip.y0, clip.y1);
     if cols.is_empty() || rows.is_empty() {
         return false;
     }
