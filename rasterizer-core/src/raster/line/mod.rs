@@ -22,6 +22,9 @@ use embedded_graphics_core::geometry::Point;
 ///
 /// Any `i32` endpoints are accepted; the pixels drawn are exactly the line's pixels that lie inside
 /// the clip area.
+// Inlined into the caller (a loop over many lines, mostly): the call and its register saves
+// would otherwise cost a short line about as much as a few of its pixels.
+#[inline]
 pub fn draw_line<S: Surface>(
     surface: &mut S,
     a: Point,

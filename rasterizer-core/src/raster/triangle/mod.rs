@@ -39,6 +39,9 @@ use small::{RowSink, Small};
 /// assert_eq!(fb.pixel(Point::new(0, 0)), Some(Rgb565::GREEN));
 /// assert_eq!(fb.pixel(Point::new(15, 15)), Some(Rgb565::BLACK));
 /// ```
+// Inlined into the caller (a loop over many triangles, mostly): the call and its register
+// saves would otherwise cost a small triangle about as much as one of its spans.
+#[inline]
 pub fn fill_triangle<S: Surface, const BITS: u32>(
     surface: &mut S,
     vertices: [SubPoint<BITS>; 3],
@@ -195,6 +198,8 @@ const FRAC: u32 = 16;
 /// barycentric blend rounded to the nearest step, computed exactly at the start of each span (one
 /// division per channel) and stepped across it in 16.16 fixed point, so a pixel whose centre is a
 /// vertex gets exactly that vertex's colour, and no pixel leaves the range of the three colours.
+// Inlined into the caller, as `fill_triangle`.
+#[inline]
 pub fn fill_triangle_gouraud<S, const BITS: u32>(
     surface: &mut S,
     vertices: [SubPoint<BITS>; 3],

@@ -389,22 +389,20 @@ pub(crate) fn may_cover_a_centre<const BITS: u32>(
     }
     // Doubled coordinates (a centre is then an integer with no sub-pixel bits), relative to
     // `a`'s: each within `2^(BITS + 4)`, as are the centres inside the bounds.
-    let rel = |q: (i64, i64)| (2 * (q.0 - a.0), 2 * (q.1 - a.1));
-    let (a2, b2, c2) = ((0i64, 0i64), rel(b), rel(c));
     let narrow = |v: i64| v as i32;
-    let area = narrow(b2.0) * narrow(c2.1) - narrow(c2.0) * narrow(b2.1);
+    let rel = |q: (i64, i64)| (narrow(2 * (q.0 - a.0)), narrow(2 * (q.1 - a.1)));
+    let (a2, b2, c2) = ((0, 0), rel(b), rel(c));
+    let area = b2.0 * c2.1 - c2.0 * b2.1;
     if area == 0 {
         return false;
     }
+    // A clockwise triangle is walked the other way round (b and c swapped), so that every edge
+    // function below is non-negative on the triangle's side, with no sign to multiply by.
+    let (b2, c2) = if area < 0 { (c2, b2) } else { (b2, c2) };
     // Each edge `u -> v` as `f = dx (Y - u.y) - dy (X - u.x)` at the doubled centre `(X, Y)`,
-    // `dx, dy` the edge (doubled too), oriented by the area's sign so that `f` is non-negative
-    // on the triangle's side: each product below `2^(2 BITS + 9)`, `f` below `2^26` (and a step
-    // beyond the last centre below `2^27`).
-    let sign = area.signum();
-    let edge = |u: (i64, i64), v: (i64, i64)| {
-        let (dx, dy) = (sign * narrow(v.0 - u.0), sign * narrow(v.1 - u.1));
-        (dx, dy, narrow(u.0), narrow(u.1))
-    };
+    // `dx, dy` the edge (doubled too): each product below `2^(2 BITS + 9)`, `f` below `2^26`
+    // (and a step beyond the last centre below `2^27`).
+    let edge = |u: (i32, i32), v: (i32, i32)| (v.0 - u.0, v.1 - u.1, u.0, u.1);
     let (ea, eb, ec) = (edge(a2, b2), edge(b2, c2), edge(c2, a2));
     let (x2, y2) = (
         narrow(2 * cols.start * s + s - 2 * a.0),
