@@ -198,8 +198,6 @@ const FRAC: u32 = 16;
 /// barycentric blend rounded to the nearest step, computed exactly at the start of each span (one
 /// division per channel) and stepped across it in 16.16 fixed point, so a pixel whose centre is a
 /// vertex gets exactly that vertex's colour, and no pixel leaves the range of the three colours.
-// Inlined into the caller, as `fill_triangle`.
-#[inline]
 pub fn fill_triangle_gouraud<S, const BITS: u32>(
     surface: &mut S,
     vertices: [SubPoint<BITS>; 3],
