@@ -71,6 +71,9 @@ impl<S: Scalar> Vec3<S> {
     /// to a degree. A fixed-point format takes the product of the raw edges exactly (in `i64`) and
     /// keeps its leading bits; a floating-point one doubles both edges (exactly) until the larger
     /// one's largest component reaches one half.
+    // Called once a face on both the flat and the face-normal paths: the hint keeps it inlined
+    // in a program that has both, where the compiler had kept one copy out of line.
+    #[inline]
     pub fn face_normal(p0: Self, p1: Self, p2: Self) -> Self {
         let (mut a, mut b) = (p1 - p0, p2 - p0);
         let raw = |v: S| {
