@@ -179,21 +179,36 @@ where
         stats: &mut RenderStats,
         keep_flat: bool,
     ) -> bool {
-        let xs = [v[0].0, v[1].0, v[2].0].map(i64::from);
-        let ys = [v[0].1, v[1].1, v[2].1].map(i64::from);
-        let area = (xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0]);
-        let keep = if area == 0 {
-            keep_flat
-        } else {
-            self.keeps(area)
-        };
-        if !keep {
+        if !self.faces(v, keep_flat) {
             stats.culled += 1;
             return false;
         }
+        self.reaches_viewport(v, stats)
+    }
+
+    /// Whether a triangle inside the guard band faces the right way (a zero area only with
+    /// `keep_flat`).
+    #[inline(always)]
+    pub(super) fn faces(&self, v: &[Projected; 3], keep_flat: bool) -> bool {
+        let xs = [v[0].0, v[1].0, v[2].0].map(i64::from);
+        let ys = [v[0].1, v[1].1, v[2].1].map(i64::from);
+        let area = (xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0]);
+        if area == 0 {
+            keep_flat
+        } else {
+            self.keeps(area)
+        }
+    }
+
+    /// Whether a triangle inside the guard band reaches the viewport; counts it in `stats` when
+    /// not.
+    #[inline(always)]
+    pub(super) fn reaches_viewport(&self, v: &[Projected; 3], stats: &mut RenderStats) -> bool {
         if self.in_viewport {
             return true;
         }
+        let xs = [v[0].0, v[1].0, v[2].0].map(i64::from);
+        let ys = [v[0].1, v[1].1, v[2].1].map(i64::from);
         // Off the viewport on one side (the screen planes are stricter than the guard band).
         let [l, top, r, bottom] = self.edges;
         let (x_lo, x_hi) = (xs[0].min(xs[1]).min(xs[2]), xs[0].max(xs[1]).max(xs[2]));

@@ -392,19 +392,29 @@ where
             triangles: mesh.triangle_count().min(u32::MAX as usize) as u32,
             ..RenderStats::default()
         };
-        for t in 0..mesh.triangle_count() {
-            let idx = mesh.triangle(t);
-            let Some(v) = self.fetch(mesh, idx, scratch) else {
-                stats.invalid += 1;
-                continue;
+        let n = mesh.triangle_count();
+        let mut t = 0;
+        loop {
+            // The back faces (half a closed mesh) leave in a loop of their own, which keeps its
+            // registers for them.
+            let (idx, v) = loop {
+                if t == n {
+                    return Ok(stats);
+                }
+                let idx = mesh.triangle(t);
+                t += 1;
+                match self.fetch(mesh, idx, scratch) {
+                    None => stats.invalid += 1,
+                    Some(v) if front::outside(&v) || self.faces(&v, false) => break (idx, v),
+                    Some(_) => stats.culled += 1,
+                }
             };
             if front::outside(&v) {
                 self.draw_outside(&mut Own, target, mesh, idx, scratch, &mut stats)?;
-            } else if self.visible(&v, &mut stats, false) {
+            } else if self.reaches_viewport(&v, &mut stats) {
                 self.draw_visible(&mut Own, target, mesh, idx, v, scratch, &mut stats)?;
             }
         }
-        Ok(stats)
     }
 
     /// Draws a mesh's edges in one colour, clipped in homogeneous space (nothing behind the camera
