@@ -99,6 +99,17 @@ where
     /// The [`Pipeline::clip_w`] of a mesh position in 16.16 bits, at least one unit.
     #[inline(always)]
     pub(super) fn w_of(&self, p: Vec3<S>) -> i64 {
+        // The same sum through the vertex loop's raw row, when it applies: no overflow checks,
+        // and the clamp is the checked sum's saturation.
+        if let (Some(raw), Some(px), Some(py), Some(pz), 16) = (
+            &self.raw,
+            p.x.raw_bits(),
+            p.y.raw_bits(),
+            p.z.raw_bits(),
+            S::RAW_FRAC,
+        ) {
+            return raw_row(raw, [px, py, pz], 3, 16).clamp(1, i64::from(i32::MAX));
+        }
         i64::from(self.clip_w(p).to_fx16_bits().max(1))
     }
 
@@ -996,6 +1007,19 @@ mod tests {
                 let mut c = || Fx16::from_bits((next() as i32) >> (12 + shift));
                 Vec3::new(c(), c(), c())
             });
+            // The perspective path's `w` from the raw row is the checked definition's, also at
+            // the format's limits.
+            let far = [i32::MIN, i32::MAX].map(Fx16::from_bits);
+            for q in positions.iter().chain(&[
+                Vec3::new(far[0], far[1], far[0]),
+                Vec3::new(far[1], far[1], far[1]),
+            ]) {
+                assert_eq!(
+                    p.w_of(*q),
+                    i64::from(p.clip_w(*q).to_fx16_bits().max(1)),
+                    "{q:?}"
+                );
+            }
             let mesh = Mesh::<Fx16, u16>::new(&positions, &[]);
             let mut scratch = [VertexSlot::<[i32; 0]>::EMPTY; 48];
             p.begin(&mesh, &mut scratch);
