@@ -18,6 +18,10 @@
 //! back (no mix of the vertices' values): its values are within `2^-12.8` of the exact ones,
 //! relative (at most 9 units of the value: under a 200th of a step of a 5-bit channel, under
 //! 0.04 of a step of an 8-bit one).
+//!
+//! Both set-ups cost more than the default path's, so a triangle the lean path takes is first
+//! tested against the depths its bounding box holds, and dropped before its set-up when it
+//! lies behind all of them ([`FusedColor::HIDDEN_TEST`]): the same pixels.
 
 use super::Shading;
 use crate::geom::{Varyings, MAX_VARYINGS};
@@ -229,6 +233,7 @@ fn direct_values(p: [u32; 3], q: u32, frac: u32) -> [u32; 3] {
 impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for DirectColor<'_, S, Sh, N> {
     const PRECISION: Precision = Precision { frac: 0, offset: 0 };
     const AT: bool = !matches!(N::DITHER, Dither::None);
+    const HIDDEN_TEST: bool = true;
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
         self.shading.pixel_fused(&self.values(acc))
@@ -263,6 +268,7 @@ impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color>
 {
     const PRECISION: Precision = PRECISION;
     const AT: bool = !matches!(N::DITHER, Dither::None);
+    const HIDDEN_TEST: bool = true;
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
         self.shading.pixel_fused(&self.values(acc))
