@@ -121,14 +121,10 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> PerspectiveColor<'a, S, Sh, N> {
 #[inline(always)]
 fn scaled_q<V, const BITS: u32>(sv: &[ScreenVertex<V, BITS>; 3], bits: u32) -> [u32; 3] {
     let q = [0, 1, 2].map(|k| sv[k].q.max(1) as u64);
-    let top = 64 - (q[0] | q[1] | q[2]).leading_zeros();
-    q.map(|q| {
-        (if top > bits {
-            q >> (top - bits)
-        } else {
-            q << (bits - top)
-        }) as u32
-    })
+    // Moved up so that the largest has its top bit at 63 (no bit lost), then down to `bits`
+    // bits: what shifting each by the largest's excess over `bits` gives, either way.
+    let up = (q[0] | q[1] | q[2]).leading_zeros();
+    q.map(|q| ((q << up) >> (64 - bits)) as u32)
 }
 
 /// Bits of the largest `1 / w` of a triangle on the direct planes ([`DirectColor`]).
