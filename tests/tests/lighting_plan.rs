@@ -9,8 +9,9 @@
 
 use fixtures::reference3d::{lit, RefLight};
 use fixtures::scenes::XorShift32;
+use rasterizer_core::color::ShadeColor;
 use rasterizer_core::prelude::*;
-use rasterizer_core::shade::{Shading, VertexIn};
+use rasterizer_core::shade::{Shading, Stored, VertexIn};
 
 type V3 = [f64; 3];
 
@@ -297,4 +298,73 @@ fn phong_one_light_matches_f64() {
         assert!(plan.max <= max, "{size}: {}", plan.max);
         assert!(plan.mean() <= mean, "{size}: {}", plan.mean());
     }
+}
+
+/// `GouraudLit`'s values, from the vertex and from its packed slot, on the directional plan
+/// (directional lights) and off it (a point light too), over random scenes bright and dim: the
+/// lowest and highest seen.
+fn gouraud_extremes<C: ShadeColor>(count: usize) -> (i32, i32) {
+    let mut r = Rng(XorShift32::seeded(0x5ca1_ab1e));
+    let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+    for i in 0..count {
+        let mut scene = Scene::random(&mut r);
+        if i % 3 == 0 {
+            // Ambient light past what the lights add, so that channels saturate.
+            let a = 128 + r.below(128) as u8;
+            scene.ambient = Rgb888::new(a, a, a);
+            scene.material.ambient = Rgb888::WHITE;
+        }
+        let mut lighting =
+            Lighting::<Fx16, 4>::new(scene.material, scene.ambient, scene.model, q(scene.eye).0);
+        for &(d, color) in &scene.lights {
+            lighting
+                .add_light(Light::Directional {
+                    direction: q(d).0,
+                    color,
+                })
+                .unwrap();
+        }
+        if i % 2 == 1 {
+            // Off the plan.
+            lighting
+                .add_light(Light::Point {
+                    position: q(r.ball(4.0)).0,
+                    color: r.color(),
+                })
+                .unwrap();
+        }
+        let mut shader = GouraudLit::<Fx16, C, 4>::new(lighting);
+        shader.begin_frame(None);
+        let v = input(q(r.ball(1.0)).0, q(r.direction()).0);
+        let stored = <[u16; 3] as Stored<[i32; 3]>>::unpack(&shader.vertex_stored(&v));
+        for c in shader.vertex(&v).into_iter().chain(stored) {
+            lo = lo.min(c);
+            hi = hi.max(c);
+        }
+    }
+    (lo, hi)
+}
+
+/// The range `GouraudLit` declares (`Shading::VALUE_RANGE`, which lets the perspective-correct
+/// path skip testing each value) is the half step of no light to full light plus it, per
+/// channel depth (Rgb565: 5 bits with 11 fractional bits, 6 with 10; Rgb888: 8 with 8), and no
+/// value leaves it, also where the light saturates.
+#[test]
+fn gouraud_values_stay_in_their_declared_range() {
+    assert_eq!(
+        <GouraudLit<Fx16, Rgb565, 4> as Shading<Fx16>>::VALUE_RANGE,
+        (1 << 9, (63 << 10) + (1 << 9))
+    );
+    assert_eq!(
+        <GouraudLit<Fx16, Rgb888, 4> as Shading<Fx16>>::VALUE_RANGE,
+        (1 << 7, (255 << 8) + (1 << 7))
+    );
+    let (lo, hi) = gouraud_extremes::<Rgb565>(20_000);
+    let (range_lo, range_hi) = <GouraudLit<Fx16, Rgb565, 4> as Shading<Fx16>>::VALUE_RANGE;
+    assert!(range_lo <= lo && hi <= range_hi, "{lo} {hi}");
+    // Both ends are reached: no light and full light on green, the deepest channel.
+    assert_eq!((lo, hi), (range_lo, range_hi));
+    let (lo, hi) = gouraud_extremes::<Rgb888>(20_000);
+    let (range_lo, range_hi) = <GouraudLit<Fx16, Rgb888, 4> as Shading<Fx16>>::VALUE_RANGE;
+    assert_eq!((lo, hi), (range_lo, range_hi));
 }

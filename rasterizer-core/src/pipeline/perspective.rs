@@ -168,11 +168,14 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> DirectColor<'a, S, Sh, N> {
         if q[0].min(q[1]).min(q[2]) < DIRECT_Q_MIN {
             return None;
         }
+        // A shader whose values are known to lie in the range needs no test of each.
+        let (lo, hi) = Sh::VALUE_RANGE;
+        let known = DIRECT_VALUE_MIN <= lo && hi <= DIRECT_VALUE_MAX;
         let mut planes = [[0i32; 4]; 3];
         for (k, plane) in planes.iter_mut().enumerate() {
             let v = sv[k].var.as_slice();
             for c in 0..3 {
-                if !(DIRECT_VALUE_MIN..=DIRECT_VALUE_MAX).contains(&v[c]) {
+                if !known && !(DIRECT_VALUE_MIN..=DIRECT_VALUE_MAX).contains(&v[c]) {
                     return None;
                 }
                 // Below 2^16 times below 2^15: an i32.

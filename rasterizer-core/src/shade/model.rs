@@ -158,6 +158,11 @@ pub trait Shading<S: Scalar> {
     fn face(&mut self, _vertices: &[VertexIn<S>; 3]) {}
     /// Per pixel: the colour from the interpolated values.
     fn pixel(&self, v: &Self::Varyings) -> Self::Color;
+    /// Bounds, `lo ..= hi`, that every value of every vertex lies within (from
+    /// [`Shading::vertex`], [`Shading::vertex_stored`] unpacked, and so from the clipper's mixes
+    /// of them), when the shader's own arithmetic keeps them there: a pipeline need then not
+    /// test them. The default claims nothing.
+    const VALUE_RANGE: (i32, i32) = (i32::MIN, i32::MAX);
     /// Fractional bits the default path's fused span loop gives each value as it steps across a
     /// triangle (at most 16). Every value times `2^FUSED_FRAC` must fit an `i32`, or a `u32` for
     /// values that are never negative.
@@ -191,6 +196,27 @@ pub trait Shading<S: Scalar> {
 /// many as keep `max + 1/2` below `2^16`.
 const fn channel_frac(max: u8) -> u32 {
     8 + max.leading_zeros()
+}
+
+/// The values [`target_channels`] (and a directional plan's sums made the same way) can give:
+/// from the half step of no light, `2^(frac - 1)`, to full light plus it, `max 2^frac +
+/// 2^(frac - 1)`, over the three channels.
+const fn channel_range(max: [u8; 3]) -> (i32, i32) {
+    let (mut lo, mut hi) = (i32::MAX, 0);
+    let mut c = 0;
+    while c < 3 {
+        let f = channel_frac(max[c]);
+        let half = 1 << (f - 1);
+        let full = ((max[c] as i32) << f) + half;
+        if half < lo {
+            lo = half;
+        }
+        if full > hi {
+            hi = full;
+        }
+        c += 1;
+    }
+    (lo, hi)
 }
 
 /// A colour's three channels at the target's depth, each with [`channel_frac`] fractional bits
@@ -471,6 +497,7 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for GouraudLit<S, C, N
     type Stored = [u16; 3];
     const NEEDS_WORLD: bool = true;
     const FUSED_OFFSET: u32 = 0;
+    const VALUE_RANGE: (i32, i32) = channel_range(C::MAX);
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
         let lighting = self.frame.as_ref().unwrap_or(&self.lighting);
