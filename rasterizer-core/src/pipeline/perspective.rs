@@ -178,8 +178,9 @@ impl<'a, S: Scalar, Sh: Shading<S>, N> DirectColor<'a, S, Sh, N> {
                 if !known && !(DIRECT_VALUE_MIN..=DIRECT_VALUE_MAX).contains(&v[c]) {
                     return None;
                 }
-                // Below 2^16 times below 2^15: an i32.
-                plane[c] = v[c] * q[k] as i32;
+                // Below 2^16 times below 2^15: an i32 (wrapping only for a shader whose values
+                // leave the range it declares: wrong colours, not a panic).
+                plane[c] = v[c].wrapping_mul(q[k] as i32);
             }
             plane[3] = (q[k] << DIRECT_Q_FRAC) as i32;
         }

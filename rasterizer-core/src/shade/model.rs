@@ -161,7 +161,8 @@ pub trait Shading<S: Scalar> {
     /// Bounds, `lo ..= hi`, that every value of every vertex lies within (from
     /// [`Shading::vertex`], [`Shading::vertex_stored`] unpacked, and so from the clipper's mixes
     /// of them), when the shader's own arithmetic keeps them there: a pipeline need then not
-    /// test them. The default claims nothing.
+    /// test them. The default claims nothing. A shader whose values leave the range it declares
+    /// gets wrong colours (never a panic).
     const VALUE_RANGE: (i32, i32) = (i32::MIN, i32::MAX);
     /// Fractional bits the default path's fused span loop gives each value as it steps across a
     /// triangle (at most 16). Every value times `2^FUSED_FRAC` must fit an `i32`, or a `u32` for
