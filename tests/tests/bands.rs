@@ -6,7 +6,7 @@
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use proptest::prelude::*;
 use rasterizer_core::depth::DepthTest;
-use rasterizer_core::numerics::{Dither, Divide, Numerics, SpanStart, Standard};
+use rasterizer_core::numerics::{Dither, Divide, Numerics, Perspective, SpanStart, Standard};
 use rasterizer_core::prelude::*;
 use rasterizer_core::shade::Shading;
 use rasterizer_core::{
@@ -239,6 +239,8 @@ fn suzanne_bands_for_every_numerics() {
     check::<Gradient16>(&mesh);
     check::<NewtonGradient8>(&mesh);
     check::<ReciprocalExact12>(&mesh);
+    // Perspective-correct colours too, whose hidden-triangle test reads each band's depths.
+    check::<Perspective>(&mesh);
 }
 
 /// Dithering takes its threshold from the screen position, not the band's: bands of heights
