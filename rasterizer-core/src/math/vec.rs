@@ -33,6 +33,12 @@ impl<S: Scalar> Vec3<S> {
         Self { x, y, z }
     }
 
+    /// The raw integers of a fixed-point vector's components (`None` for `f32`).
+    #[inline(always)]
+    pub(crate) fn raw_bits(self) -> Option<[i64; 3]> {
+        Some([self.x.raw_bits()?, self.y.raw_bits()?, self.z.raw_bits()?])
+    }
+
     /// From integers.
     pub fn from_ints(x: i32, y: i32, z: i32) -> Self {
         Self::new(S::from_int(x), S::from_int(y), S::from_int(z))

@@ -101,14 +101,8 @@ where
     pub(super) fn w_of(&self, p: Vec3<S>) -> i64 {
         // The same sum through the vertex loop's raw row, when it applies: no overflow checks,
         // and the clamp is the checked sum's saturation.
-        if let (Some(raw), Some(px), Some(py), Some(pz), 16) = (
-            &self.raw,
-            p.x.raw_bits(),
-            p.y.raw_bits(),
-            p.z.raw_bits(),
-            S::RAW_FRAC,
-        ) {
-            return raw_row(raw, [px, py, pz], 3, 16).clamp(1, i64::from(i32::MAX));
+        if let (Some(raw), Some(p), 16) = (&self.raw, p.raw_bits(), S::RAW_FRAC) {
+            return raw_row(raw, p, 3, 16).clamp(1, i64::from(i32::MAX));
         }
         i64::from(self.clip_w(p).to_fx16_bits().max(1))
     }
@@ -119,11 +113,9 @@ where
     /// vertices beyond the scratch.
     #[inline]
     pub(super) fn geometry(&self, p: Vec3<S>) -> Projected {
-        if let (Some(raw), Some(px), Some(py), Some(pz)) =
-            (&self.raw, p.x.raw_bits(), p.y.raw_bits(), p.z.raw_bits())
-        {
+        if let (Some(raw), Some(p)) = (&self.raw, p.raw_bits()) {
             // Inside the clipper's guard band, with w and |x|, |y| below 2^29.
-            let c = raw_clip(raw, [px, py, pz], S::RAW_FRAC);
+            let c = raw_clip(raw, p, S::RAW_FRAC);
             let small = |v: i64| v.unsigned_abs() < W_BIG as u64;
             let inside = guard_band(c, w_low(S::RAW_FRAC), W_BIG);
             let Some((n, w)) = inside.filter(|_| small(c[0]) && small(c[1])) else {
@@ -347,12 +339,11 @@ where
         for (s, at) in slots {
             s.st = empty;
             let p = at.position();
-            let (Some(px), Some(py), Some(pz)) = (p.x.raw_bits(), p.y.raw_bits(), p.z.raw_bits())
-            else {
+            let Some(p) = p.raw_bits() else {
                 self.begin_rare(s, at, &mut all_in_view);
                 continue;
             };
-            let row = |r: usize| raw_row(raw, [px, py, pz], r, S::RAW_FRAC);
+            let row = |r: usize| raw_row(raw, p, r, S::RAW_FRAC);
             let w = row(3);
             if ((w - lo) as u64) >= (W_BIG - lo) as u64 {
                 // Outside the guard band, as the band's own test would find.

@@ -460,7 +460,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
     /// Per channel, the lit colour times `255 · 2^16`, clamped to `255` times that.
     #[inline]
     fn sum(&self, position: Vec3<S>, normal: Vec3<S>) -> [u64; 3] {
-        if let (Some(p), Some(n)) = (raw3(position), raw3(normal)) {
+        if let (Some(p), Some(n)) = (position.raw_bits(), normal.raw_bits()) {
             return self.sum_raw(p, n);
         }
         self.sum_scalar(position, normal)
@@ -477,7 +477,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         let needs_view =
             self.specular != Specular::None && shininess != 0 && !self.lights.is_empty();
         let view = if needs_view {
-            let eye = raw3(self.eye).unwrap_or_default();
+            let eye = self.eye.raw_bits().unwrap_or_default();
             unit30([0, 1, 2].map(|i| eye[i] - position[i]))
         } else {
             None
@@ -490,7 +490,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
             let l = match *light {
                 Light::Directional { .. } => terms.direction,
                 Light::Point { position: at, .. } => {
-                    let at = raw3(at).unwrap_or_default();
+                    let at = at.raw_bits().unwrap_or_default();
                     match unit30([0, 1, 2].map(|i| at[i] - position[i])) {
                         Some(l) => l,
                         None => continue,
@@ -657,7 +657,7 @@ impl<S: Scalar, const N: usize> Lighting<S, N> {
         out_bits: u32,
         bias: [u64; 3],
     ) -> Option<DirectionalPlan<N>> {
-        let eye = raw3(self.eye)?;
+        let eye = self.eye.raw_bits()?;
         let frac = S::RAW_FRAC;
         // Up to 23 bits, the normal's range checks below stay within u64.
         if !(8..=23).contains(&frac) || self.specular == Specular::Phong {
@@ -712,7 +712,7 @@ impl<const N: usize> DirectionalPlan<N> {
     /// along an axis): the caller then takes [`Lighting::shade_sums`].
     #[inline(always)]
     pub(crate) fn sums<S: Scalar>(&self, position: Vec3<S>, normal: Vec3<S>) -> Option<[u64; 3]> {
-        let (position, normal) = (raw3(position)?, raw3(normal)?);
+        let (position, normal) = (position.raw_bits()?, normal.raw_bits()?);
         // The format's, a constant: the plan is made only for it.
         let f = S::RAW_FRAC;
         let n = normal;
@@ -815,8 +815,8 @@ impl<const N: usize> DirectionalPlan<N> {
     /// of the angle a triangle spans from the eye (up to 20 steps in a large face's highlight,
     /// measured).
     pub(crate) fn phong_vertex<S: Scalar>(&self, position: Vec3<S>, normal: Vec3<S>) -> [i32; 6] {
-        let n = raw3(normal).and_then(unit30).unwrap_or_default();
-        let p = raw3(position).unwrap_or_default();
+        let n = normal.raw_bits().and_then(unit30).unwrap_or_default();
+        let p = position.raw_bits().unwrap_or_default();
         // Unit components in 2.30 are within [-2^30, 2^30] (up to rounding); an eye and a
         // position as raw i32s are less than 2^32 apart, clamped to an i32 (an eye 2^15 units
         // away in 16.16).
@@ -1183,12 +1183,6 @@ fn shr(x: i64, sh: i32) -> i64 {
     }
 }
 
-/// The raw integers of a fixed-point vector.
-#[inline(always)]
-fn raw3<S: Scalar>(v: Vec3<S>) -> Option<[i64; 3]> {
-    Some([v.x.raw_bits()?, v.y.raw_bits()?, v.z.raw_bits()?])
-}
-
 /// The unit vector along `v` in 2.30 (`2^30` is one), or `None` for the zero vector: one
 /// reciprocal square root and three products.
 // Out of line: the view vector, point lights and the slow normal each called a copy.
@@ -1347,7 +1341,7 @@ mod tests {
         position: Vec3<S>,
         normal: Vec3<S>,
     ) -> Option<[u64; 3]> {
-        let (position, normal) = (raw3(position)?, raw3(normal)?);
+        let (position, normal) = (position.raw_bits()?, normal.raw_bits()?);
         // The format's, a constant: the plan is made only for it.
         let f = S::RAW_FRAC;
         let n = normal;
