@@ -200,30 +200,3 @@ where
         self
     }
 }
-
-/// Sums of products of a span's values, stepped along it with no product a pixel (see
-/// [`crate::shade::Shading::FUSED_FORMS`]): each quadratic form of the pixel's index as its value and first
-/// and second differences, each linear one as its value and difference, all wrapping (exact
-/// modulo `2^64`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct SpanForms {
-    /// Quadratic forms: `[value, first difference, second difference]`.
-    pub quad: [[i64; 3]; 3],
-    /// Linear forms: `[value, difference]`.
-    pub linear: [[i64; 2]; 4],
-}
-
-impl SpanForms {
-    /// Moves every form on to the next pixel: the first `quads` quadratic and `linears` linear
-    /// ones (constants of the caller, so that the rest costs nothing).
-    #[inline(always)]
-    pub fn step(&mut self, (quads, linears): (usize, usize)) {
-        for q in self.quad.iter_mut().take(quads) {
-            q[0] = q[0].wrapping_add(q[1]);
-            q[1] = q[1].wrapping_add(q[2]);
-        }
-        for l in self.linear.iter_mut().take(linears) {
-            l[0] = l[0].wrapping_add(l[1]);
-        }
-    }
-}

@@ -8,7 +8,7 @@ use super::{DepthFrom, Pipeline, RenderStats, VertexSlot};
 use crate::clip::polygon::{clip_triangle, outcode, trivially_outside, ClipVertex, Outcode};
 use crate::cull::Cull;
 use crate::depth::DepthTest;
-use crate::geom::{SpanForms, SubPoint, MAX_VARYINGS};
+use crate::geom::{SubPoint, MAX_VARYINGS};
 use crate::math::{Scalar, Vec4};
 use crate::mesh::MeshSource;
 use crate::numerics::{Dither, Numerics, SpanStart};
@@ -53,18 +53,9 @@ impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for ShaderCol
         offset: Sh::FUSED_OFFSET,
     };
     const AT: bool = !matches!(N::DITHER, Dither::None);
-    const FORMS: (usize, usize) = Sh::FUSED_FORMS;
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
         self.0.pixel_fused(acc)
-    }
-    #[inline(always)]
-    fn forms(&self, start: &[u32; MAX_VARYINGS], step: &[u32; MAX_VARYINGS]) -> Option<SpanForms> {
-        self.0.span_forms(start, step)
-    }
-    #[inline(always)]
-    fn color_forms(&self, forms: &SpanForms) -> Sh::Color {
-        self.0.pixel_forms(forms)
     }
     #[inline(always)]
     fn color_at(&self, acc: &[u32; MAX_VARYINGS], x: i32, y: i32) -> Sh::Color {

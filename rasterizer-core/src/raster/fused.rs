@@ -28,7 +28,7 @@
 use crate::depth::DepthRows;
 use crate::depth::{Compare, DepthTest};
 use crate::geom::{PixelRect, SubPoint};
-use crate::geom::{SpanForms, Varyings, MAX_VARYINGS};
+use crate::geom::{Varyings, MAX_VARYINGS};
 use crate::raster::edge::{row_at_or_below, EdgeWalk};
 use crate::raster::silhouette::{in_aa_range, walk_silhouette, FringeSink};
 use crate::raster::triangle::setup::row_order;
@@ -209,22 +209,6 @@ pub(crate) trait FusedColor<C> {
     /// set-up costs more than the test on a mesh (the perspective-correct ones); on the default
     /// path the test cost about what it saved.
     const HIDDEN_TEST: bool = false;
-    /// How many quadratic and linear forms a span's pixels step ([`crate::shade::SpanForms`],
-    /// [`crate::shade::Shading::FUSED_FORMS`]): none by default.
-    const FORMS: (usize, usize) = (0, 0);
-    /// With [`FusedColor::FORMS`]: the forms of a span whose first pixel's values are `start`
-    /// stepping by `step`, or `None` to colour its pixels from their values.
-    #[inline(always)]
-    fn forms(&self, start: &[u32; MAX_VARYINGS], step: &[u32; MAX_VARYINGS]) -> Option<SpanForms> {
-        let _ = (start, step);
-        None
-    }
-    /// With [`FusedColor::FORMS`]: the colour of a pixel from its span's forms.
-    #[inline(always)]
-    fn color_forms(&self, forms: &SpanForms) -> C {
-        let _ = forms;
-        self.color(&[0; MAX_VARYINGS])
-    }
     /// The pixel's colour.
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> C;
     /// The colour of the pixel at `(x, y)`, when [`FusedColor::AT`] is set.
@@ -302,33 +286,6 @@ impl<C, P: FusedColor<C>, V: Varyings, D: DepthTest, const LESS: bool> DepthSpan
     fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
         let acc = self.values(i, stored)?;
         Some(self.pixel.color(&acc))
-    }
-}
-
-/// The pixels of one span with the usual depth test whose colour reads its span's forms
-/// ([`FusedColor::FORMS`]), stepped with every pixel as depth is.
-struct FormPixels<'p, P, D> {
-    forms: SpanForms,
-    z: u32,
-    dz: u32,
-    pixel: &'p P,
-    _d: core::marker::PhantomData<D>,
-}
-
-impl<C, P: FusedColor<C>, D: DepthTest> DepthSpan<C> for FormPixels<'_, P, D> {
-    #[inline(always)]
-    fn pixel(&mut self, _: usize, stored: &mut u16) -> Option<C> {
-        let nz = (self.z >> Z_FRAC) as u16;
-        self.z = self.z.wrapping_add(self.dz);
-        let forms = self.forms;
-        self.forms.step(P::FORMS);
-        if nz >= *stored {
-            return None;
-        }
-        if D::WRITE {
-            *stored = nz;
-        }
-        Some(self.pixel.color_forms(&forms))
     }
 }
 
@@ -925,27 +882,21 @@ impl<const BITS: u32> Lean<BITS> {
                             acc[k] = values[k].at(x, y);
                         }
                         let (zx, dz) = (z.at(x, y), z.gx);
-                        // A colour that reads forms steps them instead of its values
-                        // (over spans long enough to repay their set-up).
-                        if P::FORMS.0 + P::FORMS.1 != 0 && !P::AT && x1 - x0 >= 4 {
-                            form_span::<C, D, V, P>(pixel, (acc, step), (zx, dz), (crow, zrow));
-                        } else {
-                            depth_pixels!(
-                                true,
-                                P,
-                                V,
-                                D,
-                                acc,
-                                step,
-                                zx,
-                                dz,
-                                Compare::Less,
-                                pixel,
-                                x,
-                                y,
-                                |pixels| C::shade_depth(crow, 0, zrow, pixels)
-                            );
-                        }
+                        depth_pixels!(
+                            true,
+                            P,
+                            V,
+                            D,
+                            acc,
+                            step,
+                            zx,
+                            dz,
+                            Compare::Less,
+                            pixel,
+                            x,
+                            y,
+                            |pixels| C::shade_depth(crow, 0, zrow, pixels)
+                        );
                     }
                 }
                 off = off.wrapping_add(stride);
@@ -959,43 +910,6 @@ impl<const BITS: u32> Lean<BITS> {
             long = if short_is_left { r } else { l };
             upper = false;
         }
-    }
-}
-
-/// One span of the lean path through its forms ([`FusedColor::FORMS`]), or through its values
-/// when the colour makes none for it.
-#[inline(always)]
-fn form_span<C, D, V, P>(
-    pixel: &P,
-    (acc, step): ([u32; MAX_VARYINGS], [u32; MAX_VARYINGS]),
-    (z, dz): (u32, u32),
-    (crow, zrow): (&mut [C::Word], &mut [u16]),
-) where
-    C: Storage,
-    D: DepthTest,
-    V: Varyings,
-    P: FusedColor<C>,
-{
-    if let Some(forms) = pixel.forms(&acc, &step) {
-        let pixels = FormPixels::<P, D> {
-            forms,
-            z,
-            dz,
-            pixel,
-            _d: core::marker::PhantomData,
-        };
-        C::shade_depth(crow, 0, zrow, pixels);
-    } else {
-        let pixels = DepthPixels::<P, V, D, true> {
-            acc,
-            step,
-            z,
-            dz,
-            compare: Compare::Less,
-            pixel,
-            _v: core::marker::PhantomData,
-        };
-        C::shade_depth(crow, 0, zrow, pixels);
     }
 }
 

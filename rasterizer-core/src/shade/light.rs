@@ -81,7 +81,6 @@
 //! and view vector (scaled to unit length per triangle) from a small table and one Newton
 //! step, and take `N·H` from the cosines.
 
-use crate::geom::{SpanForms, MAX_VARYINGS};
 use crate::math::fx::{isqrt_u64, rsqrt_fast, rsqrt_u64};
 use crate::math::{Mat4, Scalar, Vec3};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
@@ -849,80 +848,47 @@ impl<const N: usize> DirectionalPlan<N> {
     /// lights cannot wrap).
     #[inline(always)]
     pub(crate) fn phong_pixel_unclamped(&self, v: &[i32; 6], power: &PowerTable) -> [u64; 3] {
-        self.phong_dots(&ValueDots(v), power)
-    }
-
-    /// [`DirectionalPlan::phong_pixel_unclamped`] from a span's forms ([`PhongForms`]): the same
-    /// sums to the bit.
-    #[inline(always)]
-    pub(crate) fn phong_forms_unclamped(&self, f: &SpanForms, power: &PowerTable) -> [u64; 3] {
-        self.phong_dots(&FormDots(f), power)
-    }
-
-    /// The forms of a span of Phong pixels under the plan whose first pixel's values are
-    /// `start` and whose values step by `step` a pixel (each as its 32 bits, as the fused loop
-    /// gives them): `|n|²`, `|w|²` and `n·w` as quadratics of the pixel's index, then each
-    /// light's `n·l` and `l·w` as linear ones, all as the sums of products
-    /// [`DirectionalPlan::phong_pixel_unclamped`] forms before its shifts. Wrapping sums and
-    /// products are exact modulo `2^64`, and at a pixel inside the triangle each value is
-    /// `start + i step` exactly (it fits an `i32`), so every stepped form equals the pixel's
-    /// own sum: the same bits.
-    #[inline(always)]
-    pub(crate) fn phong_forms(
-        &self,
-        start: &[u32; MAX_VARYINGS],
-        step: &[u32; MAX_VARYINGS],
-    ) -> SpanForms {
-        let a: [i64; 6] = core::array::from_fn(|k| i64::from(start[k] as i32));
-        let g: [i64; 6] = core::array::from_fn(|k| i64::from(step[k] as i32));
-        let mut f = SpanForms {
-            quad: [
-                form2(&a, &g, 0, 0),
-                form2(&a, &g, 3, 3),
-                form2(&a, &g, 0, 3),
-            ],
-            linear: [[0; 2]; 4],
-        };
-        for (j, light) in self.lights.iter().take(PHONG_FORM_LIGHTS).enumerate() {
-            f.linear[2 * j] = form1(&a, &g, 0, &light.l);
-            f.linear[2 * j + 1] = form1(&a, &g, 3, &light.l);
-        }
-        f
-    }
-
-    /// The lit sums of a pixel from its dot products (see [`PhongDots`]).
-    #[inline(always)]
-    fn phong_dots<D: PhongDots>(&self, d: &D, power: &PowerTable) -> [u64; 3] {
         let mut sum = [0u64; 3];
+        let n = [v[0], v[1], v[2]].map(i64::from);
+        let w = [v[3], v[4], v[5]].map(i64::from);
         // Values interpolated from `phong_triangle`'s (components within 2^30) keep every
         // product and sum below in range, as the comments say; the wrapping operations only
         // keep values from elsewhere from panicking (they give a wrong colour instead).
         let sq = |c: i64| c.wrapping_mul(c) as u64;
+        let nn = sq(n[0]).wrapping_add(sq(n[1])).wrapping_add(sq(n[2]));
         // 0 for a zero normal: then no light reaches the pixel.
-        let rn = inv_len(d.nn());
+        let rn = inv_len(nn);
+        // a·b / 2^30 for 2.30 vectors, below 2^33 in magnitude for components within 2^31.
+        let dot = |a: [i64; 3], b: [i64; 3]| {
+            (a[0].wrapping_mul(b[0]))
+                .wrapping_add(a[1].wrapping_mul(b[1]))
+                .wrapping_add(a[2].wrapping_mul(b[2]))
+                >> 30
+        };
         // 1 / |w| in 2.30 and N·V, made when a light first reaches the pixel (`rv` stays 0
         // without a highlight, and with the eye at the point).
         let (mut rv, mut nv, mut view_made) = (0i64, 0i64, false);
         // At most N lights: a bound the loop can be unrolled by.
-        for (j, light) in self.lights.iter().take(N).enumerate() {
-            let l = &light.l;
+        for light in self.lights.iter().take(N) {
+            let l = light.l;
             // N·L = (n·l) / |n|: below 2^33 times rn (below 2^31 for normals longer than 1/2).
-            let nl = (d.nl(l, j) >> 30).wrapping_mul(rn) >> 30;
+            let nl = dot(n, l).wrapping_mul(rn) >> 30;
             if nl <= 0 {
                 continue;
             }
             let diffuse = (nl.wrapping_add(1 << 13) >> 14).min(i64::from(ONE16)) as u64;
             if self.specular && !view_made {
                 view_made = true;
+                let ww = sq(w[0]).wrapping_add(sq(w[1])).wrapping_add(sq(w[2]));
                 // 0 with the eye at the point, and then nv = 0 too.
-                rv = inv_len(d.ww());
+                rv = inv_len(ww);
                 // (n·w / |n|) / |w|, each step below 2^62.
-                nv = ((d.nw() >> 30).wrapping_mul(rn) >> 30).wrapping_mul(rv) >> 30;
+                nv = (dot(n, w).wrapping_mul(rn) >> 30).wrapping_mul(rv) >> 30;
             }
             let specular = if rv != 0 {
                 let a = nl.wrapping_add(nv);
                 // L·V = (l·w) / |w|; |L + V|² in 2.30, V unit within 2^-17.
-                let lv = (d.lw(l, j) >> 30).wrapping_mul(rv) >> 30;
+                let lv = dot(l, w).wrapping_mul(rv) >> 30;
                 let hh = light.ll.wrapping_add(1 << 30).wrapping_add(2 * lv);
                 // N·H below the table's start (a² < start² |h|², a start rounded down) has a
                 // power of zero: no root to take. a and hh below 2^32 here.
@@ -1018,122 +984,6 @@ fn spec_cut(odd: u16, twos: u32) -> u64 {
     // floor(t²/2^30) - floor(t²/2^54) - 1 <= t² (1 - 2^-24) / 2^30 (t² below 2^61).
     let t2 = u64::from(hi) * u64::from(hi);
     (t2 >> 30).saturating_sub((t2 >> 54) + 1)
-}
-
-/// The quadratic form `sum over the axes c of v[k + c] v[m + c]` of values `v = a + i g` (the
-/// normal from index 0, the view vector from 3), as `[value, first difference, second
-/// difference]` at `i = 0`: `a_k a_m`, `a_k g_m + g_k a_m + g_k g_m` and `2 g_k g_m` summed.
-#[inline(always)]
-fn form2(a: &[i64; 6], g: &[i64; 6], k: usize, m: usize) -> [i64; 3] {
-    let mut q = [0i64; 3];
-    for c in 0..3 {
-        let (ak, am, gk, gm) = (a[k + c], a[m + c], g[k + c], g[m + c]);
-        let gg = gk.wrapping_mul(gm);
-        q[0] = q[0].wrapping_add(ak.wrapping_mul(am));
-        q[1] = q[1]
-            .wrapping_add(ak.wrapping_mul(gm))
-            .wrapping_add(gk.wrapping_mul(am))
-            .wrapping_add(gg);
-        q[2] = q[2].wrapping_add(gg.wrapping_add(gg));
-    }
-    q
-}
-
-/// The linear form `sum over c of v[k + c] l[c]` of values `v = a + i g`, as `[value,
-/// difference]`.
-#[inline(always)]
-fn form1(a: &[i64; 6], g: &[i64; 6], k: usize, l: &[i64; 3]) -> [i64; 2] {
-    let mut q = [0i64; 2];
-    for c in 0..3 {
-        q[0] = q[0].wrapping_add(a[k + c].wrapping_mul(l[c]));
-        q[1] = q[1].wrapping_add(g[k + c].wrapping_mul(l[c]));
-    }
-    q
-}
-
-/// The lights whose forms a span of Phong pixels carries ([`SpanForms::linear`] holds two a
-/// light); a plan of more lights lights its pixels from their values.
-pub(crate) const PHONG_FORM_LIGHTS: usize = 2;
-
-/// A Phong pixel's sums of products before their shifts (`n` the interpolated normal, `w` the
-/// view vector, `l` a light's direction): from its values, or stepped across a span.
-trait PhongDots {
-    /// `|n|²`, wrapping.
-    fn nn(&self) -> u64;
-    /// `|w|²`, wrapping.
-    fn ww(&self) -> u64;
-    /// `n·w`.
-    fn nw(&self) -> i64;
-    /// `n·l` of light `j`, whose direction is `l`.
-    fn nl(&self, l: &[i64; 3], j: usize) -> i64;
-    /// `l·w` of light `j`.
-    fn lw(&self, l: &[i64; 3], j: usize) -> i64;
-}
-
-/// [`PhongDots`] from a pixel's values.
-struct ValueDots<'a>(&'a [i32; 6]);
-
-impl ValueDots<'_> {
-    #[inline(always)]
-    fn dot(&self, k: usize, b: &[i64; 3]) -> i64 {
-        let v = |c: usize| i64::from(self.0[k + c]);
-        v(0).wrapping_mul(b[0])
-            .wrapping_add(v(1).wrapping_mul(b[1]))
-            .wrapping_add(v(2).wrapping_mul(b[2]))
-    }
-    #[inline(always)]
-    fn vector(&self, k: usize) -> [i64; 3] {
-        [0, 1, 2].map(|c| i64::from(self.0[k + c]))
-    }
-}
-
-impl PhongDots for ValueDots<'_> {
-    #[inline(always)]
-    fn nn(&self) -> u64 {
-        self.dot(0, &self.vector(0)) as u64
-    }
-    #[inline(always)]
-    fn ww(&self) -> u64 {
-        self.dot(3, &self.vector(3)) as u64
-    }
-    #[inline(always)]
-    fn nw(&self) -> i64 {
-        self.dot(0, &self.vector(3))
-    }
-    #[inline(always)]
-    fn nl(&self, l: &[i64; 3], _: usize) -> i64 {
-        self.dot(0, l)
-    }
-    #[inline(always)]
-    fn lw(&self, l: &[i64; 3], _: usize) -> i64 {
-        self.dot(3, l)
-    }
-}
-
-/// [`PhongDots`] from a span's forms ([`DirectionalPlan::phong_forms`]).
-struct FormDots<'a>(&'a SpanForms);
-
-impl PhongDots for FormDots<'_> {
-    #[inline(always)]
-    fn nn(&self) -> u64 {
-        self.0.quad[0][0] as u64
-    }
-    #[inline(always)]
-    fn ww(&self) -> u64 {
-        self.0.quad[1][0] as u64
-    }
-    #[inline(always)]
-    fn nw(&self) -> i64 {
-        self.0.quad[2][0]
-    }
-    #[inline(always)]
-    fn nl(&self, _: &[i64; 3], j: usize) -> i64 {
-        self.0.linear.get(2 * j).map_or(0, |f| f[0])
-    }
-    #[inline(always)]
-    fn lw(&self, _: &[i64; 3], j: usize) -> i64 {
-        self.0.linear.get(2 * j + 1).map_or(0, |f| f[0])
-    }
 }
 
 /// `2^30 / |v|` (1 / |v| in 2.30) for a 2.30 vector `v` with `|v|² = x` (4.60).
@@ -1790,72 +1640,6 @@ mod tests {
     fn plan_sums_match_the_reference() {
         plan_matches_reference::<Fx16>();
         plan_matches_reference::<crate::math::Fx8>();
-    }
-
-    /// A span's forms stepped pixel by pixel give the sums of each pixel's own values to the
-    /// bit: random triangles of unit normals and view vectors (scaled by `phong_triangle`),
-    /// spans of up to 300 pixels between two points inside each, two lights and one.
-    #[test]
-    fn span_forms_give_each_pixels_sums() {
-        let mut seed = 0x5851_f42d_4c95_7f2du64;
-        let plans = plans_for_test::<crate::math::Fx16>(&mut seed);
-        let mut pixels = 0u32;
-        for plan in &plans {
-            let mut power = PowerTable::none();
-            power.make(plan.table_shininess());
-            for _ in 0..40 {
-                let c = |x: &mut u64| {
-                    crate::math::Fx16::from_ratio((next(x) % 4001) as i64 - 2000, 1000)
-                };
-                let mut v = [0; 3].map(|_| {
-                    let n = normal_for_test::<crate::math::Fx16>(&mut seed);
-                    let p = Vec3::new(c(&mut seed), c(&mut seed), c(&mut seed));
-                    plan.phong_vertex(p, n)
-                });
-                phong_triangle(&mut v);
-                // Two points inside the triangle (barycentric weights in 1/1024ths) and the span
-                // between them in `len` pixels: values at its ends, a whole step a pixel.
-                let mut at = || {
-                    let (a, b) = (
-                        (next(&mut seed) % 1025) as i64,
-                        (next(&mut seed) % 1025) as i64,
-                    );
-                    let (a, b) = if a + b > 1024 {
-                        (1024 - a, 1024 - b)
-                    } else {
-                        (a, b)
-                    };
-                    core::array::from_fn::<i64, 6, _>(|k| {
-                        (i64::from(v[0][k]) * (1024 - a - b)
-                            + i64::from(v[1][k]) * a
-                            + i64::from(v[2][k]) * b)
-                            / 1024
-                    })
-                };
-                let (p, q) = (at(), at());
-                let len = 1 + (next(&mut seed) % 300) as i64;
-                let mut start = [0u32; MAX_VARYINGS];
-                let mut step = [0u32; MAX_VARYINGS];
-                for k in 0..6 {
-                    start[k] = p[k] as i32 as u32;
-                    step[k] = ((q[k] - p[k]) / len) as i32 as u32;
-                }
-                let mut forms = plan.phong_forms(&start, &step);
-                for i in 0..len as u32 {
-                    let values: [i32; 6] = core::array::from_fn(|k| {
-                        start[k].wrapping_add(step[k].wrapping_mul(i)) as i32
-                    });
-                    assert_eq!(
-                        plan.phong_forms_unclamped(&forms, &power),
-                        plan.phong_pixel_unclamped(&values, &power),
-                        "{values:?}"
-                    );
-                    forms.step((3, 4));
-                    pixels += 1;
-                }
-            }
-        }
-        assert!(pixels > 100_000, "{pixels}");
     }
 
     /// The plan's results over the extremes of its inputs: no overflow (the tests run with

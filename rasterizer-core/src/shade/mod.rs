@@ -15,7 +15,6 @@ pub use fog::{
     Fog, FogColor, FogCurve, FogSettings, Foggable, FOG_MAX_DENSITY, FOG_ONE, FOG_TABLE_LEN,
 };
 
-pub use crate::geom::SpanForms;
 pub use light::{Light, Lighting, Material, Specular};
 pub use matcap::{MatCap, MatCapError, MATCAP_MAX_SIDE_LOG2};
 pub use model::{

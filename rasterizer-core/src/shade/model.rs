@@ -5,10 +5,10 @@
 //! triangle; [`GouraudLit`] once per vertex and interpolates the colour; [`PhongLit`] interpolates the
 //! normal and the position and lights every pixel.
 
-use super::light::{phong_triangle, DirectionalPlan, PowerTable, PHONG_FORM_LIGHTS};
+use super::light::{phong_triangle, DirectionalPlan, PowerTable};
 use super::Lighting;
 use crate::color::ShadeColor;
-use crate::geom::{SpanForms, Varyings, MAX_VARYINGS};
+use crate::geom::{Varyings, MAX_VARYINGS};
 use crate::math::{Mat4, Scalar, Vec3};
 use embedded_graphics_core::pixelcolor::Rgb888;
 use embedded_graphics_core::prelude::{PixelColor, RgbColor};
@@ -181,33 +181,6 @@ pub trait Shading<S: Scalar> {
             *out = (*a as i32) >> Self::FUSED_FRAC;
         }
         self.pixel(&v)
-    }
-    /// Quadratic and linear forms of its values that the shader's pixels read instead of the
-    /// values themselves ([`SpanForms`]): how many of [`SpanForms::quad`] and of
-    /// [`SpanForms::linear`] the fused span loop steps, none by default. A shader that sets them
-    /// makes the forms in [`Shading::span_forms`] and colours a pixel from them in
-    /// [`Shading::pixel_forms`], with the same colours as [`Shading::pixel_fused`] gives.
-    const FUSED_FORMS: (usize, usize) = (0, 0);
-    /// With [`Shading::FUSED_FORMS`], per span of the fused loop: the forms at the span's first
-    /// pixel, whose values are `start` and step by `step` a pixel (as in
-    /// [`Shading::pixel_fused`]), or `None` for the span's pixels to be coloured from their
-    /// values.
-    #[inline(always)]
-    fn span_forms(
-        &self,
-        start: &[u32; MAX_VARYINGS],
-        step: &[u32; MAX_VARYINGS],
-    ) -> Option<SpanForms> {
-        let _ = (start, step);
-        None
-    }
-    /// With [`Shading::FUSED_FORMS`], per pixel: the colour from the forms
-    /// [`Shading::span_forms`] made, stepped to the pixel. The default colours the pixel from
-    /// zero values (a shader with forms overrides it).
-    #[inline(always)]
-    fn pixel_forms(&self, forms: &SpanForms) -> Self::Color {
-        let _ = forms;
-        self.pixel_fused(&[0; MAX_VARYINGS])
     }
     /// [`Shading::pixel_fused`] for a pipeline that dithers ([`crate::numerics::Dither`]):
     /// `threshold` (below 256) is the pixel's share of one step of the target, in 256ths, to
@@ -656,45 +629,17 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for PhongLit<S, C, N> 
         let p = v.position;
         [n.x, n.y, n.z, p.x, p.y, p.z].map(S::to_fx16_bits)
     }
-    // |n|², |w|² and n·w, and n·l and l·w of each light: under the plan a pixel reads
-    // nothing else of its values. More lights than the forms hold light from the values.
-    const FUSED_FORMS: (usize, usize) = if N <= PHONG_FORM_LIGHTS {
-        (3, 2 * N)
-    } else {
-        (0, 0)
-    };
-    #[inline(always)]
-    fn span_forms(
-        &self,
-        start: &[u32; MAX_VARYINGS],
-        step: &[u32; MAX_VARYINGS],
-    ) -> Option<SpanForms> {
-        let plan = self.target.as_ref()?;
-        Some(plan.phong_forms(start, step))
-    }
-    #[inline(always)]
-    fn pixel_forms(&self, forms: &SpanForms) -> C {
-        match &self.target {
-            Some(plan) => phong_channels::<C>(plan.phong_forms_unclamped(forms, &self.power)),
-            None => self.pixel(&[0; 6]),
-        }
-    }
     #[inline(always)]
     fn pixel(&self, v: &[i32; 6]) -> C {
         if let Some(plan) = &self.target {
-            return phong_channels::<C>(plan.phong_pixel_unclamped(v, &self.power));
+            let s = plan.phong_pixel_unclamped(v, &self.power);
+            // The plan's full intensity is `MAX << PLAN_BITS` plus a bias below `2^PLAN_BITS`,
+            // so clamping after the shift (which keeps the order) clamps to `MAX`: the same.
+            let ch = |c: usize| ((s[c] >> PLAN_BITS) as u32).min(u32::from(C::MAX[c])) as u8;
+            return C::from_shade([ch(0), ch(1), ch(2)]);
         }
         from_sums(phong_sums(self, v))
     }
-}
-
-/// A [`PhongLit`] pixel's colour from its plan's unclamped sums: the plan's full intensity is
-/// `MAX << PLAN_BITS` plus a bias below `2^PLAN_BITS`, so clamping after the shift (which keeps
-/// the order) clamps to `MAX`.
-#[inline(always)]
-fn phong_channels<C: ShadeColor>(s: [u64; 3]) -> C {
-    let ch = |c: usize| ((s[c] >> PLAN_BITS) as u32).min(u32::from(C::MAX[c])) as u8;
-    C::from_shade([ch(0), ch(1), ch(2)])
 }
 
 /// The lit sums ([`Lighting::shade_sums`]) of a pixel of [`PhongLit`] from its interpolated
