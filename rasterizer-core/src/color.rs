@@ -35,6 +35,24 @@ pub trait Channels: PixelColor {
         }
         Self::from_channels_in_range(c)
     }
+    /// Where each channel's 16.16 value (as [`Channels::from_fixed16`] takes it) sits in one
+    /// `u64`, when all of them fit side by side (`16 +` a channel's bits each, no more than 64 in
+    /// all): the shift of each, lowest first in the word for the last channel. A span's
+    /// channels are then stepped with one add a pixel ([`Channels::from_packed16`]).
+    const PACKED16: Option<[u32; 4]> = None;
+    /// The colour from a [`Channels::PACKED16`] word: each channel's field within
+    /// `0 ..= max << 16 | 0xFFFF`, others giving an unspecified colour, never a panic.
+    #[inline]
+    fn from_packed16(acc: u64) -> Self {
+        let mut c = [0i32; 4];
+        if let Some(shift) = Self::PACKED16 {
+            for (ch, s) in c.iter_mut().zip(shift).take(Self::COUNT) {
+                // The field's bits above its 16.16 value are the next field's: cut at 2^24.
+                *ch = ((acc >> s) & 0xFF_FFFF) as i32;
+            }
+        }
+        Self::from_fixed16(&c)
+    }
 }
 
 macro_rules! rgb_channels {
@@ -61,7 +79,7 @@ macro_rules! rgb_channels {
         }
     )*};
 }
-rgb_channels!(Rgb555, Bgr555, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+rgb_channels!(Rgb555, Bgr555, Rgb666, Bgr666, Rgb888, Bgr888);
 
 impl Channels for Rgb565 {
     const COUNT: usize = 3;
@@ -85,6 +103,58 @@ impl Channels for Rgb565 {
         let b = (acc[2] >> 16) as u16 & 0x001F;
         RawU16::new(r | g | b).into()
     }
+    // Red in bits 43 ..= 63, green 21 ..= 42, blue 0 ..= 20: 64 bits.
+    const PACKED16: Option<[u32; 4]> = Some([43, 21, 0, 0]);
+    #[inline]
+    fn from_packed16(acc: u64) -> Self {
+        rgb565_from_packed16(acc).into()
+    }
+}
+
+impl Channels for Bgr565 {
+    const COUNT: usize = 3;
+    #[inline]
+    fn to_channels(self) -> [u8; 4] {
+        [self.r(), self.g(), self.b(), 0]
+    }
+    #[inline]
+    fn from_channels(c: [u8; 4]) -> Self {
+        Bgr565::new(c[0].min(31), c[1].min(63), c[2].min(31))
+    }
+    #[inline]
+    fn from_channels_in_range(c: [u8; 4]) -> Self {
+        Bgr565::new(c[0], c[1], c[2])
+    }
+    #[inline]
+    fn from_fixed16(acc: &[i32; 4]) -> Self {
+        // As Rgb565's, blue in the high bits.
+        let b = (acc[2] >> 5) as u16 & 0xF800;
+        let g = (acc[1] >> 11) as u16 & 0x07E0;
+        let r = (acc[0] >> 16) as u16 & 0x001F;
+        RawU16::new(b | g | r).into()
+    }
+    // Rgb565's word with red and blue swapped, as in the pixel: blue highest.
+    const PACKED16: Option<[u32; 4]> = Some([0, 21, 43, 0]);
+    #[inline]
+    fn from_packed16(acc: u64) -> Self {
+        rgb565_from_packed16(acc).into()
+    }
+}
+
+/// [`Channels::from_packed16`] of [`Rgb565`] (and of [`Bgr565`], whose word holds the channels
+/// in the pixel's order too): the upper half holds the highest field's integer bits at 27 ..= 31
+/// and the middle one's at 5 ..= 10, which one 32-bit product moves to 11 ..= 15 and 21 ..= 26
+/// of the product (the masked bits times `1 + 2^16`: the copies it also makes lie below bit 16
+/// or above bit 31), and the lowest field's integer bits are bits 16 ..= 20 of the lower half.
+#[inline(always)]
+fn rgb565_from_packed16(acc: u64) -> RawU16 {
+    let hi = (acc >> 32) as u32;
+    // The product's third term (2^27) moves every masked bit past bit 31, where it wraps away:
+    // it only keeps the compiler from making the product two shifts and an or, dearer than
+    // the one multiply.
+    let high_two = ((hi & 0xF800_07E0).wrapping_mul(0x0801_0001) >> 16) as u16;
+    let low = ((acc as u32) >> 16) as u16 & 0x001F;
+    RawU16::new(high_two | low)
 }
 
 macro_rules! gray_channels {
@@ -193,5 +263,61 @@ impl ShadeColor for BinaryColor {
     fn from_shade(c: [u8; 3]) -> Self {
         let full = |v: u8| if v != 0 { 255 } else { 0 };
         BinaryColor::from(Rgb888::new(full(c[0]), full(c[1]), full(c[2])))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::raster::edge::tests::xorshift as rng;
+
+    /// Every channel value of a 5/6/5 colour with random fractions, packed at the colour's
+    /// shifts: the word gives the colour of its channels' integer parts (embedded-graphics'
+    /// own constructor, the reference), and `from_fixed16` of the same values agrees.
+    fn packed_words_decode<C: Channels + PartialEq + core::fmt::Debug>() {
+        let shift = C::PACKED16.expect("a packed layout");
+        let mut next = rng(0x243f_6a88_85a3_08d3);
+        let max = [31u32, 63, 31];
+        for r in 0..=max[0] {
+            for g in 0..=max[1] {
+                for b in 0..=max[2] {
+                    for _ in 0..4 {
+                        let v = [r, g, b].map(|c| (c << 16 | (next() as u32 & 0xFFFF)) as i32);
+                        let word = (0..3).fold(0u64, |w, i| w | (v[i] as u64) << shift[i]);
+                        let want = C::from_channels_in_range([r as u8, g as u8, b as u8, 0]);
+                        assert_eq!(C::from_packed16(word), want, "{r} {g} {b} {word:x}");
+                        assert_eq!(C::from_fixed16(&[v[0], v[1], v[2], 0]), want);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rgb565_packed_words_decode() {
+        packed_words_decode::<Rgb565>();
+    }
+
+    #[test]
+    fn bgr565_packed_words_decode() {
+        packed_words_decode::<Bgr565>();
+    }
+
+    /// The packed layouts' fields are disjoint and fit the word: `16 +` each channel's bits.
+    #[test]
+    fn packed_fields_fit_their_words() {
+        for (shift, bits) in [
+            (Rgb565::PACKED16, [5u32, 6, 5]),
+            (Bgr565::PACKED16, [5, 6, 5]),
+        ] {
+            let shift = shift.expect("a packed layout");
+            let mut used = 0u128;
+            for c in 0..3 {
+                let field = ((1u128 << (16 + bits[c])) - 1) << shift[c];
+                assert_eq!(used & field, 0, "fields overlap");
+                used |= field;
+            }
+            assert!(used < 1 << 64);
+        }
     }
 }

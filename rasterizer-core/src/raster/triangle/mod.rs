@@ -484,26 +484,52 @@ where
     /// step, saturated only where a span has one pixel, is added after that pixel. It also
     /// keeps the compiler from pairing the channels in a vector register, whose 64-bit products
     /// cost more than scalar ones. A channel the colour lacks is zero and its work is dropped.
+    /// A colour whose channels all fit one `u64` ([`Channels::PACKED16`], Rgb565 and Bgr565)
+    /// steps them all with one add, for the same reason and as exactly.
     #[inline(always)]
     fn pixels(
         (base, gx, gy, step): (&[i64; 4], &[i64; 4], &[i64; 4], [i32; 4]),
         row: i32,
         x0: i32,
     ) -> impl FnMut() -> S::Color {
-        let (x, y) = (i64::from(x0), i64::from(row));
+        let y = i64::from(row);
+        let at = core::array::from_fn(|i| base[i].wrapping_add(gy[i].wrapping_mul(y)));
+        Self::pixels_from(&at, gx, step, x0)
+    }
+
+    /// [`Planes::pixels`] from the values `at` of a row's column 0 (in 32.32, wrapping), the
+    /// span starting at its column `x0`.
+    #[inline(always)]
+    fn pixels_from(
+        at: &[i64; 4],
+        gx: &[i64; 4],
+        step: [i32; 4],
+        x0: i32,
+    ) -> impl FnMut() -> S::Color {
+        let x = i64::from(x0);
         // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
         // inside the triangle it lies within the vertex colours' range (up to 2^-17).
-        let start = |i: usize| {
-            let v = base[i]
-                .wrapping_add(gx[i].wrapping_mul(x))
-                .wrapping_add(gy[i].wrapping_mul(y));
-            (v >> 16) as i32
-        };
+        let start = |i: usize| (at[i].wrapping_add(gx[i].wrapping_mul(x)) >> 16) as i32;
         let pair = |hi: i32, lo: i32| (i64::from(hi) << 32).wrapping_add(i64::from(lo));
+        let packed = <S::Color as Channels>::PACKED16;
+        // All the channels in one word, where they fit: the fields' sum is the word's, as each
+        // stays within its field over the span (the first and third's pair below likewise).
+        let pack = |v: [i32; 4]| match packed {
+            Some(shift) => (0..S::Color::COUNT).fold(0u64, |w, i| {
+                w.wrapping_add((i64::from(v[i]) as u64).wrapping_shl(shift[i]))
+            }),
+            None => 0,
+        };
+        let (mut word, word_step) = (pack([start(0), start(1), start(2), start(3)]), pack(step));
         let step02 = pair(step[0], step[2]);
         let mut a02 = pair(start(0), start(2));
         let (mut a1, mut a3) = (start(1), start(3));
         move || {
+            if packed.is_some() {
+                let color = S::Color::from_packed16(word);
+                word = word.wrapping_add(word_step);
+                return color;
+            }
             let acc = [(a02 >> 32) as i32, a1, a02 as i32, a3];
             a02 = a02.wrapping_add(step02);
             a1 = a1.wrapping_add(step[1]);
@@ -541,11 +567,27 @@ where
         first: (i32, i32),
         next: F,
     ) -> Result<(), S::Error> {
-        let (base, gx, gy, step) = (self.base, self.gx, self.gy, self.step);
-        self.surface
-            .shade_short_rows_in_clip(x, rows, first, next, |row, x0| {
-                Self::pixels((&base, &gx, &gy, step), row, x0)
-            })
+        let (gx, gy, step) = (self.gx, self.gy, self.step);
+        // Each channel's value at column `x` of the current row, stepped by a row as the walk
+        // moves on: a span's start then takes one product a channel, not two.
+        let (x0, y0) = (i64::from(x), i64::from(rows.start));
+        let at = core::cell::Cell::new(core::array::from_fn::<i64, 4, _>(|i| {
+            self.base[i]
+                .wrapping_add(gx[i].wrapping_mul(x0))
+                .wrapping_add(gy[i].wrapping_mul(y0))
+        }));
+        let mut next = next;
+        self.surface.shade_short_rows_in_clip(
+            x,
+            rows,
+            first,
+            || {
+                let v = at.get();
+                at.set(core::array::from_fn(|i| v[i].wrapping_add(gy[i])));
+                next()
+            },
+            |_, a| Self::pixels_from(&at.get(), &gx, step, a.wrapping_sub(x)),
+        )
     }
 }
 
@@ -693,6 +735,70 @@ mod tests {
                 assert_eq!(step16(g * two_s), reference(g, two_s), "{g} {two_s}");
             }
         }
+    }
+
+    /// Spans of every length up to 65 pixels with random starts and steps that keep each
+    /// channel within its range over the span (as inside a triangle): the pixels a packed word
+    /// steps (Rgb565, Bgr565) are those of each channel stepped on its own in `i32` and cut to
+    /// its integer part, the reference.
+    fn packed_spans_match_channels<C: Channels + PartialEq + core::fmt::Debug>() {
+        /// A target of colour `C` for the planes' type; nothing is drawn.
+        struct Null<C>(core::marker::PhantomData<C>);
+        impl<C> embedded_graphics_core::geometry::OriginDimensions for Null<C> {
+            fn size(&self) -> embedded_graphics_core::geometry::Size {
+                embedded_graphics_core::geometry::Size::zero()
+            }
+        }
+        impl<C: embedded_graphics_core::pixelcolor::PixelColor>
+            embedded_graphics_core::draw_target::DrawTarget for Null<C>
+        {
+            type Color = C;
+            type Error = core::convert::Infallible;
+            fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+                &mut self,
+                _: I,
+            ) -> Result<(), Self::Error> {
+                Ok(())
+            }
+        }
+        type Fb<'a, C> = crate::surface::AnyTarget<'a, Null<C>>;
+        let mut next = rng(0x1319_8a2e_0370_7344);
+        let max = [31i64, 63, 31];
+        for _ in 0..50_000 {
+            let len = 1 + (next() % 65) as i64;
+            let mut start = [0i32; 4];
+            let mut step = [0i32; 4];
+            for c in 0..3 {
+                let top = (max[c] + 1) << 16;
+                // Two values in range, the span's first and last: the step between them,
+                // rounded down, keeps every pixel between them.
+                let (a, b) = ((next() % top as u64) as i64, (next() % top as u64) as i64);
+                let d = if len > 1 {
+                    (b - a).div_euclid(len - 1)
+                } else {
+                    0
+                };
+                start[c] = a as i32;
+                step[c] = d as i32;
+            }
+            let at = start.map(|v| i64::from(v) << 16);
+            let mut shade = Planes::<Fb<'_, C>>::pixels_from(&at, &[0; 4], step, 0);
+            for k in 0..len as i32 {
+                let v = [0, 1, 2].map(|c| (start[c] + k * step[c]) >> 16);
+                let want = C::from_channels_in_range([v[0] as u8, v[1] as u8, v[2] as u8, 0]);
+                assert_eq!(shade(), want, "{start:?} {step:?} pixel {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn packed_spans_match_channels_rgb565() {
+        packed_spans_match_channels::<embedded_graphics_core::pixelcolor::Rgb565>();
+    }
+
+    #[test]
+    fn packed_spans_match_channels_bgr565() {
+        packed_spans_match_channels::<embedded_graphics_core::pixelcolor::Bgr565>();
     }
 
     /// Random triangles inside the planes' extent limit (many of them slivers) and colours:
