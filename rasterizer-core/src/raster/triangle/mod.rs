@@ -381,6 +381,24 @@ struct Planes<'a, S: Surface> {
     gx: [i64; 4],
     gy: [i64; 4],
     step: [i32; 4],
+    /// The steps in one word, for a colour that packs its channels ([`Channels::PACKED16`]).
+    word_step: u64,
+}
+
+/// A span's steps a pixel: each channel's (16.16), and all of them in one word when the colour
+/// packs its channels ([`pack16`]).
+type Steps = ([i32; 4], u64);
+
+/// Channel values (16.16, each within its range or a step) in one word at the colour's
+/// [`Channels::PACKED16`] shifts, wrapping (0 for a colour that does not pack them).
+#[inline(always)]
+fn pack16<C: Channels>(v: [i32; 4]) -> u64 {
+    match C::PACKED16 {
+        Some(shift) => (0..C::COUNT).fold(0u64, |w, i| {
+            w.wrapping_add((i64::from(v[i]) as u64).wrapping_shl(shift[i]))
+        }),
+        None => 0,
+    }
 }
 
 impl<'a, S: Surface> Planes<'a, S>
@@ -412,6 +430,7 @@ where
             gx: [0; 4],
             gy: [0; 4],
             step: [0; 4],
+            word_step: 0,
         };
         // Pixel (0, 0)'s centre in doubled units from v0: pixel (x, y)'s is this plus 2s (x, y).
         let (ox, oy) = (s - 2 * v0.0, s - 2 * v0.1);
@@ -448,6 +467,7 @@ where
             // beyond i32 only lands on one-pixel spans).
             p.step[i] = step16(p.gx[i]);
         }
+        p.word_step = pack16::<S::Color>(p.step);
         Some(p)
     }
 }
@@ -488,7 +508,7 @@ where
     /// steps them all with one add, for the same reason and as exactly.
     #[inline(always)]
     fn pixels(
-        (base, gx, gy, step): (&[i64; 4], &[i64; 4], &[i64; 4], [i32; 4]),
+        (base, gx, gy, step): (&[i64; 4], &[i64; 4], &[i64; 4], Steps),
         row: i32,
         x0: i32,
     ) -> impl FnMut() -> S::Color {
@@ -503,7 +523,7 @@ where
     fn pixels_from(
         at: &[i64; 4],
         gx: &[i64; 4],
-        step: [i32; 4],
+        (step, word_step): Steps,
         x0: i32,
     ) -> impl FnMut() -> S::Color {
         let x = i64::from(x0);
@@ -514,13 +534,7 @@ where
         let packed = <S::Color as Channels>::PACKED16;
         // All the channels in one word, where they fit: the fields' sum is the word's, as each
         // stays within its field over the span (the first and third's pair below likewise).
-        let pack = |v: [i32; 4]| match packed {
-            Some(shift) => (0..S::Color::COUNT).fold(0u64, |w, i| {
-                w.wrapping_add((i64::from(v[i]) as u64).wrapping_shl(shift[i]))
-            }),
-            None => 0,
-        };
-        let (mut word, word_step) = (pack([start(0), start(1), start(2), start(3)]), pack(step));
+        let mut word = pack16::<S::Color>([start(0), start(1), start(2), start(3)]);
         let step02 = pair(step[0], step[2]);
         let mut a02 = pair(start(0), start(2));
         let (mut a1, mut a3) = (start(1), start(3));
@@ -547,7 +561,8 @@ where
 
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
-        let shade = Self::pixels((&self.base, &self.gx, &self.gy, self.step), row, x0);
+        let steps = (self.step, self.word_step);
+        let shade = Self::pixels((&self.base, &self.gx, &self.gy, steps), row, x0);
         self.surface
             .shade_span_in_clip(x0, row, (x1 - x0) as u32, shade)
     }
@@ -567,7 +582,7 @@ where
         first: (i32, i32),
         next: F,
     ) -> Result<(), S::Error> {
-        let (gx, gy, step) = (self.gx, self.gy, self.step);
+        let (gx, gy, step) = (self.gx, self.gy, (self.step, self.word_step));
         // Each channel's value at column `x` of the current row, stepped by a row as the walk
         // moves on: a span's start then takes one product a channel, not two.
         let (x0, y0) = (i64::from(x), i64::from(rows.start));
@@ -782,7 +797,8 @@ mod tests {
                 step[c] = d as i32;
             }
             let at = start.map(|v| i64::from(v) << 16);
-            let mut shade = Planes::<Fb<'_, C>>::pixels_from(&at, &[0; 4], step, 0);
+            let steps = (step, pack16::<C>(step));
+            let mut shade = Planes::<Fb<'_, C>>::pixels_from(&at, &[0; 4], steps, 0);
             for k in 0..len as i32 {
                 let v = [0, 1, 2].map(|c| (start[c] + k * step[c]) >> 16);
                 let want = C::from_channels_in_range([v[0] as u8, v[1] as u8, v[2] as u8, 0]);
