@@ -250,7 +250,9 @@ where
     // `fill_gouraud_large`'s extents, from the small set-up's bounds.
     let (w, h) = small.size();
     let (ex, ey) = ((2 * w + 2 * s) as u64, (2 * h + 2 * s) as u64);
-    let mut planes = Planes::new(surface, &t, s, &c, (ex, ey), cross.signum())?;
+    let (x0, y0) = small.origin();
+    let origin = (i64::from(x0), i64::from(y0));
+    let mut planes = Planes::new(surface, &t, s, &c, ((ex, ey), origin), cross.signum())?;
     Some(small.walk::<_, BITS>(&mut planes))
 }
 
@@ -280,7 +282,7 @@ where
         2 * (hi - lo).unsigned_abs() + 2 * s as u64
     };
     let (ex, ey) = (extent(xs), extent(ys));
-    if let Some(mut p) = Planes::new(surface, &t, s, &c, (ex, ey), t.cross.signum()) {
+    if let Some(mut p) = Planes::new(surface, &t, s, &c, ((ex, ey), (0, 0)), t.cross.signum()) {
         let clip = PixelRect::from_rectangle(&p.surface.clip_area());
         return match setup::rows_in_clip(&t, s, &clip) {
             Some(rows) => setup::walk_spans_once(&t, s, rows, &clip, &mut p),
@@ -374,7 +376,7 @@ where
 /// the exact blend, which is what [`Gouraud`]'s exact start gives up to its own rounding.
 struct Planes<'a, S: Surface> {
     surface: &'a mut S,
-    /// The value in 32.32 at pixel `(0, 0)`'s centre, with the halves that the rounding to
+    /// The value in 32.32 at the centre of pixel `origin`, with the halves that the rounding to
     /// 16.16 and `from_fixed16` add folded in, and the gradients per pixel: each wrapping, as
     /// only a value at a pixel inside the triangle (which fits) is ever formed from them.
     base: [i64; 4],
@@ -383,6 +385,9 @@ struct Planes<'a, S: Surface> {
     step: [i32; 4],
     /// The steps in one word, for a colour that packs its channels ([`Channels::PACKED16`]).
     word_step: u64,
+    /// The pixel `base` is the value of (pixel (0, 0) for a large triangle, the small walk's
+    /// origin for a small one, whose rows then start from it with few products or none).
+    origin: (i64, i64),
 }
 
 /// A span's steps a pixel: each channel's (16.16), and all of them in one word when the colour
@@ -411,7 +416,7 @@ where
         t: &Sorted,
         s: i64,
         c: &[[u8; 4]; 3],
-        (ex, ey): (u64, u64),
+        ((ex, ey), origin): ((u64, u64), (i64, i64)),
         sign: i64,
     ) -> Option<Self> {
         // Within 2^16 doubled units the start's error stays below 2^-17 steps.
@@ -431,9 +436,14 @@ where
             gy: [0; 4],
             step: [0; 4],
             word_step: 0,
+            origin,
         };
-        // Pixel (0, 0)'s centre in doubled units from v0: pixel (x, y)'s is this plus 2s (x, y).
-        let (ox, oy) = (s - 2 * v0.0, s - 2 * v0.1);
+        // The origin pixel's centre in doubled units from v0: pixel (x, y)'s is this plus
+        // 2s (x, y) from the origin.
+        let (ox, oy) = (
+            s - 2 * v0.0 + 2 * s * origin.0,
+            s - 2 * v0.1 + 2 * s * origin.1,
+        );
         // One index runs over several per-channel arrays at once.
         #[allow(clippy::needless_range_loop)]
         for i in 0..S::Color::COUNT {
@@ -455,8 +465,9 @@ where
                     return None;
                 }
             }
-            // The value at pixel (x, y) is (c0 << 32) + g (ox + 2s x) + h (oy + 2s y), which fits
-            // i64 inside the triangle; its terms apart may not, hence the wrapping.
+            // The value at pixel (x, y) from the origin is (c0 << 32) + g (ox + 2s x) +
+            // h (oy + 2s y), which fits i64 inside the triangle; its terms apart may not, hence
+            // the wrapping.
             p.base[i] = (c0 << 32)
                 .wrapping_add(g.wrapping_mul(ox))
                 .wrapping_add(h.wrapping_mul(oy))
@@ -496,7 +507,7 @@ impl<S: Surface> Planes<'_, S>
 where
     S::Color: Channels,
 {
-    /// The colours of the span from pixel `(x0, row)` on, left to right.
+    /// The colours of the span from pixel `(x, y)` (from the origin) on, left to right.
     ///
     /// The first and third channels share one `i64`, `c0 2^32 + c2`: one add a pixel for both,
     /// exactly, as the third stays in `0 .. 2^32` over a span (in the colour range but for the
@@ -509,24 +520,22 @@ where
     #[inline(always)]
     fn pixels(
         (base, gx, gy, step): (&[i64; 4], &[i64; 4], &[i64; 4], Steps),
-        row: i32,
-        x0: i32,
+        y: i64,
+        x: i64,
     ) -> impl FnMut() -> S::Color {
-        let y = i64::from(row);
         let at = core::array::from_fn(|i| base[i].wrapping_add(gy[i].wrapping_mul(y)));
-        Self::pixels_from(&at, gx, step, x0)
+        Self::pixels_from(&at, gx, step, x)
     }
 
     /// [`Planes::pixels`] from the values `at` of a row's column 0 (in 32.32, wrapping), the
-    /// span starting at its column `x0`.
+    /// span starting at its column `x`.
     #[inline(always)]
     fn pixels_from(
         at: &[i64; 4],
         gx: &[i64; 4],
         (step, word_step): Steps,
-        x0: i32,
+        x: i64,
     ) -> impl FnMut() -> S::Color {
-        let x = i64::from(x0);
         // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
         // inside the triangle it lies within the vertex colours' range (up to 2^-17).
         let start = |i: usize| (at[i].wrapping_add(gx[i].wrapping_mul(x)) >> 16) as i32;
@@ -562,7 +571,12 @@ where
     #[inline(always)]
     fn span(&mut self, row: i32, x0: i32, x1: i32) -> Result<(), S::Error> {
         let steps = (self.step, self.word_step);
-        let shade = Self::pixels((&self.base, &self.gx, &self.gy, steps), row, x0);
+        // From the origin (in i64: a row and column of the clip area lie within i32 of it).
+        let (x, y) = (
+            i64::from(x0) - self.origin.0,
+            i64::from(row) - self.origin.1,
+        );
+        let shade = Self::pixels((&self.base, &self.gx, &self.gy, steps), y, x);
         self.surface
             .shade_span_in_clip(x0, row, (x1 - x0) as u32, shade)
     }
@@ -585,7 +599,12 @@ where
         let (gx, gy, step) = (self.gx, self.gy, (self.step, self.word_step));
         // Each channel's value at column `x` of the current row, stepped by a row as the walk
         // moves on: a span's start then takes one product a channel, not two.
-        let (x0, y0) = (i64::from(x), i64::from(rows.start));
+        // From the origin: for the small walk, whose origin is its first half's first row and
+        // the column of every half, no product at all on that half.
+        let (x0, y0) = (
+            i64::from(x) - self.origin.0,
+            i64::from(rows.start) - self.origin.1,
+        );
         let at = core::cell::Cell::new(core::array::from_fn::<i64, 4, _>(|i| {
             self.base[i]
                 .wrapping_add(gx[i].wrapping_mul(x0))
@@ -601,7 +620,7 @@ where
                 at.set(core::array::from_fn(|i| v[i].wrapping_add(gy[i])));
                 next()
             },
-            |_, a| Self::pixels_from(&at.get(), &gx, step, a.wrapping_sub(x)),
+            |_, a| Self::pixels_from(&at.get(), &gx, step, i64::from(a.wrapping_sub(x))),
         )
     }
 }

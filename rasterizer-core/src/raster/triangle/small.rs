@@ -114,6 +114,13 @@ impl Small {
         self.p
     }
 
+    /// The pixel of the triangle's leftmost column and top row, from which [`Small::walk`]
+    /// hands a sink its columns and rows.
+    #[inline(always)]
+    pub fn origin(&self) -> (i32, i32) {
+        (self.ox, self.top)
+    }
+
     /// The width and height, in sub-pixel units.
     #[inline(always)]
     pub fn size(&self) -> (i64, i64) {
