@@ -44,15 +44,25 @@ pub trait Channels: PixelColor {
     /// `0 ..= max << 16 | 0xFFFF`, others giving an unspecified colour, never a panic.
     #[inline]
     fn from_packed16(acc: u64) -> Self {
-        let mut c = [0i32; 4];
-        if let Some(shift) = Self::PACKED16 {
-            for (ch, s) in c.iter_mut().zip(shift).take(Self::COUNT) {
-                // The field's bits above its 16.16 value are the next field's: cut at 2^24.
-                *ch = ((acc >> s) & 0xFF_FFFF) as i32;
-            }
-        }
-        Self::from_fixed16(&c)
+        Self::from_fixed16(&packed_fields::<Self>(acc))
     }
+}
+
+/// The channels of a [`Channels::PACKED16`] word, each its field: the bits from its shift up to
+/// the next field's (or the word's end); zeros for a colour with no packed layout.
+#[inline]
+pub(crate) fn packed_fields<C: Channels>(acc: u64) -> [i32; 4] {
+    let mut c = [0i32; 4];
+    if let Some(shift) = C::PACKED16 {
+        let used = &shift[..C::COUNT.min(4)];
+        for (ch, &s) in c.iter_mut().zip(used) {
+            let end = used.iter().filter(|&&t| t > s).min().map_or(64, |&t| t);
+            let bits = acc.checked_shr(s).unwrap_or(0);
+            let mask = 1u64.checked_shl(end - s).map_or(u64::MAX, |m| m - 1);
+            *ch = (bits & mask) as i32;
+        }
+    }
+    c
 }
 
 macro_rules! rgb_channels {
@@ -287,6 +297,9 @@ mod tests {
                         let want = C::from_channels_in_range([r as u8, g as u8, b as u8, 0]);
                         assert_eq!(C::from_packed16(word), want, "{r} {g} {b} {word:x}");
                         assert_eq!(C::from_fixed16(&[v[0], v[1], v[2], 0]), want);
+                        // The trait's default decoding, for a colour that only declares a
+                        // layout, gives each field back.
+                        assert_eq!(packed_fields::<C>(word), [v[0], v[1], v[2], 0]);
                     }
                 }
             }
