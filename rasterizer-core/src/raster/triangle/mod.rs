@@ -250,9 +250,10 @@ where
     // `fill_gouraud_large`'s extents, from the small set-up's bounds.
     let (w, h) = small.size();
     let (ex, ey) = ((2 * w + 2 * s) as u64, (2 * h + 2 * s) as u64);
-    let (x0, y0) = small.origin();
-    let origin = (i64::from(x0), i64::from(y0));
-    let mut planes = Planes::new(surface, &t, s, &c, ((ex, ey), origin), cross.signum())?;
+    let mut planes = Planes::blank(surface, small.origin());
+    if !planes.set(&t, s, &c, (ex, ey), cross.signum()) {
+        return None;
+    }
     Some(small.walk::<_, BITS>(&mut planes))
 }
 
@@ -282,14 +283,15 @@ where
         2 * (hi - lo).unsigned_abs() + 2 * s as u64
     };
     let (ex, ey) = (extent(xs), extent(ys));
-    if let Some(mut p) = Planes::new(surface, &t, s, &c, ((ex, ey), (0, 0)), t.cross.signum()) {
+    let mut p = Planes::blank(surface, (0, 0));
+    if p.set(&t, s, &c, (ex, ey), t.cross.signum()) {
         let clip = PixelRect::from_rectangle(&p.surface.clip_area());
         return match setup::rows_in_clip(&t, s, &clip) {
             Some(rows) => setup::walk_spans_once(&t, s, rows, &clip, &mut p),
             None => Ok(()),
         };
     }
-    fill_gouraud_exact(surface, &t, &c, s, (ex, ey))
+    fill_gouraud_exact(p.surface, &t, &c, s, (ex, ey))
 }
 
 /// [`fill_triangle_gouraud`] for a triangle too large for the planes: each span's start exact.
@@ -379,74 +381,100 @@ struct Planes<'a, S: Surface> {
     /// The value in 32.32 at the centre of pixel `origin`, with the halves that the rounding to
     /// 16.16 and `from_fixed16` add folded in, and the gradients per pixel: each wrapping, as
     /// only a value at a pixel inside the triangle (which fits) is ever formed from them.
-    base: [i64; 4],
-    gx: [i64; 4],
-    gy: [i64; 4],
+    base: [i64; PLANE_CHANNELS],
+    gx: [i64; PLANE_CHANNELS],
+    gy: [i64; PLANE_CHANNELS],
     step: [i32; 4],
     /// The steps in one word, for a colour that packs its channels ([`Channels::PACKED16`]).
     word_step: u64,
     /// The pixel `base` is the value of (pixel (0, 0) for a large triangle, the small walk's
     /// origin for a small one, whose rows then start from it with few products or none).
-    origin: (i64, i64),
+    origin: (i32, i32),
 }
 
 /// A span's steps a pixel: each channel's (16.16), and all of them in one word when the colour
 /// packs its channels ([`pack16`]).
 type Steps = ([i32; 4], u64);
 
+/// The channels [`Planes`] interpolates: every colour of this crate has at most three (one
+/// with four takes the exact path). Three keep the planes under the size a build for size
+/// copies with a call to `memcpy`.
+const PLANE_CHANNELS: usize = 3;
+
 /// Channel values (16.16, each within its range or a step) in one word at the colour's
 /// [`Channels::PACKED16`] shifts, wrapping (0 for a colour that does not pack them).
 #[inline(always)]
 fn pack16<C: Channels>(v: [i32; 4]) -> u64 {
-    match C::PACKED16 {
-        Some(shift) => (0..C::COUNT).fold(0u64, |w, i| {
-            w.wrapping_add((i64::from(v[i]) as u64).wrapping_shl(shift[i]))
-        }),
-        None => 0,
-    }
+    let Some(shift) = C::PACKED16 else {
+        return 0;
+    };
+    // Written out rather than a loop, which a build for size keeps, with its shifts in a table.
+    let field = |i: usize| {
+        if i < C::COUNT {
+            (i64::from(v[i]) as u64).wrapping_shl(shift[i])
+        } else {
+            0
+        }
+    };
+    field(0)
+        .wrapping_add(field(1))
+        .wrapping_add(field(2))
+        .wrapping_add(field(3))
 }
 
 impl<'a, S: Surface> Planes<'a, S>
 where
     S::Color: Channels,
 {
+    /// Planes for `surface` anchored at pixel `origin`, not yet set up ([`Planes::set`]).
     #[inline(always)]
-    fn new(
-        surface: &'a mut S,
+    fn blank(surface: &'a mut S, origin: (i32, i32)) -> Self {
+        Self {
+            surface,
+            base: [0; PLANE_CHANNELS],
+            gx: [0; PLANE_CHANNELS],
+            gy: [0; PLANE_CHANNELS],
+            step: [0; 4],
+            word_step: 0,
+            origin,
+        }
+    }
+
+    /// Sets up the planes of triangle `t` with colours `c` (the same order) and doubled extents
+    /// `ex`, `ey`; false when they do not take it (then the exact path does). In place, so
+    /// that a build for size does not copy the planes with a call to `memcpy`.
+    #[inline(always)]
+    fn set(
+        &mut self,
         t: &Sorted,
         s: i64,
         c: &[[u8; 4]; 3],
-        ((ex, ey), origin): ((u64, u64), (i64, i64)),
+        (ex, ey): (u64, u64),
         sign: i64,
-    ) -> Option<Self> {
+    ) -> bool {
         // Within 2^16 doubled units the start's error stays below 2^-17 steps.
-        if ex + ey > 1 << 16 {
-            return None;
+        if ex + ey > 1 << 16 || S::Color::COUNT > PLANE_CHANNELS {
+            return false;
         }
         let den = t.cross.unsigned_abs();
-        let den2 = NonZeroU64::new(2 * den)?;
+        let Some(den2) = NonZeroU64::new(2 * den) else {
+            return false;
+        };
         let recip = crate::wide::Reciprocal::new(den2);
         let half = (den2.get() / 2) as i64;
         let fat = reach_bounded(ex, ey, den);
         let [v0, v1, v2] = t.v;
-        let mut p = Self {
-            surface,
-            base: [0; 4],
-            gx: [0; 4],
-            gy: [0; 4],
-            step: [0; 4],
-            word_step: 0,
-            origin,
-        };
+        let origin = self.origin;
+        let p = self;
         // The origin pixel's centre in doubled units from v0: pixel (x, y)'s is this plus
         // 2s (x, y) from the origin.
         let (ox, oy) = (
-            s - 2 * v0.0 + 2 * s * origin.0,
-            s - 2 * v0.1 + 2 * s * origin.1,
+            s - 2 * v0.0 + 2 * s * i64::from(origin.0),
+            s - 2 * v0.1 + 2 * s * i64::from(origin.1),
         );
         // One index runs over several per-channel arrays at once.
         #[allow(clippy::needless_range_loop)]
-        for i in 0..S::Color::COUNT {
+        for i in 0..S::Color::COUNT.min(PLANE_CHANNELS) {
             let (c0, c1, c2) = (i64::from(c[0][i]), i64::from(c[1][i]), i64::from(c[2][i]));
             // The plane's numerators, as for `Gouraud`; |a|, |b| <= 2^8 (ex + ey) <= 2^24 here.
             let a = sign * ((c1 - c0) * (v2.1 - v0.1) - (c2 - c0) * (v1.1 - v0.1));
@@ -459,10 +487,11 @@ where
             if !fat {
                 let reach = g
                     .unsigned_abs()
-                    .checked_mul(ex)?
-                    .checked_add(h.unsigned_abs().checked_mul(ey)?)?;
-                if reach >= 1 << 61 {
-                    return None;
+                    .checked_mul(ex)
+                    .zip(h.unsigned_abs().checked_mul(ey))
+                    .and_then(|(x, y)| x.checked_add(y));
+                if reach.is_none_or(|r| r >= 1 << 61) {
+                    return false;
                 }
             }
             // The value at pixel (x, y) from the origin is (c0 << 32) + g (ox + 2s x) +
@@ -479,7 +508,7 @@ where
             p.step[i] = step16(p.gx[i]);
         }
         p.word_step = pack16::<S::Color>(p.step);
-        Some(p)
+        true
     }
 }
 
@@ -519,7 +548,7 @@ where
     /// steps them all with one add, for the same reason and as exactly.
     #[inline(always)]
     fn pixels(
-        (base, gx, gy, step): (&[i64; 4], &[i64; 4], &[i64; 4], Steps),
+        (base, gx, gy, step): (&[i64; 3], &[i64; 3], &[i64; 3], Steps),
         y: i64,
         x: i64,
     ) -> impl FnMut() -> S::Color {
@@ -531,8 +560,8 @@ where
     /// span starting at its column `x`.
     #[inline(always)]
     fn pixels_from(
-        at: &[i64; 4],
-        gx: &[i64; 4],
+        at: &[i64; 3],
+        gx: &[i64; 3],
         (step, word_step): Steps,
         x: i64,
     ) -> impl FnMut() -> S::Color {
@@ -543,20 +572,19 @@ where
         let packed = <S::Color as Channels>::PACKED16;
         // All the channels in one word, where they fit: the fields' sum is the word's, as each
         // stays within its field over the span (the first and third's pair below likewise).
-        let mut word = pack16::<S::Color>([start(0), start(1), start(2), start(3)]);
+        let mut word = pack16::<S::Color>([start(0), start(1), start(2), 0]);
         let step02 = pair(step[0], step[2]);
         let mut a02 = pair(start(0), start(2));
-        let (mut a1, mut a3) = (start(1), start(3));
+        let mut a1 = start(1);
         move || {
             if packed.is_some() {
                 let color = S::Color::from_packed16(word);
                 word = word.wrapping_add(word_step);
                 return color;
             }
-            let acc = [(a02 >> 32) as i32, a1, a02 as i32, a3];
+            let acc = [(a02 >> 32) as i32, a1, a02 as i32, 0];
             a02 = a02.wrapping_add(step02);
             a1 = a1.wrapping_add(step[1]);
-            a3 = a3.wrapping_add(step[3]);
             S::Color::from_fixed16(&acc)
         }
     }
@@ -573,8 +601,8 @@ where
         let steps = (self.step, self.word_step);
         // From the origin (in i64: a row and column of the clip area lie within i32 of it).
         let (x, y) = (
-            i64::from(x0) - self.origin.0,
-            i64::from(row) - self.origin.1,
+            i64::from(x0) - i64::from(self.origin.0),
+            i64::from(row) - i64::from(self.origin.1),
         );
         let shade = Self::pixels((&self.base, &self.gx, &self.gy, steps), y, x);
         self.surface
@@ -596,22 +624,32 @@ where
         first: (i32, i32),
         next: F,
     ) -> Result<(), S::Error> {
-        let (gx, gy, step) = (self.gx, self.gy, (self.step, self.word_step));
+        // The planes borrowed field by field beside the surface, not copied.
+        let Planes {
+            surface,
+            base,
+            gx,
+            gy,
+            step,
+            word_step,
+            origin,
+        } = self;
+        let step = (*step, *word_step);
         // Each channel's value at column `x` of the current row, stepped by a row as the walk
         // moves on: a span's start then takes one product a channel, not two.
         // From the origin: for the small walk, whose origin is its first half's first row and
         // the column of every half, no product at all on that half.
         let (x0, y0) = (
-            i64::from(x) - self.origin.0,
-            i64::from(rows.start) - self.origin.1,
+            i64::from(x) - i64::from(origin.0),
+            i64::from(rows.start) - i64::from(origin.1),
         );
-        let at = core::cell::Cell::new(core::array::from_fn::<i64, 4, _>(|i| {
-            self.base[i]
+        let at = core::cell::Cell::new(core::array::from_fn::<i64, PLANE_CHANNELS, _>(|i| {
+            base[i]
                 .wrapping_add(gx[i].wrapping_mul(x0))
                 .wrapping_add(gy[i].wrapping_mul(y0))
         }));
         let mut next = next;
-        self.surface.shade_short_rows_in_clip(
+        surface.shade_short_rows_in_clip(
             x,
             rows,
             first,
@@ -620,7 +658,7 @@ where
                 at.set(core::array::from_fn(|i| v[i].wrapping_add(gy[i])));
                 next()
             },
-            |_, a| Self::pixels_from(&at.get(), &gx, step, i64::from(a.wrapping_sub(x))),
+            |_, a| Self::pixels_from(&at.get(), gx, step, i64::from(a.wrapping_sub(x))),
         )
     }
 }
@@ -815,9 +853,9 @@ mod tests {
                 start[c] = a as i32;
                 step[c] = d as i32;
             }
-            let at = start.map(|v| i64::from(v) << 16);
+            let at = [0, 1, 2].map(|c| i64::from(start[c]) << 16);
             let steps = (step, pack16::<C>(step));
-            let mut shade = Planes::<Fb<'_, C>>::pixels_from(&at, &[0; 4], steps, 0);
+            let mut shade = Planes::<Fb<'_, C>>::pixels_from(&at, &[0; 3], steps, 0);
             for k in 0..len as i32 {
                 let v = [0, 1, 2].map(|c| (start[c] + k * step[c]) >> 16);
                 let want = C::from_channels_in_range([v[0] as u8, v[1] as u8, v[2] as u8, 0]);
