@@ -279,14 +279,20 @@ impl ShadeColor for BinaryColor {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raster::edge::tests::xorshift as rng;
 
     /// Every channel value of a 5/6/5 colour with random fractions, packed at the colour's
     /// shifts: the word gives the colour of its channels' integer parts (embedded-graphics'
     /// own constructor, the reference), and `from_fixed16` of the same values agrees.
     fn packed_words_decode<C: Channels + PartialEq + core::fmt::Debug>() {
         let shift = C::PACKED16.expect("a packed layout");
-        let mut next = rng(0x243f_6a88_85a3_08d3);
+        // Random fractions from a linear congruential generator (this layer has no other).
+        let mut state = 0x243f_6a88_85a3_08d3u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            state >> 32
+        };
         let max = [31u32, 63, 31];
         for r in 0..=max[0] {
             for g in 0..=max[1] {
