@@ -36,9 +36,10 @@ pub trait Channels: PixelColor {
         Self::from_channels_in_range(c)
     }
     /// Where each channel's 16.16 value (as [`Channels::from_fixed16`] takes it) sits in one
-    /// `u64`, when all of them fit side by side (`16 +` a channel's bits each, no more than 64 in
-    /// all): the shift of each, lowest first in the word for the last channel. A span's
-    /// channels are then stepped with one add a pixel ([`Channels::from_packed16`]).
+    /// `u64`, when all of them fit side by side: the shift of each channel's field, in the
+    /// order of [`Channels::to_channels`], each field `16 +` the channel's bits wide and up to
+    /// the next one (64 bits in all at most). A Gouraud span then steps every channel with one
+    /// add a pixel and colours a pixel with [`Channels::from_packed16`].
     const PACKED16: Option<[u32; 4]> = None;
     /// The colour from a [`Channels::PACKED16`] word: each channel's field within
     /// `0 ..= max << 16 | 0xFFFF`, others giving an unspecified colour, never a panic.
