@@ -387,8 +387,8 @@ struct Planes<'a, S: Surface> {
     step: [i32; 4],
     /// The steps in one word, for a colour that packs its channels ([`Channels::PACKED16`]).
     word_step: u64,
-    /// The pixel `base` is the value of (pixel (0, 0) for a large triangle, the small walk's
-    /// origin for a small one, whose rows then start from it with few products or none).
+    /// The pixel whose value `base` is: pixel (0, 0) for a large triangle, the small walk's
+    /// origin for a small one (whose rows then start from it with few products or none).
     origin: (i32, i32),
 }
 
@@ -400,6 +400,9 @@ type Steps = ([i32; 4], u64);
 /// with four takes the exact path). Three keep the planes under the size a build for size
 /// copies with a call to `memcpy`.
 const PLANE_CHANNELS: usize = 3;
+
+/// One value a channel of [`Planes`].
+type Plane3 = [i64; PLANE_CHANNELS];
 
 /// Channel values (16.16, each within its range or a step) in one word at the colour's
 /// [`Channels::PACKED16`] shifts, wrapping (0 for a colour that does not pack them).
@@ -548,7 +551,7 @@ where
     /// steps them all with one add, for the same reason and as exactly.
     #[inline(always)]
     fn pixels(
-        (base, gx, gy, step): (&[i64; 3], &[i64; 3], &[i64; 3], Steps),
+        (base, gx, gy, step): (&Plane3, &Plane3, &Plane3, Steps),
         y: i64,
         x: i64,
     ) -> impl FnMut() -> S::Color {
@@ -556,12 +559,12 @@ where
         Self::pixels_from(&at, gx, step, x)
     }
 
-    /// [`Planes::pixels`] from the values `at` of a row's column 0 (in 32.32, wrapping), the
-    /// span starting at its column `x`.
+    /// [`Planes::pixels`] from the values `at` of a row at the origin's column (in 32.32,
+    /// wrapping), the span starting `x` columns right of it.
     #[inline(always)]
     fn pixels_from(
-        at: &[i64; 3],
-        gx: &[i64; 3],
+        at: &Plane3,
+        gx: &Plane3,
         (step, word_step): Steps,
         x: i64,
     ) -> impl FnMut() -> S::Color {
