@@ -66,8 +66,9 @@ pub(crate) fn packed_fields<C: Channels>(acc: u64) -> [i32; 4] {
     c
 }
 
+/// `Channels` for an RGB colour, with `{ ... }` the items that replace the trait's defaults.
 macro_rules! rgb_channels {
-    ($($t:ty),*) => {$(
+    ($t:ty { $($extra:tt)* }) => {
         impl Channels for $t {
             const COUNT: usize = 3;
             #[inline]
@@ -87,69 +88,45 @@ macro_rules! rgb_channels {
                 // `new` masks each channel to its width, so this cannot panic.
                 <$t>::new(c[0], c[1], c[2])
             }
+            $($extra)*
         }
-    )*};
+    };
+    ($($t:ty),*) => {$(rgb_channels!($t {});)*};
 }
 rgb_channels!(Rgb555, Bgr555, Rgb666, Bgr666, Rgb888, Bgr888);
-
-impl Channels for Rgb565 {
-    const COUNT: usize = 3;
-    #[inline]
-    fn to_channels(self) -> [u8; 4] {
-        [self.r(), self.g(), self.b(), 0]
-    }
-    #[inline]
-    fn from_channels(c: [u8; 4]) -> Self {
-        Rgb565::new(c[0].min(31), c[1].min(63), c[2].min(31))
-    }
-    #[inline]
-    fn from_channels_in_range(c: [u8; 4]) -> Self {
-        Rgb565::new(c[0], c[1], c[2])
-    }
+// Red in bits 43 ..= 63 of the packed word, green 21 ..= 42, blue 0 ..= 20.
+rgb_channels!(Rgb565 {
     #[inline]
     fn from_fixed16(acc: &[i32; 4]) -> Self {
-        // Shift each channel's integer bits straight to their place in the 16-bit word.
-        let r = (acc[0] >> 5) as u16 & 0xF800;
-        let g = (acc[1] >> 11) as u16 & 0x07E0;
-        let b = (acc[2] >> 16) as u16 & 0x001F;
-        RawU16::new(r | g | b).into()
+        fixed16_565(acc, 0, 2).into()
     }
-    // Red in bits 43 ..= 63, green 21 ..= 42, blue 0 ..= 20: 64 bits.
     const PACKED16: Option<[u32; 4]> = Some([43, 21, 0, 0]);
     #[inline]
     fn from_packed16(acc: u64) -> Self {
         rgb565_from_packed16(acc).into()
     }
-}
-
-impl Channels for Bgr565 {
-    const COUNT: usize = 3;
-    #[inline]
-    fn to_channels(self) -> [u8; 4] {
-        [self.r(), self.g(), self.b(), 0]
-    }
-    #[inline]
-    fn from_channels(c: [u8; 4]) -> Self {
-        Bgr565::new(c[0].min(31), c[1].min(63), c[2].min(31))
-    }
-    #[inline]
-    fn from_channels_in_range(c: [u8; 4]) -> Self {
-        Bgr565::new(c[0], c[1], c[2])
-    }
+});
+// The other way round, as in the pixel: blue highest.
+rgb_channels!(Bgr565 {
     #[inline]
     fn from_fixed16(acc: &[i32; 4]) -> Self {
-        // As Rgb565's, blue in the high bits.
-        let b = (acc[2] >> 5) as u16 & 0xF800;
-        let g = (acc[1] >> 11) as u16 & 0x07E0;
-        let r = (acc[0] >> 16) as u16 & 0x001F;
-        RawU16::new(b | g | r).into()
+        fixed16_565(acc, 2, 0).into()
     }
-    // Rgb565's word with red and blue swapped, as in the pixel: blue highest.
     const PACKED16: Option<[u32; 4]> = Some([0, 21, 43, 0]);
     #[inline]
     fn from_packed16(acc: u64) -> Self {
         rgb565_from_packed16(acc).into()
     }
+});
+
+/// [`Channels::from_fixed16`] of a 5/6/5 colour whose channel `high` lies in the pixel's high
+/// bits and `low` in its low ones: each channel's integer bits shifted straight to their place.
+#[inline(always)]
+fn fixed16_565(acc: &[i32; 4], high: usize, low: usize) -> RawU16 {
+    let h = (acc[high & 3] >> 5) as u16 & 0xF800;
+    let g = (acc[1] >> 11) as u16 & 0x07E0;
+    let l = (acc[low & 3] >> 16) as u16 & 0x001F;
+    RawU16::new(h | g | l)
 }
 
 /// [`Channels::from_packed16`] of [`Rgb565`] (and of [`Bgr565`], whose word holds the channels
