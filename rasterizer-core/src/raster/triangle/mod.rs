@@ -535,10 +535,11 @@ fn step16(v: i64) -> i32 {
     ((v >> 16) + ((v >> 15) & 1)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
-impl<S: Surface> Planes<'_, S>
-where
-    S::Color: Channels,
-{
+/// The colours of a span of [`Planes`], over the colour alone (the planes' surface plays no
+/// part).
+struct PlaneSpan<C>(core::marker::PhantomData<C>);
+
+impl<C: Channels> PlaneSpan<C> {
     /// The colours of the span from pixel `(x, y)` (from the origin) on, left to right.
     ///
     /// The first and third channels share one `i64`, `c0 2^32 + c2`: one add a pixel for both,
@@ -554,12 +555,12 @@ where
         (base, gx, gy, step): (&Plane3, &Plane3, &Plane3, Steps),
         y: i64,
         x: i64,
-    ) -> impl FnMut() -> S::Color {
+    ) -> impl FnMut() -> C {
         let at = core::array::from_fn(|i| base[i].wrapping_add(gy[i].wrapping_mul(y)));
         Self::pixels_from(&at, gx, step, x)
     }
 
-    /// [`Planes::pixels`] from the values `at` of a row at the origin's column (in 32.32,
+    /// [`PlaneSpan::pixels`] from the values `at` of a row at the origin's column (in 32.32,
     /// wrapping), the span starting `x` columns right of it.
     #[inline(always)]
     fn pixels_from(
@@ -567,28 +568,28 @@ where
         gx: &Plane3,
         (step, word_step): Steps,
         x: i64,
-    ) -> impl FnMut() -> S::Color {
+    ) -> impl FnMut() -> C {
         // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
         // inside the triangle it lies within the vertex colours' range (up to 2^-17).
         let start = |i: usize| (at[i].wrapping_add(gx[i].wrapping_mul(x)) >> 16) as i32;
         let pair = |hi: i32, lo: i32| (i64::from(hi) << 32).wrapping_add(i64::from(lo));
-        let packed = <S::Color as Channels>::PACKED16;
+        let packed = C::PACKED16;
         // All the channels in one word, where they fit: the fields' sum is the word's, as each
         // stays within its field over the span (the first and third's pair below likewise).
-        let mut word = pack16::<S::Color>([start(0), start(1), start(2), 0]);
+        let mut word = pack16::<C>([start(0), start(1), start(2), 0]);
         let step02 = pair(step[0], step[2]);
         let mut a02 = pair(start(0), start(2));
         let mut a1 = start(1);
         move || {
             if packed.is_some() {
-                let color = S::Color::from_packed16(word);
+                let color = C::from_packed16(word);
                 word = word.wrapping_add(word_step);
                 return color;
             }
             let acc = [(a02 >> 32) as i32, a1, a02 as i32, 0];
             a02 = a02.wrapping_add(step02);
             a1 = a1.wrapping_add(step[1]);
-            S::Color::from_fixed16(&acc)
+            C::from_fixed16(&acc)
         }
     }
 }
@@ -607,7 +608,7 @@ where
             i64::from(x0) - i64::from(self.origin.0),
             i64::from(row) - i64::from(self.origin.1),
         );
-        let shade = Self::pixels((&self.base, &self.gx, &self.gy, steps), y, x);
+        let shade = PlaneSpan::pixels((&self.base, &self.gx, &self.gy, steps), y, x);
         self.surface
             .shade_span_in_clip(x0, row, (x1 - x0) as u32, shade)
     }
@@ -661,7 +662,7 @@ where
                 at.set(core::array::from_fn(|i| v[i].wrapping_add(gy[i])));
                 next()
             },
-            |_, a| Self::pixels_from(&at.get(), gx, step, i64::from(a.wrapping_sub(x))),
+            |_, a| PlaneSpan::pixels_from(&at.get(), gx, step, i64::from(a.wrapping_sub(x))),
         )
     }
 }
@@ -817,26 +818,6 @@ mod tests {
     /// steps (Rgb565, Bgr565) are those of each channel stepped on its own in `i32` and cut to
     /// its integer part, the reference.
     fn packed_spans_match_channels<C: Channels + PartialEq + core::fmt::Debug>() {
-        /// A target of colour `C` for the planes' type; nothing is drawn.
-        struct Null<C>(core::marker::PhantomData<C>);
-        impl<C> embedded_graphics_core::geometry::OriginDimensions for Null<C> {
-            fn size(&self) -> embedded_graphics_core::geometry::Size {
-                embedded_graphics_core::geometry::Size::zero()
-            }
-        }
-        impl<C: embedded_graphics_core::pixelcolor::PixelColor>
-            embedded_graphics_core::draw_target::DrawTarget for Null<C>
-        {
-            type Color = C;
-            type Error = core::convert::Infallible;
-            fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
-                &mut self,
-                _: I,
-            ) -> Result<(), Self::Error> {
-                Ok(())
-            }
-        }
-        type Fb<'a, C> = crate::surface::AnyTarget<'a, Null<C>>;
         let mut next = rng(0x1319_8a2e_0370_7344);
         let max = [31i64, 63, 31];
         for _ in 0..50_000 {
@@ -858,7 +839,7 @@ mod tests {
             }
             let at = [0, 1, 2].map(|c| i64::from(start[c]) << 16);
             let steps = (step, pack16::<C>(step));
-            let mut shade = Planes::<Fb<'_, C>>::pixels_from(&at, &[0; 3], steps, 0);
+            let mut shade = PlaneSpan::<C>::pixels_from(&at, &[0; 3], steps, 0);
             for k in 0..len as i32 {
                 let v = [0, 1, 2].map(|c| (start[c] + k * step[c]) >> 16);
                 let want = C::from_channels_in_range([v[0] as u8, v[1] as u8, v[2] as u8, 0]);
