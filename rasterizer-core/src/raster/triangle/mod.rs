@@ -51,7 +51,7 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
     if let Some(small) = Small::new(&vertices, &clip) {
         return small.walk::<_, BITS>(&mut FlatShort { surface, color });
     }
-    fill_large(surface, &vertices, color)
+    fill_large(surface, vertices, color)
 }
 
 /// [`fill_triangle`] for a triangle the `i32` set-up does not take: out of line, so that its
@@ -59,10 +59,10 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
 #[inline(never)]
 fn fill_large<S: Surface, const BITS: u32>(
     surface: &mut S,
-    vertices: &[SubPoint<BITS>; 3],
+    vertices: [SubPoint<BITS>; 3],
     color: S::Color,
 ) -> Result<(), S::Error> {
-    let Some(t) = Sorted::new(vertices) else {
+    let Some(t) = Sorted::new(&vertices) else {
         return Ok(());
     };
     // Found again rather than passed: the small triangles' path then builds none in memory.
@@ -105,6 +105,7 @@ impl<S: Surface> SpanSink for FlatShort<'_, S> {
 
 impl<S: Surface> RowSink for FlatShort<'_, S> {
     type Error = S::Error;
+    const BY_WINDING: bool = true;
     #[inline(always)]
     fn rows<F: FnMut() -> (i32, i32)>(
         &mut self,

@@ -75,6 +75,8 @@ impl Small {
         let (y0, y1) = (i64::from(a.1), i64::from(c.1));
         let s = 1i64 << BITS;
         let band = i64::from(GUARD_BAND_PIXELS) << BITS;
+        // Wrapped, as `u32` the true extents (`xmax >= xmin`, `c.1 >= a.1`).
+        let size = (xmax.wrapping_sub(xmin), c.1.wrapping_sub(a.1));
         // Inside the clip area, every span lies between its columns and rows (a centre inside
         // the triangle lies between its extreme vertices); inside the guard band, the generic
         // path would draw it too. The clip area's bounds are taken within the band, which
@@ -84,8 +86,8 @@ impl Small {
             && x1 <= (clip.x1 * s).min(band)
             && y0 >= (clip.y0 * s).max(-band)
             && y1 <= (clip.y1 * s).min(band)
-            && x1 - x0 <= SMALL_PIXELS << BITS
-            && y1 - y0 <= SMALL_PIXELS << BITS;
+            && size.0 as u32 <= (SMALL_PIXELS << BITS) as u32
+            && size.1 as u32 <= (SMALL_PIXELS << BITS) as u32;
         if !fits {
             return None;
         }
@@ -103,7 +105,7 @@ impl Small {
             mid,
             bottom,
             below: (ya, yb),
-            size: (xmax - xmin, c.1 - a.1),
+            size,
             cross: (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1),
         })
     }
@@ -142,6 +144,23 @@ impl Small {
         if self.top >= self.bottom {
             return Ok(());
         }
+        if !K::BY_WINDING {
+            return self.walk_wound::<K, BITS>(sink, self.cross < 0);
+        }
+        if self.cross < 0 {
+            self.walk_wound::<K, BITS>(sink, true)
+        } else {
+            self.walk_wound::<K, BITS>(sink, false)
+        }
+    }
+
+    /// [`Small::walk`] with the short edges on the left (`short_left`) or on the right.
+    #[inline(always)]
+    fn walk_wound<K: RowSink, const BITS: u32>(
+        &self,
+        sink: &mut K,
+        short_left: bool,
+    ) -> Result<(), K::Error> {
         let [a, b, c] = self.p;
         let ox = self.ox;
         // Doubled x from the centre of column `ox`.
@@ -149,11 +168,10 @@ impl Small {
         let (xa, xb) = (2 * a.0 - cx, 2 * b.0 - cx);
         let (ya, yb) = self.below;
         let mut long = Edge::new::<BITS>(xa, ya, c.0 - a.0, c.1 - a.1);
-        let short_is_left = self.cross < 0;
         if self.top < self.mid {
             let upper = Edge::new::<BITS>(xa, ya, b.0 - a.0, b.1 - a.1);
             // As in `walk_spans`: the walks copied into left and right, the long one back.
-            let (mut l, mut r) = if short_is_left {
+            let (mut l, mut r) = if short_left {
                 (upper, long)
             } else {
                 (long, upper)
@@ -161,13 +179,13 @@ impl Small {
             sink.rows(ox, self.top..self.mid, cols(&l, &r), || {
                 next(&mut l, &mut r)
             })?;
-            long = if short_is_left { r } else { l };
+            long = if short_left { r } else { l };
             // The rows' walk stops on the half's last row: on to the lower half's first.
             long.step();
         }
         if self.mid < self.bottom {
             let lower = Edge::new::<BITS>(xb, yb, c.0 - b.0, c.1 - b.1);
-            let (mut l, mut r) = if short_is_left {
+            let (mut l, mut r) = if short_left {
                 (lower, long)
             } else {
                 (long, lower)
@@ -198,6 +216,10 @@ fn next(left: &mut Edge, right: &mut Edge) -> (i32, i32) {
 pub(crate) trait RowSink {
     /// The target's error.
     type Error;
+    /// Whether [`Small::walk`] gives each winding (short edges left or right) code of its own,
+    /// so that the walks need not be moved into place on each half: worth it where the rows
+    /// are cheap, dearer where they need many registers.
+    const BY_WINDING: bool = false;
     /// Draws `rows` (at least one), top to bottom: `first` is the first row's columns
     /// `x + a .. x + b` (relative columns `a`, `b` never negative, none when `a >= b`), and
     /// `next` moves on a row and gives its columns.
