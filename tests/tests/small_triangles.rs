@@ -1,8 +1,9 @@
 //! Small triangles, which the fills set up in `i32` and hand to a surface a run of rows at a time
-//! (`Surface::fill_short_rows_in_clip`, `Surface::shade_short_rows_in_clip`): every surface
-//! gives the same pixels, whether it steps its rows itself (`Framebuffer` of every storage,
-//! `Band`, `ClipTo`) or takes the default methods (`AnyTarget`), and a flat fill covers exactly
-//! the reference's pixels.
+//! (`Surface::fill_short_rows_in_clip`, `Surface::fill_short_halves_in_clip`,
+//! `Surface::shade_short_rows_in_clip`), across the clip area's edges too: every surface gives
+//! the same pixels, whether it steps its rows itself (`Framebuffer` of every storage, `Band`,
+//! `ClipTo`) or takes the default methods (`AnyTarget`), and a flat fill covers exactly the
+//! reference's pixels.
 
 use proptest::prelude::*;
 use rasterizer_core::prelude::*;

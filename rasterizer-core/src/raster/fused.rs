@@ -840,7 +840,7 @@ impl<const BITS: u32> Lean<BITS> {
             |p: (i64, i64), row: i64| ((2 * p.0 - cx) as i32, (2 * row * s + s - 2 * p.1) as i32);
         let edge = |p: (i64, i64), q: (i64, i64), row: i64| {
             let (x, y) = end(p, row);
-            Edge::new::<BITS>(x, y, (q.0 - p.0) as i32, (q.1 - p.1) as i32)
+            Edge::<false>::new::<BITS>(x, y, (q.0 - p.0) as i32, (q.1 - p.1) as i32)
         };
         let mut long = edge(v0, v2, top);
         let short_is_left = self.cross < 0;

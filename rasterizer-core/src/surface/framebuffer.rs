@@ -177,6 +177,29 @@ pub trait Storage: Channels {
             }
         }
     }
+    /// [`Storage::fill_short_rows`] for the two halves of a small triangle, as
+    /// [`Surface::fill_short_halves_in_clip`]: `rows` are the first row and the numbers of rows
+    /// in the upper and the lower half.
+    #[inline(always)]
+    fn fill_short_halves<F: FnMut(bool) -> (i32, i32)>(
+        buf: &mut [Self::Word],
+        stride: usize,
+        x: usize,
+        (y, upper, lower): (usize, usize, usize),
+        color: Self,
+        first: (i32, i32),
+        mut next: F,
+    ) {
+        if upper > 0 {
+            Self::fill_short_rows(buf, stride, x, (y, upper), color, first, || next(false));
+        }
+        if lower > 0 {
+            let first = if upper > 0 { next(true) } else { first };
+            Self::fill_short_rows(buf, stride, x, (y + upper, lower), color, first, || {
+                next(false)
+            });
+        }
+    }
     /// [`Storage::fill_short_rows`] with each span's colours from a shader, as
     /// [`Surface::shade_short_rows_in_clip`].
     #[inline(always)]
@@ -372,6 +395,18 @@ fn fill_long_words<W: Copy>(s: &mut [W], v: W) {
     }
 }
 
+/// Fills the span `at + a .. at + b` of `buf`, if any (`a`, `b` never negative), as
+/// [`fill_short_words`].
+#[inline(always)]
+fn fill_short_at<W: Copy>(buf: &mut [W], at: u32, (a, b): (i32, i32), v: W) {
+    if a < b {
+        // Zero-extended, so that neither sum can wrap.
+        let start = at.wrapping_add(a as u32) as usize;
+        let len = b.wrapping_sub(a) as u32 as usize;
+        fill_short_words(&mut buf[start..start + len], v);
+    }
+}
+
 /// Fills one to three words: first, last and middle cover them all with no loop.
 #[inline(always)]
 fn fill_one_to_three<W: Copy>(s: &mut [W], v: W) {
@@ -465,30 +500,54 @@ impl Storage for Rgb565 {
         x: usize,
         (y, rows): (usize, usize),
         color: Self,
+        first: (i32, i32),
+        mut next: F,
+    ) {
+        Self::fill_short_halves(buf, stride, x, (y, rows, 0), color, first, |_| next());
+    }
+    #[inline(always)]
+    fn fill_short_halves<F: FnMut(bool) -> (i32, i32)>(
+        buf: &mut [u16],
+        stride: usize,
+        x: usize,
+        (y, upper, lower): (usize, usize, usize),
+        color: Self,
         (mut a, mut b): (i32, i32),
         mut next: F,
     ) {
         let v = RawU16::from(color).into_inner();
-        // The offset of column `x` of each row, stepped by the stride: no product a span. A
-        // buffer holds fewer than 2^32 words (`MAX_DIMENSION`), so the offsets are `u32`, and
-        // a span's start and length zero-extended cannot wrap: one range check a span.
+        // The offset of column `x` of each row, stepped by the stride from one half into the
+        // other: no product a span. A buffer holds fewer than 2^32 words (`MAX_DIMENSION`), so
+        // the offsets are `u32`, and a span's start and length zero-extended cannot wrap: one
+        // range check a span.
         let mut at = (y as u32)
             .wrapping_mul(stride as u32)
             .wrapping_add(x as u32);
-        let mut left = rows;
-        loop {
-            if a < b {
-                // Zero-extended, so that neither sum can wrap.
-                let start = at.wrapping_add(a as u32) as usize;
-                let len = b.wrapping_sub(a) as u32 as usize;
-                fill_short_words(&mut buf[start..start + len], v);
+        if upper > 0 {
+            let mut left = upper;
+            loop {
+                fill_short_at(buf, at, (a, b), v);
+                at = at.wrapping_add(stride as u32);
+                left -= 1;
+                if left == 0 {
+                    break;
+                }
+                (a, b) = next(false);
             }
+            if lower == 0 {
+                return;
+            }
+            (a, b) = next(true);
+        }
+        let mut left = lower;
+        loop {
+            fill_short_at(buf, at, (a, b), v);
             left -= 1;
             if left == 0 {
                 break;
             }
             at = at.wrapping_add(stride as u32);
-            (a, b) = next();
+            (a, b) = next(false);
         }
     }
     #[inline(always)]
@@ -984,6 +1043,36 @@ impl<C: Storage> Surface for Framebuffer<'_, C> {
     }
 
     #[inline(always)]
+    fn fill_short_halves_in_clip<F: FnMut(bool) -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        (top, mid, bottom): (i32, i32, i32),
+        color: C,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), Self::Error> {
+        if top >= bottom {
+            return Ok(());
+        }
+        // `top <= mid <= bottom` (else a count wraps round and the spans leave the buffer: a
+        // panic, as documented).
+        let (upper, lower) = (
+            mid.wrapping_sub(top) as u32 as usize,
+            bottom.wrapping_sub(mid) as u32 as usize,
+        );
+        C::fill_short_halves(
+            self.buf,
+            self.stride,
+            x as usize,
+            (top as usize, upper, lower),
+            color,
+            first,
+            next,
+        );
+        Ok(())
+    }
+
+    #[inline(always)]
     fn fill_short_rows_in_clip<F: FnMut() -> (i32, i32)>(
         &mut self,
         x: i32,
@@ -1245,6 +1334,20 @@ impl<C: Storage> Surface for Band<'_, C> {
     ) -> Result<(), Self::Error> {
         let rows = rows.start - self.y0..rows.end - self.y0;
         self.fb.fill_short_rows_in_clip(x, rows, color, first, next)
+    }
+
+    #[inline(always)]
+    fn fill_short_halves_in_clip<F: FnMut(bool) -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        (top, mid, bottom): (i32, i32, i32),
+        color: C,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), Self::Error> {
+        let rows = (top - self.y0, mid - self.y0, bottom - self.y0);
+        self.fb
+            .fill_short_halves_in_clip(x, rows, color, first, next)
     }
 
     #[inline(always)]

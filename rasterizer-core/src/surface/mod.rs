@@ -172,6 +172,35 @@ pub trait Surface: DrawTarget {
         Ok(())
     }
 
+    /// [`Surface::fill_short_rows_in_clip`] for both halves of a small triangle: the rows
+    /// `top..bottom` (at least one; `top <= mid <= bottom`), `first` the columns of row `top`;
+    /// `next(false)` moves on a row within a half, `next(true)` from the last row above `mid`
+    /// to row `mid` (called only when both halves have rows), each giving that row's columns.
+    /// A framebuffer steps its row offset from one half into the other; the default draws
+    /// each half through [`Surface::fill_short_rows_in_clip`].
+    ///
+    /// # Panics
+    /// As [`Surface::fill_span_in_clip`]; a target that steps its rows (a [`Framebuffer`]) also
+    /// when `mid` lies outside `top..=bottom`.
+    #[inline(always)]
+    fn fill_short_halves_in_clip<F: FnMut(bool) -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        (top, mid, bottom): (i32, i32, i32),
+        color: Self::Color,
+        first: (i32, i32),
+        mut next: F,
+    ) -> Result<(), Self::Error> {
+        if top < mid {
+            self.fill_short_rows_in_clip(x, top..mid, color, first, || next(false))?;
+        }
+        if mid < bottom {
+            let first = if top < mid { next(true) } else { first };
+            self.fill_short_rows_in_clip(x, mid..bottom, color, first, || next(false))?;
+        }
+        Ok(())
+    }
+
     /// [`Surface::fill_short_rows_in_clip`] with each span's colours from a shader: `span` is
     /// called for each non-empty span with its row and first column and returns what
     /// [`Surface::shade_span_in_clip`] takes, the colours of its pixels left to right.
@@ -517,6 +546,19 @@ impl<T: Surface> Surface for ClipTo<'_, T> {
     ) -> Result<(), Self::Error> {
         self.inner
             .fill_short_rows_in_clip(x, rows, color, first, next)
+    }
+
+    #[inline(always)]
+    fn fill_short_halves_in_clip<F: FnMut(bool) -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: (i32, i32, i32),
+        color: Self::Color,
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), Self::Error> {
+        self.inner
+            .fill_short_halves_in_clip(x, rows, color, first, next)
     }
 
     #[inline(always)]

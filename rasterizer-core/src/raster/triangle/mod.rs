@@ -48,10 +48,25 @@ pub fn fill_triangle<S: Surface, const BITS: u32>(
     color: S::Color,
 ) -> Result<(), S::Error> {
     let clip = PixelRect::from_rectangle(&surface.clip_area());
-    if let Some(small) = Small::new(&vertices, &clip) {
-        return small.walk::<_, BITS>(&mut FlatShort { surface, color });
+    if let Some(drawn) = fill_small(surface, &vertices, &clip, color) {
+        return drawn;
     }
     fill_large(surface, vertices, color)
+}
+
+/// [`fill_triangle`] for a small triangle inside the clip area ([`Small`]); `None` for any
+/// other. Out of line in an unoptimised build, so that its locals (both windings' walks) do
+/// not sit on the stack under the large triangles' path.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn fill_small<S: Surface, const BITS: u32>(
+    surface: &mut S,
+    vertices: &[SubPoint<BITS>; 3],
+    clip: &PixelRect,
+    color: S::Color,
+) -> Option<Result<(), S::Error>> {
+    let small = Small::new(vertices, clip)?;
+    Some(small.walk::<_, BITS>(&mut FlatShort { surface, color }))
 }
 
 /// [`fill_triangle`] for a triangle the `i32` set-up does not take: out of line, so that its
@@ -62,11 +77,14 @@ fn fill_large<S: Surface, const BITS: u32>(
     vertices: [SubPoint<BITS>; 3],
     color: S::Color,
 ) -> Result<(), S::Error> {
+    // Found again rather than passed: the small triangles' path then builds none in memory.
+    let clip = &PixelRect::from_rectangle(&surface.clip_area());
+    if let Some(drawn) = fill_crossing(surface, &vertices, clip, color) {
+        return drawn;
+    }
     let Some(t) = Sorted::new(&vertices) else {
         return Ok(());
     };
-    // Found again rather than passed: the small triangles' path then builds none in memory.
-    let clip = &PixelRect::from_rectangle(&surface.clip_area());
     let s = 1 << BITS;
     // A tall triangle's spans are mostly long, the others' (a short triangle that crosses the
     // clip area's edge, mostly) short: each gets the fill that tests its common case first.
@@ -74,6 +92,22 @@ fn fill_large<S: Surface, const BITS: u32>(
         Some(tall) => fill_tall(surface, &t, tall, color),
         None => walk_spans(&t, s, clip, &mut FlatShort { surface, color }),
     }
+}
+
+/// [`fill_large`] for a small triangle across the clip area's edge (most of those that come
+/// there): the `i32` set-up, its rows and columns cut; `None` for a larger one. Out of line in
+/// an unoptimised build, so that its locals do not sit on the stack under the large triangles'
+/// path.
+#[cfg_attr(debug_assertions, inline(never))]
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn fill_crossing<S: Surface, const BITS: u32>(
+    surface: &mut S,
+    vertices: &[SubPoint<BITS>; 3],
+    clip: &PixelRect,
+    color: S::Color,
+) -> Option<Result<(), S::Error>> {
+    let small = Small::crossing(vertices, clip)?;
+    Some(small.walk_clipped::<_, BITS>(clip, &mut FlatShort { surface, color }))
 }
 
 /// [`fill_large`]'s tall triangles, in a function of their own: the row loops of both walks in
@@ -105,7 +139,7 @@ impl<S: Surface> SpanSink for FlatShort<'_, S> {
 
 impl<S: Surface> RowSink for FlatShort<'_, S> {
     type Error = S::Error;
-    const BY_WINDING: bool = true;
+    const HALVES: bool = true;
     #[inline(always)]
     fn rows<F: FnMut() -> (i32, i32)>(
         &mut self,
@@ -116,6 +150,17 @@ impl<S: Surface> RowSink for FlatShort<'_, S> {
     ) -> Result<(), S::Error> {
         self.surface
             .fill_short_rows_in_clip(x, rows, self.color, first, next)
+    }
+    #[inline(always)]
+    fn halves<F: FnMut(bool) -> (i32, i32)>(
+        &mut self,
+        x: i32,
+        rows: (i32, i32, i32),
+        first: (i32, i32),
+        next: F,
+    ) -> Result<(), S::Error> {
+        self.surface
+            .fill_short_halves_in_clip(x, rows, self.color, first, next)
     }
 }
 
