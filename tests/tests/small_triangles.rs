@@ -192,3 +192,14 @@ proptest! {
         check::<8>(centre, d, 1, raw, clip)?;
     }
 }
+
+/// A middle row outside the rows handed to `fill_short_halves_in_clip` is a caller's error the
+/// framebuffer checks in a debug build, rather than walking a wrapped-round count of rows.
+#[cfg(debug_assertions)]
+#[test]
+#[should_panic(expected = "rows")]
+fn halves_with_the_middle_row_outside_panic_in_a_debug_build() {
+    let mut buf = vec![0u16; (W * H) as usize];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
+    let _ = fb.fill_short_halves_in_clip(0, (5, 2, 8), Rgb565::RED, (0, 0), |_| (0, 0));
+}

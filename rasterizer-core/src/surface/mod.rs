@@ -180,8 +180,9 @@ pub trait Surface: DrawTarget {
     /// each half through [`Surface::fill_short_rows_in_clip`].
     ///
     /// # Panics
-    /// As [`Surface::fill_span_in_clip`]; a target that steps its rows (a [`Framebuffer`]) also
-    /// when `mid` lies outside `top..=bottom`.
+    /// As [`Surface::fill_span_in_clip`]. `mid` must lie within `top..=bottom`: a target that
+    /// steps its rows (a [`Framebuffer`]) checks it in a debug build only, and in a release
+    /// build would walk a wrapped-round count of rows (until a span leaves its buffer).
     #[inline(always)]
     fn fill_short_halves_in_clip<F: FnMut(bool) -> (i32, i32)>(
         &mut self,
