@@ -234,6 +234,8 @@ impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for DirectCol
     const PRECISION: Precision = Precision { frac: 0, offset: 0 };
     const AT: bool = !matches!(N::DITHER, Dither::None);
     const HIDDEN_TEST: bool = true;
+    // Within a triangle each value times `1 / w` is at least `2^20` and below `2^31`.
+    const PAIRED: bool = true;
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
         self.shading.pixel_fused(&self.values(acc))

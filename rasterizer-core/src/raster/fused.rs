@@ -209,6 +209,11 @@ pub(crate) trait FusedColor<C> {
     /// set-up costs more than the test on a mesh (the perspective-correct ones); on the default
     /// path the test cost about what it saved.
     const HIDDEN_TEST: bool = false;
+    /// The values step in pairs, each pair as one 64-bit sum (value `2k` low, `2k + 1` high),
+    /// for a colour whose even values are known to stay within `0 .. 2^32` at every pixel of a
+    /// triangle: each half then holds its value exactly, and the span loop keeps half as many
+    /// running sums and steps (registers) for the same values.
+    const PAIRED: bool = false;
     /// The pixel's colour.
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> C;
     /// The colour of the pixel at `(x, y)`, when [`FusedColor::AT`] is set.
@@ -235,7 +240,8 @@ struct DepthPixels<'p, P, V, D, const LESS: bool> {
 impl<P, V: Varyings, D: DepthTest, const LESS: bool> DepthPixels<'_, P, V, D, LESS> {
     /// The values of pixel `i` if it passes the depth test (which then stores its depth).
     #[inline(always)]
-    fn values(&mut self, i: usize, stored: &mut u16) -> Option<[u32; MAX_VARYINGS]> {
+    /// `paired`: the colour's [`FusedColor::PAIRED`].
+    fn values(&mut self, i: usize, stored: &mut u16, paired: bool) -> Option<[u32; MAX_VARYINGS]> {
         // Only depth steps with every pixel; the values of a pixel that passes are computed from
         // its index (most pixels of a dense mesh fail the test).
         let nz = (self.z >> Z_FRAC) as u16;
@@ -252,8 +258,26 @@ impl<P, V: Varyings, D: DepthTest, const LESS: bool> DepthPixels<'_, P, V, D, LE
             *stored = nz;
         }
         let mut acc = self.acc;
-        for (a, step) in acc.iter_mut().zip(&self.step).take(V::LEN) {
-            *a = a.wrapping_add(step.wrapping_mul(i as u32));
+        let n = V::LEN.min(MAX_VARYINGS);
+        if paired {
+            for k in (0..n).step_by(2) {
+                if k + 1 >= n {
+                    acc[k] = acc[k].wrapping_add(self.step[k].wrapping_mul(i as u32));
+                    break;
+                }
+                // The pair's step as one sum: the low value's step moves the high half by
+                // its sign (wrapping, as each value's own sum does).
+                let base = u64::from(acc[k]) | u64::from(acc[k + 1]) << 32;
+                let step = (u64::from(self.step[k + 1]) << 32)
+                    .wrapping_add(self.step[k] as i32 as i64 as u64);
+                let v = base.wrapping_add(step.wrapping_mul(i as u64));
+                acc[k] = v as u32;
+                acc[k + 1] = (v >> 32) as u32;
+            }
+        } else {
+            for (a, step) in acc.iter_mut().zip(&self.step).take(V::LEN) {
+                *a = a.wrapping_add(step.wrapping_mul(i as u32));
+            }
         }
         Some(acc)
     }
@@ -273,7 +297,7 @@ impl<C, P: FusedColor<C>, V: Varyings, D: DepthTest, const LESS: bool> DepthSpan
 {
     #[inline(always)]
     fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
-        let acc = self.pixels.values(i, stored)?;
+        let acc = self.pixels.values(i, stored, P::PAIRED)?;
         let x = self.x.wrapping_add(i as i32);
         Some(self.pixels.pixel.color_at(&acc, x, self.y))
     }
@@ -284,7 +308,7 @@ impl<C, P: FusedColor<C>, V: Varyings, D: DepthTest, const LESS: bool> DepthSpan
 {
     #[inline(always)]
     fn pixel(&mut self, i: usize, stored: &mut u16) -> Option<C> {
-        let acc = self.values(i, stored)?;
+        let acc = self.values(i, stored, P::PAIRED)?;
         Some(self.pixel.color(&acc))
     }
 }
@@ -1265,6 +1289,63 @@ mod tests {
             acc: &[u32; crate::geom::MAX_VARYINGS],
         ) -> embedded_graphics_core::pixelcolor::Rgb565 {
             embedded_graphics_core::pixelcolor::Rgb565::new((acc[0] >> 16) as u8 & 31, 0, 0)
+        }
+    }
+
+    /// The values of a span's pixels stepped in pairs are those stepped one by one while each
+    /// pair's low value stays within `0 .. 2^32` (random values, steps of either sign, even and
+    /// odd counts of values), and the depth test and stored depths are the same.
+    #[test]
+    fn paired_values_step_as_single_ones() {
+        use super::DepthPixels;
+        use crate::depth::{Compare, NoDepth};
+        use crate::geom::{Varyings, MAX_VARYINGS};
+        fn check<V: Varyings>(next: &mut impl FnMut() -> u32) {
+            const LEN: usize = 64;
+            let mut acc = [0u32; MAX_VARYINGS];
+            let mut step = [0u32; MAX_VARYINGS];
+            for k in 0..V::LEN {
+                // Low values from 2^24 to 2^32 - 2^24, steps below 2^17 either way: in range
+                // over the span. High values anything.
+                acc[k] = if k % 2 == 0 {
+                    (1 << 24) + next() % (u32::MAX - (1 << 25))
+                } else {
+                    next()
+                };
+                step[k] = ((next() % (1 << 18)) as i32 - (1 << 17)) as u32;
+            }
+            let (z, dz) = (next(), next() % (1 << 20));
+            let depths = [0u16; LEN].map(|_| next() as u16);
+            let mut stored = [depths; 2];
+            let mut pixels = [true, false].map(|_| DepthPixels::<Red<false>, V, NoDepth, true> {
+                acc,
+                step,
+                z,
+                dz,
+                compare: Compare::Less,
+                pixel: &Red::<false>,
+                _v: core::marker::PhantomData,
+            });
+            for i in 0..LEN {
+                let [a, b] = &mut stored;
+                let [p, q] = &mut pixels;
+                let paired = p.values(i, &mut a[i], true);
+                let single = q.values(i, &mut b[i], false);
+                assert_eq!(paired, single, "{i} {acc:?} {step:?}");
+            }
+            assert_eq!(stored[0], stored[1]);
+        }
+        let mut x = 0x2468_ace1u32;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        for _ in 0..2_000 {
+            check::<[i32; 4]>(&mut next);
+            check::<[i32; 3]>(&mut next);
+            check::<[i32; 1]>(&mut next);
         }
     }
 
