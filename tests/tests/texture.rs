@@ -3,8 +3,9 @@
 
 use fixtures::reference3d::{full_white_light, projected_corners, screen_weights};
 use proptest::prelude::*;
+use rasterizer_core::geom::MAX_VARYINGS;
 use rasterizer_core::prelude::*;
-use rasterizer_core::shade::{Specular, TexturedLit};
+use rasterizer_core::shade::{Shading, Specular, TexturedLit, VertexIn};
 use rasterizer_core::texture::{Texture, TextureError};
 
 const W: u32 = 96;
@@ -443,5 +444,113 @@ proptest! {
         let mut scratch = vec![VertexSlot::<[i32; 5]>::EMPTY; 4];
         pl.draw(&mut fb, &mesh, &mut scratch).unwrap();
         prop_assert!(buf.iter().all(|&c| c == 0 || c == 0xf81f));
+    }
+}
+
+/// `TexturedLit` with every item forwarded but `FUSED_PAIRED` (the default, false): the fused
+/// loop steps its values one by one.
+#[derive(Debug, Clone)]
+struct Unpaired<'t>(TexturedLit<'t, Fx16, Rgb565, 0>);
+
+impl Shading<Fx16> for Unpaired<'_> {
+    type Color = Rgb565;
+    type Varyings = <TexturedLit<'static, Fx16, Rgb565, 0> as Shading<Fx16>>::Varyings;
+    type Stored = [i32; 5];
+    const NEEDS_WORLD: bool = true;
+    const NEEDS_UV: bool = true;
+    const NEEDS_W: bool = true;
+    const NEEDS_TRIANGLE: bool = true;
+    const FUSED_FRAC: u32 = 0;
+    const FUSED_OFFSET: u32 = 0;
+    fn begin_frame(&mut self, model: Option<&Mat4<Fx16>>) -> bool {
+        self.0.begin_frame(model)
+    }
+    fn vertex(&mut self, v: &VertexIn<Fx16>) -> Self::Varyings {
+        self.0.vertex(v)
+    }
+    fn vertex_stored(&mut self, v: &VertexIn<Fx16>) -> Self::Stored {
+        self.0.vertex_stored(v)
+    }
+    fn project(&self, v: &mut Self::Varyings, w: Fx16) {
+        self.0.project(v, w)
+    }
+    fn triangle(&mut self, v: &mut [Self::Varyings; 3]) {
+        self.0.triangle(v)
+    }
+    fn face(&mut self, vertices: &[VertexIn<Fx16>; 3]) {
+        self.0.face(vertices)
+    }
+    fn pixel(&self, v: &Self::Varyings) -> Rgb565 {
+        self.0.pixel(v)
+    }
+    fn pixel_fused(&self, acc: &[u32; MAX_VARYINGS]) -> Rgb565 {
+        self.0.pixel_fused(acc)
+    }
+}
+
+/// A frame with a depth buffer (the fused loop's path), `Less`.
+fn draw_depth<Sh: Shading<Fx16, Color = Rgb565, Stored = [i32; 5]>>(
+    cam: &Transforms<Fx16>,
+    shader: Sh,
+    mesh: &Mesh<'_, Fx16>,
+) -> Vec<u16> {
+    let mut buf = vec![0u16; (W * H) as usize];
+    let mut z = vec![u16::MAX; (W * H) as usize];
+    let mut fb = Framebuffer::<Rgb565>::new(&mut buf, W, H).unwrap();
+    let depth = DepthBuffer::new(&mut z, W, H, Compare::Less).unwrap();
+    let mut p = Pipeline::new(cam, Viewport::new(W, H), NoCull, depth, shader);
+    let mut scratch = vec![VertexSlot::<[i32; 5]>::EMPTY; mesh.positions.len()];
+    p.draw(&mut fb, mesh, &mut scratch).unwrap();
+    buf
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// `TexturedLit` claims `FUSED_PAIRED`: its values stepped in pairs give the pixels they
+    /// give stepped one by one, from any eye (the floor's far end ten times the near one's
+    /// depth: 1 / w far apart), any texture repeat and offset, either filter.
+    #[test]
+    fn paired_texture_values_draw_the_unpaired_pixels(
+        x in -1.5f64..1.5,
+        y in -0.6f64..3.0,
+        z in 1.2f64..6.0,
+        reps in 0.05f64..40.0,
+        offset in -5_000_000i32..5_000_000,
+        bilinear in any::<bool>(),
+    ) {
+        // The floor in 12 x 12 quads: triangles small enough for the fused loop's lean path.
+        const N: u16 = 12;
+        let p = |i: u16, j: u16| {
+            let (s, t) = (f64::from(i) / f64::from(N), f64::from(j) / f64::from(N));
+            Vec3::new(fx(-2.0 + 4.0 * s), fx(-1.0), fx(1.0 - 10.0 * t))
+        };
+        let uv = |i: u16, j: u16| {
+            let r = reps * 65536.0 / f64::from(N);
+            [(f64::from(i) * r) as i32 + offset, (f64::from(N - j) * r) as i32 - offset]
+        };
+        let (mut positions, mut uvs, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+        for j in 0..=N {
+            for i in 0..=N {
+                positions.push(p(i, j));
+                uvs.push(uv(i, j));
+            }
+        }
+        let at = |i: u16, j: u16| j * (N + 1) + i;
+        for j in 0..N {
+            for i in 0..N {
+                triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let mesh = Mesh::new(&positions, &triangles).with_uvs(&uvs);
+        let texels = id_texture();
+        let texture = Texture::new(5, 5, &texels).unwrap();
+        let filter = if bilinear { Filter::Bilinear } else { Filter::Nearest };
+        let shader = TexturedLit::new(full_white_light(), texture).with_filter(filter);
+        let cam = camera_at(x, y, z);
+        let paired = draw_depth(&cam, shader.clone(), &mesh);
+        prop_assume!(paired.iter().any(|&p| p != 0));
+        prop_assert_eq!(paired, draw_depth(&cam, Unpaired(shader), &mesh));
     }
 }

@@ -53,6 +53,7 @@ impl<S: Scalar, Sh: Shading<S>, N: Numerics> FusedColor<Sh::Color> for ShaderCol
         offset: Sh::FUSED_OFFSET,
     };
     const AT: bool = !matches!(N::DITHER, Dither::None);
+    const PAIRED: bool = Sh::FUSED_PAIRED;
     #[inline(always)]
     fn color(&self, acc: &[u32; MAX_VARYINGS]) -> Sh::Color {
         self.0.pixel_fused(acc)

@@ -171,6 +171,12 @@ pub trait Shading<S: Scalar> {
     /// Added to every value (in units of `2^-FUSED_FRAC`) where a span starts: half a unit by
     /// default, so that a shift by `FUSED_FRAC` rounds.
     const FUSED_OFFSET: u32 = (1 << Self::FUSED_FRAC) >> 1;
+    /// Every value the fused span loop steps (times `2^FUSED_FRAC`, plus the offset) stays
+    /// within `0 .. 2^32` at every pixel of a triangle, by the shader's own margins against the
+    /// planes' rounding: the loop may then step the values in pairs, each pair one 64-bit sum
+    /// (fewer registers on a 64-bit core, the same pixels). A shader that claims it and lets a
+    /// value wrap gets a value of the pair wrong by a unit of its last bit (never a panic).
+    const FUSED_PAIRED: bool = false;
     /// Per pixel in the fused span loop: `acc[i]` is value `i` times `2^FUSED_FRAC`, plus
     /// [`Shading::FUSED_OFFSET`], wrapping. By default each value is shifted back (rounded) and
     /// handed to [`Shading::pixel`].

@@ -291,6 +291,9 @@ impl<S: Scalar, C: ShadeColor, const N: usize> Shading<S> for TexturedLit<'_, S,
     const NEEDS_TRIANGLE: bool = true;
     const FUSED_FRAC: u32 = 0;
     const FUSED_OFFSET: u32 = 0;
+    // Lights from LIGHT_MARGIN to below 2^31, texel coordinates a texel above zero and below
+    // 2^31, 1 / w from 1 to below 2^31 (`triangle`): none wraps in a triangle.
+    const FUSED_PAIRED: bool = true;
 
     fn begin_frame(&mut self, model: Option<&Mat4<S>>) -> bool {
         self.frame = model.and_then(|m| self.lighting.in_model_space(m));
