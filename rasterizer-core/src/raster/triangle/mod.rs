@@ -415,12 +415,13 @@ where
 
 /// Gouraud spans from colour planes set up once per triangle: each channel's value at a pixel
 /// centre is `c0 + (g dx2 + h dy2) / 2^32` in 32.32, with the gradients `g`, `h` per doubled
-/// sub-pixel unit rounded once (one reciprocal of the doubled area for all six), so a span starts
-/// with two multiplies per channel and no division.
+/// sub-pixel unit rounded once (one reciprocal of the doubled area for all six, its near
+/// quotients: within `3/2` of a unit of the exact gradient, never larger in magnitude than the
+/// exactly rounded one), so a span starts with two multiplies per channel and no division.
 ///
 /// Taken when the triangle's extents keep both the products in `i64` and the start's error
-/// (`(ex + ey) 2^-33` steps from the gradients' rounding) below `2^-17` steps, as small as the
-/// stepping's own per pixel: every screen-sized triangle. The start then lies within `2^-17` of
+/// (below `3 (ex + ey) 2^-33` steps from the gradients' rounding) below `3 2^-17` steps, under
+/// two units of the 16.16 value: every screen-sized triangle. The start then lies that close to
 /// the exact blend, which is what [`Gouraud`]'s exact start gives up to its own rounding.
 struct Planes<'a, S: Surface> {
     surface: &'a mut S,
@@ -501,7 +502,7 @@ where
         (ex, ey): (u64, u64),
         sign: i64,
     ) -> bool {
-        // Within 2^16 doubled units the start's error stays below 2^-17 steps.
+        // Within 2^16 doubled units the start's error stays below 3 2^-17 steps.
         if ex + ey > 1 << 16 || S::Color::COUNT > PLANE_CHANNELS {
             return false;
         }
@@ -528,9 +529,10 @@ where
             // The plane's numerators, as for `Gouraud`; |a|, |b| <= 2^8 (ex + ey) <= 2^24 here.
             let a = sign * ((c1 - c0) * (v2.1 - v0.1) - (c2 - c0) * (v1.1 - v0.1));
             let b = sign * ((c2 - c0) * (v1.0 - v0.0) - (c1 - c0) * (v2.0 - v0.0));
-            // round(a 2^32 / 2 den): below 2^57 in magnitude, within the reciprocal's range.
-            let g = recip.floor((a << 32) + half);
-            let h = recip.floor((b << 32) + half);
+            // round(a 2^32 / 2 den) to within one toward zero (`Reciprocal::near`), below 2^57
+            // in magnitude.
+            let g = recip.near((a << 32) + half);
+            let h = recip.near((b << 32) + half);
             // The products at a pixel inside the triangle must fit i64 with the base (up to
             // 2^40): a sliver's gradients can be as large as its colour range over 1/2^BITS.
             if !fat {
@@ -616,7 +618,8 @@ impl<C: Channels> PlaneSpan<C> {
         x: i64,
     ) -> impl FnMut() -> C {
         // The value in 32.32, rounded to 16.16, plus the half that `from_fixed16` rounds by;
-        // inside the triangle it lies within the vertex colours' range (up to 2^-17).
+        // inside the triangle it lies within the vertex colours' range (up to 3 2^-17), far
+        // inside that half.
         let start = |i: usize| (at[i].wrapping_add(gx[i].wrapping_mul(x)) >> 16) as i32;
         let pair = |hi: i32, lo: i32| (i64::from(hi) << 32).wrapping_add(i64::from(lo));
         let packed = C::PACKED16;
@@ -906,7 +909,9 @@ mod tests {
 
     /// Random triangles inside the planes' extent limit (many of them slivers) and colours:
     /// whenever `reach_bounded` holds, every channel's reach, formed as `Planes::new` forms it
-    /// (in i128 here), is below 2^61.
+    /// from exactly rounded gradients (in i128 here), is below 2^61: the near quotients it uses
+    /// are never larger in magnitude, see `wide`'s
+    /// `near_quotients_lie_within_one_of_the_floor_toward_zero`.
     #[test]
     fn reach_bounded_implies_every_channel_in_reach() {
         let mut next = rng(0x2545_f491_4f6c_dd1d);
