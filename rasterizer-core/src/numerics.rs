@@ -49,13 +49,14 @@ pub enum SpanStart {
     Gradient,
     /// The default: each plane is `K + gx px + gy py` over pixel coordinates in 32-bit wrapping
     /// arithmetic, exact at an anchor pixel of the triangle with the gradients rounded to the
-    /// fractional bits, so a pixel's value is a function of its position alone (bands match the
-    /// whole frame) and a pixel `d` pixels from the anchor is within `(d + 1) / 2` units of the
-    /// last fractional bit of the exact plane (16 fractional bits whatever
-    /// [`Numerics::FRAC`] says; depth is rounded down, as [`SpanStart::Exact`] rounds it).
-    /// Depth, the values and the colour of each pixel
-    /// are computed in one loop, with the rounding folded into the span's start. Perspective-
-    /// correct interpolation uses [`SpanStart::Exact`] instead.
+    /// fractional bits (to within one unit toward zero of the exactly rounded ones: a quotient
+    /// through the triangle's one reciprocal, without a correction step), so a pixel's value is a
+    /// function of its position alone (bands match the whole frame) and a pixel `d` pixels from the
+    /// anchor is within `(3 d + 1) / 2` units of the last fractional bit of the exact plane (16
+    /// fractional bits whatever [`Numerics::FRAC`] says; depth is rounded down, as
+    /// [`SpanStart::Exact`] rounds it). Depth, the values and the colour of each pixel are computed
+    /// in one loop, with the rounding folded into the span's start. Perspective-correct
+    /// interpolation uses [`SpanStart::Exact`] instead.
     Wrapping,
 }
 

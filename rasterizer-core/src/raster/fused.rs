@@ -100,10 +100,10 @@ fn round_div_wide(n: i128, d: i128) -> i128 {
     crate::wide::div_floor_i128(n + (d >> 1), d)
 }
 
-/// The gradients of a plane over narrow edges from their numerators: `a 2^(BITS + frac) /
-/// cross` and `b 2^(BITS + frac) / cross` rounded, halves up, to within one unit toward zero.
-/// The correction step that would round them exactly (a multiply, a compare and an add) costs more than the
-/// unit is worth: at most `2^-(BITS + frac)` a sub-pixel step.
+/// The gradients of a plane over narrow edges from their numerators: `a 2^(BITS + frac) / cross`
+/// and `b 2^(BITS + frac) / cross` rounded, halves up, to within one unit toward zero. The
+/// correction step that would round them exactly (a multiply, a compare and an add) costs more than
+/// the unit is worth: at most `2^-(BITS + frac)` a sub-pixel step.
 #[inline(always)]
 fn near_gradients<const BITS: u32>(
     recip: &Reciprocal,
@@ -173,11 +173,11 @@ impl Shape {
 }
 
 /// [`Shape::plane`] for large triangles, steep planes or a far anchor, in `i128`: gradients whose
-/// numerators lie in the narrow set-up's range as that set-up finds them, others exactly rounded; the anchor's value
-/// exactly rounded for a far anchor, or from the rounded gradients for the top vertex's own pixel
-/// (`own`), as the narrow set-up finds it, so that a triangle gets the same planes on either
-/// path. Only the low 32 bits of each result matter. It takes the fields it needs by value, so
-/// that the shape need not be stored in memory for it.
+/// numerators lie in the narrow set-up's range as that set-up finds them, others exactly rounded;
+/// the anchor's value exactly rounded for a far anchor, or from the rounded gradients for the top
+/// vertex's own pixel (`own`), as the narrow set-up finds it, so that a triangle gets the same
+/// planes on either path. Only the low 32 bits of each result matter. It takes the fields it needs
+/// by value, so that the shape need not be stored in memory for it.
 #[inline(never)]
 #[cold]
 fn plane_wide<const BITS: u32>(
@@ -1486,8 +1486,9 @@ mod tests {
     }
 
     /// The narrow plane's gradients lie within one unit of the exactly rounded ones, toward zero,
-    /// within the bound its products rely on, and its value at pixel (0, 0) equals the anchor's value moved back by whole
-    /// gradients, to the bit, for any top vertex, anchor on its pixel and narrow shape.
+    /// within the bound its products rely on, and its value at pixel (0, 0) equals the anchor's
+    /// value moved back by whole gradients, to the bit, for any top vertex, anchor on its pixel and
+    /// narrow shape.
     #[test]
     fn narrow_plane_start_is_the_anchors_value_moved_back() {
         const BITS: u32 = 6;
