@@ -223,11 +223,14 @@ mod tests {
         assert_eq!(mul_i128(-3, 5), -15);
     }
 
-    /// Whether `q` is `n / d`'s near quotient: the floor, or its neighbour toward zero.
+    /// Whether `q` is `n / d`'s near quotient: the floor, or its neighbour toward zero (a
+    /// non-negative n's quotient may be one below its floor, a negative one's one above), and
+    /// never larger in magnitude than the floor (a gradient's reach bound holds for it too).
     fn near_floor(q: i64, n: i64, d: u64) -> bool {
         let floor = i128::from(n).div_euclid(i128::from(d));
         let q = i128::from(q);
-        q == floor || q == floor - i128::from(n >= 0) + i128::from(n < 0)
+        let next = floor - i128::from(n >= 0) + i128::from(n < 0);
+        (q == floor || q == next) && q.abs() <= floor.abs()
     }
 
     #[test]
@@ -252,59 +255,27 @@ mod tests {
             u64::MAX,
         ];
         let numerators = [0, 1, -1, i64::MAX, i64::MIN, i64::MAX - 5, i64::MIN + 5];
+        let (mut off, mut tried) = (0, 0);
         for _ in 0..20_000 {
             // Divisors and numerators of every size, as the planes of tiny and huge triangles.
             let d = (next() >> (next() % 64)).max(1);
             let n = (next() as i64) >> (next() % 64);
             let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
             for n in numerators.iter().copied().chain([n]) {
-                assert!(near_floor(r.near(n), n, d), "{n} / {d}");
+                let q = r.near(n);
+                assert!(near_floor(q, n, d), "{n} / {d}: {q}");
+                tried += 1;
+                off += usize::from(i128::from(q) != i128::from(n).div_euclid(i128::from(d)));
             }
         }
+        // The correction step would matter now and then (measured: 43,491 of 160,000).
+        assert!(off > 20_000 && off < 90_000, "{off} of {tried}");
         for d in edge {
             let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
             for n in numerators {
                 assert!(near_floor(r.near(n), n, d), "{n} / {d}");
             }
         }
-    }
-
-    #[test]
-    fn near_quotients_lie_within_one_of_the_floor_toward_zero() {
-        let mut x = 0x853c_49e6_748f_ea9bu64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
-        let (mut below, mut tried) = (0, 0);
-        for _ in 0..50_000 {
-            let d = (next() >> (next() % 64)).max(1);
-            let n = (next() as i64) >> (next() % 64);
-            let r = Reciprocal::new(core::num::NonZeroU64::new(d).unwrap());
-            for n in [n, i64::MAX, i64::MIN, 0, -1, 1] {
-                let floor = i128::from(n).div_euclid(i128::from(d));
-                let near = i128::from(r.near(n));
-                // Toward zero: a non-negative n's quotient may be one below its floor, a
-                // negative one's one above.
-                let allowed = if n >= 0 {
-                    floor - 1..=floor
-                } else {
-                    floor..=floor + 1
-                };
-                assert!(allowed.contains(&near), "{n} / {d}: {near}, floor {floor}");
-                // Never larger in magnitude (a gradient's reach bound holds for it too).
-                assert!(
-                    near.abs() <= floor.abs(),
-                    "{n} / {d}: {near}, floor {floor}"
-                );
-                tried += 1;
-                below += usize::from(near != floor);
-            }
-        }
-        // The correction step matters now and then (measured: 55,358 of 300,000).
-        assert!(below > 25_000 && below < 120_000, "{below} of {tried}");
     }
 
     #[test]

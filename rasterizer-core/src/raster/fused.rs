@@ -68,7 +68,7 @@ struct Shape {
     e2: (i64, i64),
     /// The doubled area's magnitude: the divisor of every gradient, never zero.
     cross: i64,
-    /// Its reciprocal, for the gradients of narrow edges (unused otherwise).
+    /// Its reciprocal, for the narrow set-up's quotients (unused otherwise).
     recip: Reciprocal,
     /// The anchor pixel.
     anchor: (i64, i64),

@@ -910,8 +910,7 @@ mod tests {
     /// Random triangles inside the planes' extent limit (many of them slivers) and colours:
     /// whenever `reach_bounded` holds, every channel's reach, formed as `Planes::new` forms it
     /// from exactly rounded gradients (in i128 here), is below 2^61: the near quotients it uses
-    /// are never larger in magnitude, see `wide`'s
-    /// `near_quotients_lie_within_one_of_the_floor_toward_zero`.
+    /// are never larger in magnitude, see `wide`'s `reciprocal_quotients_lie_next_to_the_floor`.
     #[test]
     fn reach_bounded_implies_every_channel_in_reach() {
         let mut next = rng(0x2545_f491_4f6c_dd1d);
